@@ -1,0 +1,458 @@
+//! The `millpath` command line.
+
+mod compat;
+mod config;
+mod report;
+mod write;
+
+use clap::{Parser, Subcommand, ValueEnum};
+use millpath_core::adjustz;
+use millpath_core::diag::{Diagnostic, Diags, Msg, Origin, Severity};
+use millpath_core::{compile_file, complete_input, Lang, OsFileSystem, Session, Settings};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+const VERSION: &str = env!("CARGO_PKG_VERSION");
+
+fn banner() -> String {
+    format!("millpath V.{VERSION}")
+}
+
+#[derive(Parser)]
+#[command(name = "millpath", version, about = "Compiles hand-drawn CNC milling paths (DXF) to G-code")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(clap::Args, Clone, Default)]
+struct MachineArgs {
+    /// Feed for milling moves, mm/min (or `feed` in millpath.toml)
+    #[arg(long, short = 'f')]
+    feed: Option<f64>,
+    /// Sweep speed for time estimates, mm/min (or `sweep_speed`)
+    #[arg(long, short = 'v')]
+    sweep_speed: Option<f64>,
+    /// Sweep height of the top-level path, mm (or `sweep_height`)
+    #[arg(long, short = 's')]
+    sweep_height: Option<f64>,
+    /// Probe feed, mm/min (default: the feed)
+    #[arg(long, short = 'z')]
+    probe_feed: Option<f64>,
+    /// Further directory to search for subpaths (repeatable)
+    #[arg(long = "search-dir", short = 'd')]
+    search_dirs: Vec<PathBuf>,
+    /// Path-name pattern
+    #[arg(long)]
+    path_pattern: Option<String>,
+    /// File-name pattern
+    #[arg(long)]
+    file_pattern: Option<String>,
+    /// PARENT:CHILD — paths matching PARENT may only embed subpaths matching CHILD
+    #[arg(long = "restrict", short = 'e')]
+    restrictions: Vec<String>,
+    /// Show which element each text matching REGEX was assigned to
+    #[arg(long)]
+    debug_texts: Option<String>,
+    /// Message language
+    #[arg(long, value_enum)]
+    lang: Option<LangArg>,
+    /// Settings file (default: nearest millpath.toml above the first input)
+    #[arg(long)]
+    config: Option<PathBuf>,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum LangArg {
+    En,
+    De,
+}
+
+#[derive(Clone, Copy, ValueEnum, Default, PartialEq)]
+enum Format {
+    #[default]
+    Human,
+    Json,
+    Github,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Compile DXF path drawings to G-code (one path per file)
+    Compile {
+        #[command(flatten)]
+        machine: MachineArgs,
+        #[arg(required = true)]
+        files: Vec<String>,
+    },
+    /// Check every path of every file (directories: all DXF files below); writes nothing
+    Check {
+        #[command(flatten)]
+        machine: MachineArgs,
+        #[arg(long, value_enum, default_value = "human")]
+        format: Format,
+        #[arg(required = true)]
+        paths: Vec<PathBuf>,
+    },
+    /// Turn NAME_Clean.gcode and the measured NAME_Z.txt into NAME_Milling.gcode
+    AdjustZ {
+        /// Largest allowed difference between measured and nominal height, mm
+        #[arg(long, short = 'm')]
+        max: f64,
+        #[arg(long, value_enum)]
+        lang: Option<LangArg>,
+        #[arg(required = true)]
+        files: Vec<String>,
+    },
+    /// Drop-in replacement for the PathDxf2GCode command line
+    #[command(disable_help_flag = true)]
+    Pathdxf2gcode {
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        args: Vec<String>,
+    },
+    /// Drop-in replacement for the PathGCodeAdjustZ command line
+    #[command(disable_help_flag = true)]
+    Pathgcodeadjustz {
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        args: Vec<String>,
+    },
+}
+
+fn main() -> ExitCode {
+    let raw: Vec<String> = std::env::args().collect();
+    // The compatibility commands take the reference's command line unchanged.
+    match raw.get(1).map(String::as_str) {
+        Some("pathdxf2gcode") => return ExitCode::from(run_dxf2gcode(&raw[2..])),
+        Some("pathgcodeadjustz") => return ExitCode::from(run_adjustz_compat(&raw[2..])),
+        _ => {}
+    }
+    let cli = Cli::parse();
+    let code = match cli.command {
+        Command::Compile { machine, files } => run_compile(&machine, &files),
+        Command::Check { machine, format, paths } => run_check(&machine, format, &paths),
+        Command::AdjustZ { max, lang, files } => {
+            let lang = lang.map_or(Lang::En, to_lang);
+            run_adjustz(max, None, lang, &files, false)
+        }
+        Command::Pathdxf2gcode { args } => run_dxf2gcode(&args),
+        Command::Pathgcodeadjustz { args } => run_adjustz_compat(&args),
+    };
+    ExitCode::from(code)
+}
+
+fn to_lang(l: LangArg) -> Lang {
+    match l {
+        LangArg::En => Lang::En,
+        LangArg::De => Lang::De,
+    }
+}
+
+fn write_outputs(outputs: &[millpath_core::OutputFile], lang: Lang, diags: &mut Diags) {
+    let verb = if lang == Lang::De { "Schreiben von" } else { "Writing" };
+    for o in outputs {
+        eprintln!("---- {verb} {}", o.path.display());
+        if let Err(e) = write::write_atomic(&o.path, &o.content) {
+            diags.error(Msg::CannotWrite, Origin::Options, millpath_core::args![o.path.display(), e]);
+        }
+    }
+}
+
+fn print_stats(outcome: &millpath_core::FileOutcome, lang: Lang) {
+    for (_, s) in &outcome.stats {
+        let l = s.lines(lang);
+        eprintln!("  {};  {};", l[0], l[1]);
+        eprintln!("  {};  {};  {};", l[2], l[3], l[4]);
+    }
+}
+
+fn flush_info(session: &mut Session) {
+    for line in session.info.drain(..) {
+        eprintln!("{line}");
+    }
+}
+
+/// `millpath pathdxf2gcode …`: the reference command line.
+fn run_dxf2gcode(args: &[String]) -> u8 {
+    let parsed = compat::parse(args, compat::Tool::Dxf2GCode);
+    let lang = parsed.settings.lang;
+    eprintln!("---- {} (PathDxf2GCode-compatible)", banner());
+    eprintln!();
+    if args.is_empty() || parsed.help || !parsed.errors.is_empty() {
+        for e in &parsed.errors {
+            eprintln!("{}", e.reference_line(lang));
+        }
+        eprintln!();
+        eprintln!("{}", compat::help_dxf2gcode(lang));
+        return 2;
+    }
+    if parsed.files.is_empty() {
+        eprintln!("{}", Diagnostic::error(Msg::NoDxfFiles, Origin::Options, vec![]).reference_line(lang));
+        return 3;
+    }
+    let fs = OsFileSystem;
+    let mut session = match Session::new(parsed.settings, &fs) {
+        Ok(s) => s,
+        Err(errs) => {
+            for e in errs {
+                eprintln!("{}", e.reference_line(lang));
+            }
+            eprintln!();
+            eprintln!("{}", compat::help_dxf2gcode(lang));
+            return 2;
+        }
+    };
+    let mut write_errors = Diags::default();
+    for f in &parsed.files {
+        let input = complete_input(f);
+        let outcome = compile_file(&mut session, &input, &banner());
+        flush_info(&mut session);
+        write_outputs(&outcome.outputs, lang, &mut write_errors);
+        print_stats(&outcome, lang);
+    }
+    let mut failed = false;
+    for d in session.diags.list.iter().chain(write_errors.list.iter()) {
+        eprintln!("{}", d.reference_line(lang));
+        failed |= d.severity == Severity::Error;
+    }
+    u8::from(failed)
+}
+
+/// Settings: millpath.toml (nearest above the first input, or --config), then the flags.
+fn settings_for(m: &MachineArgs, first_input: Option<&Path>, require_machine: bool) -> Result<Settings, String> {
+    let mut s = Settings::default();
+    let mut have = config::Have::default();
+    let cfg_path = m.config.clone().or_else(|| first_input.and_then(config::find));
+    if let Some(p) = cfg_path {
+        config::load(&p)?.apply(&mut s, &mut have);
+    }
+    if let Some(v) = m.feed {
+        s.feed = v;
+        have.feed = true;
+    }
+    if let Some(v) = m.sweep_speed {
+        s.sweep_speed = v;
+        have.sweep_speed = true;
+    }
+    if let Some(v) = m.sweep_height {
+        s.sweep_height = v;
+        have.sweep_height = true;
+    }
+    if m.probe_feed.is_some() {
+        s.probe_feed = m.probe_feed;
+    }
+    s.search_dirs.extend(m.search_dirs.iter().cloned());
+    if let Some(p) = &m.path_pattern {
+        s.path_pattern = p.clone();
+    }
+    if let Some(p) = &m.file_pattern {
+        s.file_pattern = p.clone();
+    }
+    for r in &m.restrictions {
+        let (a, b) = r.split_once(':').ok_or_else(|| format!("--restrict {r}: expected PARENT:CHILD"))?;
+        s.restrictions.push((a.to_string(), b.to_string()));
+    }
+    s.debug_pattern = m.debug_texts.clone();
+    if let Some(l) = m.lang {
+        s.lang = to_lang(l);
+    }
+    if require_machine {
+        let missing: Vec<&str> = [("--feed / feed", have.feed), ("--sweep-speed / sweep_speed", have.sweep_speed), ("--sweep-height / sweep_height", have.sweep_height)]
+            .iter()
+            .filter(|(_, h)| !h)
+            .map(|(n, _)| *n)
+            .collect();
+        if !missing.is_empty() {
+            return Err(match s.lang {
+                Lang::En => format!("missing machine settings: {} (give them as options or in millpath.toml)", missing.join(", ")),
+                Lang::De => format!("Maschinenwerte fehlen: {} (als Option oder in millpath.toml angeben)", missing.join(", ")),
+            });
+        }
+        for (name, v) in [("feed", s.feed), ("sweep speed", s.sweep_speed), ("sweep height", s.sweep_height)] {
+            if !(v > 0.0) {
+                return Err(format!("{name} must be > 0 (is {v})"));
+            }
+        }
+    }
+    Ok(s)
+}
+
+fn print_human(diags: &[Diagnostic], lang: Lang) {
+    for d in diags {
+        eprintln!("{}", report::human(d, lang));
+    }
+}
+
+fn run_compile(m: &MachineArgs, files: &[String]) -> u8 {
+    let first = files.first().map(|f| complete_input(f));
+    let settings = match settings_for(m, first.as_deref(), true) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return 2;
+        }
+    };
+    let lang = settings.lang;
+    let fs = OsFileSystem;
+    let mut session = match Session::new(settings, &fs) {
+        Ok(s) => s,
+        Err(errs) => {
+            print_human(&errs, lang);
+            return 2;
+        }
+    };
+    let mut write_errors = Diags::default();
+    for f in files {
+        let input = complete_input(f);
+        let outcome = compile_file(&mut session, &input, &banner());
+        flush_info(&mut session);
+        write_outputs(&outcome.outputs, lang, &mut write_errors);
+        print_stats(&outcome, lang);
+    }
+    let all: Vec<Diagnostic> = session.diags.list.iter().chain(write_errors.list.iter()).cloned().collect();
+    print_human(&all, lang);
+    u8::from(all.iter().any(|d| d.severity == Severity::Error))
+}
+
+fn collect_inputs(paths: &[PathBuf], out: &mut Vec<PathBuf>) {
+    for p in paths {
+        if p.is_dir() {
+            let mut entries: Vec<PathBuf> = std::fs::read_dir(p).map(|r| r.filter_map(|e| e.ok().map(|e| e.path())).collect()).unwrap_or_default();
+            entries.sort();
+            let (dirs, files): (Vec<PathBuf>, Vec<PathBuf>) = entries.into_iter().partition(|e| e.is_dir());
+            out.extend(files.into_iter().filter(|f| f.extension().is_some_and(|e| e.eq_ignore_ascii_case("dxf"))));
+            collect_inputs(&dirs, out);
+        } else {
+            out.push(p.clone());
+        }
+    }
+}
+
+fn run_check(m: &MachineArgs, format: Format, paths: &[PathBuf]) -> u8 {
+    let mut inputs = Vec::new();
+    collect_inputs(paths, &mut inputs);
+    let mut settings = match settings_for(m, inputs.first().map(PathBuf::as_path), false) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return 2;
+        }
+    };
+    settings.check = true;
+    let lang = settings.lang;
+    let fs = OsFileSystem;
+    let mut all = Vec::new();
+    // One session per file: each file is checked on its own, like separate lint targets.
+    for input in &inputs {
+        let mut session = match Session::new(settings.clone(), &fs) {
+            Ok(s) => s,
+            Err(errs) => {
+                print_human(&errs, lang);
+                return 2;
+            }
+        };
+        compile_file(&mut session, input, &banner());
+        if format == Format::Human {
+            flush_info(&mut session);
+        }
+        all.extend(session.diags.list);
+    }
+    let errors = all.iter().filter(|d| d.severity == Severity::Error).count();
+    match format {
+        Format::Human => {
+            print_human(&all, lang);
+            let warnings = all.len() - errors;
+            eprintln!(
+                "{}",
+                match lang {
+                    Lang::En => format!("checked {} file(s): {errors} error(s), {warnings} warning(s)", inputs.len()),
+                    Lang::De => format!("{} Datei(en) geprüft: {errors} Fehler, {warnings} Warnung(en)", inputs.len()),
+                }
+            );
+        }
+        Format::Json => {
+            let v: Vec<serde_json::Value> = all.iter().map(|d| report::json_value(d, lang)).collect();
+            println!("{}", serde_json::to_string_pretty(&serde_json::json!({ "files": inputs.len(), "errors": errors, "diagnostics": v })).unwrap_or_default());
+        }
+        Format::Github => {
+            for d in &all {
+                println!("{}", report::github(d, lang));
+            }
+        }
+    }
+    u8::from(errors > 0)
+}
+
+fn run_adjustz_compat(args: &[String]) -> u8 {
+    let parsed = compat::parse(args, compat::Tool::AdjustZ);
+    let lang = parsed.settings.lang;
+    eprintln!("---- {} (PathGCodeAdjustZ-compatible)", banner());
+    if args.is_empty() || parsed.help || !parsed.errors.is_empty() {
+        for e in &parsed.errors {
+            eprintln!("{}", e.reference_line(lang));
+        }
+        eprintln!();
+        eprintln!("{}", compat::help_adjustz(lang));
+        return 2;
+    }
+    if parsed.files.is_empty() {
+        eprintln!("{}", Diagnostic::error(Msg::NoDxfFiles, Origin::Options, vec![]).reference_line(lang));
+        return 3;
+    }
+    run_adjustz(parsed.m.unwrap_or(0.0), parsed.x.as_deref(), lang, &parsed.files, true)
+}
+
+fn run_adjustz(max: f64, x: Option<&str>, lang: Lang, files: &[String], reference_lines: bool) -> u8 {
+    let mut diags = Diags::default();
+    let show = x.and_then(|p| regex::Regex::new(p).ok());
+    let verb = |en: &str, de: &str| if lang == Lang::De { de.to_string() } else { en.to_string() };
+    let mut planned = Vec::new();
+    for f in files {
+        let base = adjustz::base_path(f);
+        let z_path = format!("{base}_Z.txt");
+        let clean_path = format!("{base}_Clean.gcode");
+        eprintln!("---- {} {z_path}", verb("Reading", "Einlesen von"));
+        let z_text = match std::fs::read_to_string(&z_path) {
+            Ok(t) => t,
+            Err(e) => {
+                diags.error(Msg::CannotRead, Origin::Input, millpath_core::args![z_path, e]);
+                continue;
+            }
+        };
+        let vars = adjustz::parse_z_file(&z_text, &z_path, max, &mut diags);
+        if diags.has_errors() {
+            continue;
+        }
+        eprintln!("---- {} {clean_path}", verb("Reading", "Einlesen von"));
+        let clean = match std::fs::read_to_string(&clean_path) {
+            Ok(t) => t,
+            Err(e) => {
+                diags.error(Msg::CannotRead, Origin::Input, millpath_core::args![clean_path, e]);
+                continue;
+            }
+        };
+        if let Some(re) = &show {
+            for line in clean.lines().filter(|l| re.is_match(l)) {
+                eprintln!("---- {line}");
+            }
+        }
+        let milling = adjustz::rewrite(&clean, &clean_path, &vars, &mut diags);
+        planned.push((PathBuf::from(format!("{base}_Milling.gcode")), milling));
+    }
+    // nothing is written when any file had an error
+    if !diags.has_errors() {
+        for (path, content) in planned {
+            eprintln!("---- {} {}", verb("Writing", "Schreiben von"), path.display());
+            if let Err(e) = write::write_atomic(&path, &content) {
+                diags.error(Msg::CannotWrite, Origin::Options, millpath_core::args![path.display(), e]);
+            }
+        }
+    }
+    for d in &diags.list {
+        if reference_lines {
+            eprintln!("{}", d.reference_line(lang));
+        } else {
+            eprintln!("{}", report::human(d, lang));
+        }
+    }
+    u8::from(diags.has_errors())
+}

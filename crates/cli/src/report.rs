@@ -1,0 +1,132 @@
+//! Rendering diagnostics: the reference's `****` lines, human-readable text, JSON and
+//! GitHub annotations.
+
+use millpath_core::diag::{Diagnostic, Origin, Severity};
+use millpath_core::Lang;
+use serde_json::json;
+
+pub fn severity_word(s: Severity, lang: Lang) -> &'static str {
+    match (s, lang) {
+        (Severity::Error, Lang::En) => "error",
+        (Severity::Error, Lang::De) => "Fehler",
+        (Severity::Warning, Lang::En) => "warning",
+        (Severity::Warning, Lang::De) => "Warnung",
+    }
+}
+
+/// `error[MP012]: message` with the location and related locations on further lines.
+pub fn human(d: &Diagnostic, lang: Lang) -> String {
+    let mut s = format!("{}[{}]: {}", severity_word(d.severity, lang), d.msg.code(), d.message(lang));
+    match d.origin.location() {
+        Some(loc) => s.push_str(&format!("\n  --> {loc}")),
+        None => s.push_str(&format!("\n  --> {}", d.origin.context())),
+    }
+    if let Origin::Entity(e) = &d.origin {
+        s.push_str(&format!("\n   = path {}", e.path));
+    }
+    for r in &d.related {
+        let loc = r.origin.location().unwrap_or_else(|| r.origin.context());
+        s.push_str(&format!("\n   = {}: {loc}", r.note));
+    }
+    s
+}
+
+fn location_fields(o: &Origin) -> serde_json::Value {
+    match o {
+        Origin::Entity(e) => json!({
+            "file": e.file.path.display().to_string(),
+            "line": e.line,
+            "entity": e.code_name,
+            "layer": e.layer,
+            "handle": e.handle,
+            "path": e.path,
+            "x": e.pos.x,
+            "y": e.pos.y,
+        }),
+        Origin::Path { name, file } => json!({ "file": file.path.display().to_string(), "path": name }),
+        Origin::File(f) => json!({ "file": f.path.display().to_string() }),
+        Origin::FileLine { file, line } => json!({ "file": file, "line": line }),
+        Origin::Span { file, start, end } => json!({ "file": file.path.display().to_string(), "start": start, "end": end }),
+        Origin::Options | Origin::Input => json!({}),
+    }
+}
+
+pub fn json_value(d: &Diagnostic, lang: Lang) -> serde_json::Value {
+    json!({
+        "severity": severity_word(d.severity, Lang::En),
+        "code": d.msg.code(),
+        "name": d.msg.name(),
+        "message": d.message(lang),
+        "context": d.origin.context(),
+        "location": location_fields(&d.origin),
+        "related": d.related.iter().map(|r| json!({ "note": r.note, "location": location_fields(&r.origin) })).collect::<Vec<_>>(),
+    })
+}
+
+/// `::error file=F,line=L,title=millpath MP012::message`
+pub fn github(d: &Diagnostic, lang: Lang) -> String {
+    let kind = if d.severity == Severity::Error { "error" } else { "warning" };
+    let mut props = Vec::new();
+    if let Some(f) = d.origin.file() {
+        props.push(format!("file={}", escape_prop(&f.path.display().to_string())));
+    } else if let Origin::FileLine { file, .. } = &d.origin {
+        props.push(format!("file={}", escape_prop(file)));
+    }
+    match &d.origin {
+        Origin::Entity(e) => props.push(format!("line={}", e.line)),
+        Origin::FileLine { line, .. } => props.push(format!("line={line}")),
+        _ => {}
+    }
+    props.push(format!("title={}", escape_prop(&format!("millpath {}", d.msg.code()))));
+    let mut msg = d.message(lang);
+    if let Origin::Entity(e) = &d.origin {
+        msg = format!("{msg} ({} on layer {} at {})", e.code_name, e.layer, e.pos);
+    }
+    format!("::{kind} {}::{}", props.join(","), escape_data(&msg))
+}
+
+fn escape_data(s: &str) -> String {
+    s.replace('%', "%25").replace('\r', "%0D").replace('\n', "%0A")
+}
+
+fn escape_prop(s: &str) -> String {
+    escape_data(s).replace(':', "%3A").replace(',', "%2C")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use millpath_core::diag::{EntityOrigin, FileRef};
+    use millpath_core::geom::P2;
+    use millpath_core::Msg;
+
+    fn sample() -> Diagnostic {
+        let file = FileRef::new("dir/a.dxf".into());
+        Diagnostic::error(
+            Msg::ValueMissing,
+            Origin::Entity(EntityOrigin {
+                file,
+                line: 120,
+                handle: "A4".into(),
+                layer: "8999_1P".into(),
+                code_name: "LINE",
+                pos: P2::new(1.0, 2.0),
+                path: "8999.1P".into(),
+            }),
+            vec!["B".into()],
+        )
+    }
+
+    #[test]
+    fn formats() {
+        let d = sample();
+        assert_eq!(d.reference_line(Lang::En), "**** LINE @ [1.000 2.000] # 8999.1P[a.dxf]: B value missing");
+        let h = human(&d, Lang::De);
+        assert!(h.starts_with("Fehler[") && h.contains("B-Wert fehlt") && h.contains("dir/a.dxf:120"), "{h}");
+        let j = json_value(&d, Lang::En);
+        assert_eq!(j["location"]["line"], 120);
+        assert_eq!(j["location"]["layer"], "8999_1P");
+        let g = github(&d, Lang::En);
+        assert!(g.starts_with("::error file=dir/a.dxf,line=120,title=millpath MP"), "{g}");
+    }
+}

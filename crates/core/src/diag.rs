@@ -1,0 +1,368 @@
+//! Structured diagnostics: a message id with its arguments, a severity, a primary origin and
+//! related origins. Rendering to text happens late, in the language the user asked for, so
+//! the CLI and a language server can show the same diagnostic in their own way.
+
+use crate::geom::P2;
+use std::collections::HashSet;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Lang {
+    #[default]
+    En,
+    De,
+}
+
+impl Lang {
+    /// `de`, `de-DE`, `DE_at` … are German; everything else is English (as upstream).
+    pub fn from_name(name: &str) -> Lang {
+        if name.to_ascii_lowercase().starts_with("de") {
+            Lang::De
+        } else {
+            Lang::En
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Severity {
+    Error,
+    Warning,
+}
+
+/// Where something comes from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Origin {
+    /// A DXF entity.
+    Entity(EntityOrigin),
+    /// A path as a whole: `name[file]`.
+    Path { name: String, file: Arc<FileRef> },
+    /// A whole input file.
+    File(Arc<FileRef>),
+    /// A line of a text file (1-based), e.g. a `_Z.txt` line.
+    FileLine { file: String, line: usize },
+    /// A byte span in a text (`.mpath`) file.
+    Span { file: Arc<FileRef>, start: usize, end: usize },
+    /// The command line or the settings.
+    Options,
+    /// The command-line argument of a file that failed as a whole.
+    Input,
+}
+
+/// An input file: its path as given and its name without directories.
+#[derive(Debug, PartialEq, Eq, Hash)]
+pub struct FileRef {
+    pub path: PathBuf,
+    pub name: String,
+}
+
+impl FileRef {
+    pub fn new(path: PathBuf) -> Arc<FileRef> {
+        let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+        Arc::new(FileRef { path, name })
+    }
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct EntityOrigin {
+    pub file: Arc<FileRef>,
+    /// 1-based line of the entity in the DXF file.
+    pub line: usize,
+    pub handle: String,
+    pub layer: String,
+    /// `LINE`, `ARC`, `CIRCLE`, `TEXT`, `MTEXT`.
+    pub code_name: &'static str,
+    pub pos: P2,
+    /// Normalised path name of the layer.
+    pub path: String,
+}
+
+impl Origin {
+    /// The reference tool's context text (`MTEXT @ [47.167 229.104] # 8999.1P[8999.01P.dxf]`).
+    pub fn context(&self) -> String {
+        match self {
+            Origin::Entity(e) => format!("{} @ {} # {}[{}]", e.code_name, e.pos, e.path, e.file.name),
+            Origin::Path { name, file } => format!("{}[{}]", name, file.name),
+            Origin::File(f) => f.path.display().to_string(),
+            Origin::FileLine { file, line } => format!("{file}:{line}"),
+            Origin::Span { file, start, .. } => format!("{}@{}", file.path.display(), start),
+            Origin::Options => "Options".into(),
+            Origin::Input => "Input".into(),
+        }
+    }
+
+    /// A location a person can find: `file:line (layer L, handle H)` for DXF entities.
+    pub fn location(&self) -> Option<String> {
+        match self {
+            Origin::Entity(e) => Some(format!(
+                "{}:{} ({} on layer {}{}, at {})",
+                e.file.path.display(),
+                e.line,
+                e.code_name,
+                e.layer,
+                if e.handle.is_empty() { String::new() } else { format!(", handle {}", e.handle) },
+                e.pos
+            )),
+            Origin::Path { file, .. } | Origin::File(file) => Some(file.path.display().to_string()),
+            Origin::FileLine { file, line } => Some(format!("{file}:{line}")),
+            Origin::Span { file, .. } => Some(file.path.display().to_string()),
+            _ => None,
+        }
+    }
+
+    pub fn file(&self) -> Option<&Arc<FileRef>> {
+        match self {
+            Origin::Entity(e) => Some(&e.file),
+            Origin::Path { file, .. } | Origin::File(file) | Origin::Span { file, .. } => Some(file),
+            _ => None,
+        }
+    }
+}
+
+macro_rules! messages {
+    ($($id:ident = $en:literal, $de:literal;)*) => {
+        /// Every message the compiler can report, in English and German.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub enum Msg { $($id),* }
+        impl Msg {
+            pub const ALL: &'static [Msg] = &[$(Msg::$id),*];
+            pub fn template(self, lang: Lang) -> &'static str {
+                match (self, lang) {
+                    $((Msg::$id, Lang::En) => $en, (Msg::$id, Lang::De) => $de,)*
+                }
+            }
+        }
+    };
+}
+
+messages! {
+    // DXF reading
+    CannotRead = "Cannot read file {0}: {1}", "Datei {0} kann nicht gelesen werden: {1}";
+    CannotLoadDxf = "Cannot load DXF file {0}: {1}", "DXF-Datei {0} kann nicht geladen werden: {1}";
+    ZNotZero = "{0}.Z != 0 - cannot convert to a 2-D point", "{0}.Z != 0 - kann nicht in 2-D-Punkt umgewandelt werden";
+    BadRadius = "Radius {0} must be > 0", "Radius {0} muss > 0 sein";
+    LineTypeNotSupported = "Line type {0} not supported", "Linienart {0} nicht unterstützt";
+    TwoStartMarkers = "Two start markers defined at {0} and {1}", "Zwei Anfangspunkte definiert: {0} und {1}";
+    TwoEndMarkers = "Two end markers defined at {0} and {1}", "Zwei Endpunkte definiert: {0} und {1}";
+    NoSpecialMeaning = "Circle with line type {1} and diameter {0} has no special meaning", "Kreis mit Linientyp {1} mit Durchmesser {0} hat keine spezielle Bedeutung";
+    PathNotFoundForElement = "Path definition {0} not found; maybe start marker is not of line type PHANTOM(__ _ _ __)", "Pfaddefinition {0} nicht gefunden; vielleicht hat Start-Markierung nicht Linientyp PHANTOM(__ _ _ __)";
+    NoParametersForPath = "No parameters found for path {0}; maybe path text center is not near enough to start marker", "Keine Parameter für Pfad {0} gefunden; vielleicht ist Pfadtext nicht nahe genug an Start-Markierung";
+    DiameterSmallerThanO = "Diameter {0} is smaller than O={1}", "Durchmesser {0} ist kleiner als O={1}";
+    TextAnchor = "Text {0} must have anchor at center, or be unrotated, with anchor at bottom left or top left", "Text {0} muss Anker in der Mitte haben oder unrotiert mit Anker unten links oder oben links sein";
+    NoOverlap = "No overlapping circle, arc or line found for '{0}'; maybe text center is not near enough to element (text circle: {1}, diam. {2}), or there is another overlapping text", "Kein überlappender Kreis, Bogen und keine überlappende Linie für '{0}' gefunden; evtl. Textmitte nicht nahe genug (Textkreis: {1}, Durchm. {2}) oder überlappender weiterer Text";
+    // parameter texts
+    DuplicateParameter = "The parameter(s) {1} are specified more than once in '{0}'", "Der oder die Parameter {1} kommen in '{0}' öfter als einmal vor";
+    NCannotUseVariable = "N parameter '{0}' cannot use variable", "Parameter N mit Wert '{0}' darf keine Variablen verwenden";
+    OCannotUseVariable = "O parameter '{0}' cannot use variable", "Parameter O mit Wert '{0}' darf keine Variablen verwenden";
+    AtCannotUseVariable = "@ path '{0}' cannot use variable", "@-Pfad '{0}' darf keine Variablen verwenden";
+    DuplicateVariable = "Variable {0} is defined more than once in '{1}'", "Variable {0} ist in '{1}' mehrfach definiert";
+    Unsupported = "Unsupported {0} value; {1}", "Nicht unterstützter {0}-Wert; {1}";
+    NotANumber = "{0} value '{1}' is not a number and is ignored", "{0}-Wert '{1}' ist keine Zahl und wird ignoriert";
+    MustBePositive = "{0}={1} must be > 0", "{0}={1} muss > 0 sein";
+    SNotAboveT = "S={0} must be above T={1}", "S={0} darf nicht unter oder nahe an T={1} liegen";
+    BAboveT = "B={0} must not be larger than T={1}", "B={0} darf nicht über T={1} liegen";
+    DAboveT = "D={0} must not be larger than T={1}", "D={0} darf nicht über T={1} liegen";
+    DNotAboveB = "D={0} must be larger than B={1}", "D={0} muss über B={1} liegen";
+    HelixTooLarge = "Diameter {0} of helix circle is larger than A={1}; possibly replace with arc path", "Helix-Durchmesser {0} ist größer als A={1}; möglichst durch Bogenpfad ersetzen";
+    ValueMissing = "{0} value missing", "{0}-Wert fehlt";
+    BadE = "E={0} is not a valid regular expression ({1})", "E={0} ist kein gültiger regulärer Ausdruck ({1})";
+    // @ references
+    AtWithOthers = "@ path '{0}' must not contain other parameters", "@-Pfad '{0}' darf keine anderen Parameter enthalten";
+    AtNoMatch = "@ path '{0}' does not match path pattern /{1}/", "@ Pfad '{0}' passt nicht auf Pfadmuster /{1}/";
+    AtNotFound = "Path {0} referenced with @ not found in this DXF file", "Pfad {0} nach @ nicht in dieser DXF-Datei gefunden";
+    AtNested = "@ not allowed in path '{0}' which is itself referenced by @", "@ darf in Pfad '{0}', der selbst mit @ referenziert wird, nicht verwendet werden";
+    // paths, files
+    InvalidPathName = "'>{0}' is not a valid path name", "'>{0}' ist kein gültiger Pfadname";
+    AlreadyDefined = "Path {0} has already been defined in {1}", "Pfad {0} schon einmal definiert in {1}";
+    CouldNotFind = "Could not find path {0} in file(s) {1}", "Pfad {0} nicht in Datei(en) {1} gefunden";
+    SearchDirMissing = "Search directory {0} does not exist", "Suchverzeichnis {0} existiert nicht";
+    ParametersTextMissing = "Parameters text missing; maybe incorrect start marker", "Parametertext fehlt; evtl. nicht korrekte Start-Markierung";
+    StartMissing = "Start marker missing", "Start-Markierung fehlt";
+    EndMissing = "End marker missing", "Ende-Markierung fehlt";
+    NotReached = "{0} segments (e.g. this one here) not reached - maybe N value is missing", "{0} Segmente (u.a. dieses hier) wurden nicht erreicht - evtl. fehlt N-Auszeichnung";
+    NoMoreSegments = "No more segments found after location {0}", "Keine weiteren Segmente ab Punkt {0} gefunden";
+    EndNotAtLast = "End marker not near end of last traversed segment, but at {0} - add sweep", "Ende-Markierung ist nicht am Ende des letztes erreichten Segments, sondern an Position {0}; Leerfahrt ergänzen";
+    NoSegments = "No segments found", "Keine Segmente gefunden";
+    // subpaths
+    TLessThanSub = "T={0} at path is less than T={1} at subpath{2}", "T={0} an Pfad ist kleiner als T={1} an Teilpfad {2}";
+    Forbidden = "Subpath {0} forbidden by restriction for {1}", "Teilpfad {0} nicht erlaubt in Pfad {1}";
+    NestingTooDeep = "Nesting depth deeper than 9 levels at path {0}", "Mehr als 9 verschachtelte Teilpfade bei Einbettung von {0}";
+    SizeMismatch = "Subpath size {0} is not equal to size {2} in referenced path {1}", "Teilpfad-Länge {0} ist nicht gleich Länge {2} des referenzierten Teilpfads {1}";
+    MMismatch = "M={0} at subpath {1} is different from M={2} in referenced path", "M={0} an Teilpfad {1} weicht von M={2} in referenziertem Modell ab";
+    OMismatch = "O={0} at subpath {1} is different from O={2} in referenced path", "O={0} an Teilpfad {1} weicht von O={2} in referenziertem Modell ab";
+    TMismatch = "T={0} at subpath {1} is different from T={2} in referenced path", "T={0} an Teilpfad {1} weicht von T={2} in referenziertem Modell ab";
+    CannotPlace = "Subpath {0} cannot be placed: its start and end marker coincide or the sizes differ", "Teilpfad {0} kann nicht platziert werden: Anfang und Ende fallen zusammen oder die Längen unterscheiden sich";
+    // variables
+    RangeFormat = "Range for variable {0} must have format ###~### instead of '{1}'", "Bereich für Variable {0} muss Format Zahl~Zahl (statt Wert '{1}') haben";
+    RangeNumber = "Wrong number format in range for variable {0} ({1})", "Falsches Zahlenformat bei Bereich für Variable {0} ({1})";
+    DefinitionFormat = "Definition for variable {0} must be comma-separated list, or letters group starting with ?, or range ...~... instead of '{1}'", "Definition für Variable {0} muss kommaseparierte Liste oder Buchstabengruppe nach ? oder Bereich ...~... sein, statt '{1}'";
+    EmptyCharList = "Definition for variable {0} has no values", "Definition für Variable {0} hat keine Werte";
+    VariableDefinitionError = "Error in variable definition: {0}", "Fehler in Variablendefinition: {0}";
+    MissingValues = "Missing values for variables {0}", "Fehlende Werte für Variablen {0}";
+    MissingDefinitions = "Missing definitions for variables {0}", "Fehlende Definitionen für Variablen {0}";
+    ValueNotInDefinition = "Value '{0}' of variable {2} does not match definition '{1}'", "Wert '{0}' der Variablen {2} passt nicht zu Definition '{1}'";
+    SelfReference = "Variable {0} refers to itself (value '{1}')", "Variable {0} verweist auf sich selbst (Wert '{1}')";
+    // files
+    MoreThanOnePath = "DXF file {0} contains more than one path layer: {1}", "DXF-Datei {0} enthält mehr als einen Pfad-LayerName: {1}";
+    NoErrorFreePath = "DXF file {0} contains no error-free path layer", "DXF-Datei {0} enthält keinen Pfad-LayerName ohne Fehler";
+    NotNear = "!{0}.Near({1})", "!{0}.Near({1})";
+    CannotWrite = "Cannot write {0}: {1}", "{0} kann nicht geschrieben werden: {1}";
+    // options
+    OptionNotSupported = "Option {0} not supported", "Option {0} nicht unterstützt";
+    MissingOptionValue = "Missing value after option {0}", "Fehlende Option nach {0}";
+    OptionNotNumber = "Option value {1} for {0} is not a number", "Wert {1} für Option {0} ist keine Zahl";
+    OptionNegative = "Option value {1} for {0} is not >= 0", "Wert {1} für Option {0} ist nicht >= 0";
+    FMissing = "/f missing or not > 0", "/f nicht angegeben oder nicht größer als 0";
+    VMissing = "/v missing or not > 0", "/v nicht angegeben oder nicht größer als 0";
+    SMissing = "/s missing or not > 0", "/s nicht angegeben oder nicht größer als 0";
+    EFormat = "/e value {0} is not of format regex:regex", "/e-Wert {0} hat nicht das Format regex:regex";
+    EInvalid = "/e value {0} contains an invalid regular expression ({1})", "/e-Wert {0} enthält einen ungültigen regulären Ausdruck ({1})";
+    BadRegex = "Option {0}: invalid regular expression '{1}' ({2})", "Option {0}: ungültiger regulärer Ausdruck '{1}' ({2})";
+    NoDxfFiles = "No dxf files provided", "Keine DXF-Dateien angegeben";
+    // adjust-z
+    ZLineFormat = "Line does not have format '(comment) #...=value'", "Zeile hat nicht das Format '(Kommentar) #...=Wert'";
+    ZNotNumber = "Value '{0}' for {1} is not a valid number", "Wert '{0}' für {1} ist keine gültige Zahl";
+    ZTooFar = "Value {0} for {1} differs from {2} by more than /m={3}", "Wert {0} für {1} weicht von {2} um mehr als /m={3} ab";
+    ZDuplicate = "{0} is defined more than once", "{0} ist mehrfach definiert";
+    ZUnknownVariable = "Unknown variable {0} in expression '{1}'", "Unbekannte Variable {0} in Ausdruck '{1}'";
+    ExprEndExpected = "End of expression expected at column {0} in '{1}'", "Ende des Ausdrucks erwartet bei Spalte {0} in '{1}'";
+    ExprParenExpected = "')' expected at column {0} in '{1}'", "')' erwartet bei Spalte {0} in '{1}'";
+    ExprBracketExpected = "']' expected at column {0} in '{1}'", "']' erwartet bei Spalte {0} in '{1}'";
+    ExprUnexpected = "Unexpected symbol '{0}' at column {1} in '{2}'", "Unerwartetes Zeichen '{0}' bei Spalte {1} in '{2}'";
+    ExprBadNumber = "Malformed number '{0}' at column {1} in '{2}'", "Ungültige Zahl '{0}' bei Spalte {1} in '{2}'";
+    MissingM = "Missing required /m value", "Fehlende /m-Option";
+}
+
+impl Msg {
+    /// A stable, machine-readable code (`MP` + index), used in JSON and SARIF reports.
+    pub fn code(self) -> String {
+        let idx = Msg::ALL.iter().position(|m| *m == self).unwrap_or(0);
+        format!("MP{:03}", idx + 1)
+    }
+    pub fn name(self) -> String {
+        format!("{self:?}")
+    }
+}
+
+/// Fills `{0}`, `{1}` … in a template.
+pub fn fill(template: &str, args: &[String]) -> String {
+    let mut out = String::with_capacity(template.len() + 16);
+    let mut rest = template;
+    while let Some(pos) = rest.find('{') {
+        out.push_str(&rest[..pos]);
+        let after = &rest[pos + 1..];
+        match after.find('}').and_then(|e| after[..e].parse::<usize>().ok().map(|i| (e, i))) {
+            Some((e, i)) => {
+                out.push_str(args.get(i).map(String::as_str).unwrap_or(""));
+                rest = &after[e + 1..];
+            }
+            None => {
+                out.push('{');
+                rest = after;
+            }
+        }
+    }
+    out.push_str(rest);
+    out
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Related {
+    pub origin: Origin,
+    pub note: String,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Diagnostic {
+    pub msg: Msg,
+    pub args: Vec<String>,
+    pub severity: Severity,
+    pub origin: Origin,
+    pub related: Vec<Related>,
+}
+
+impl Diagnostic {
+    pub fn error(msg: Msg, origin: Origin, args: Vec<String>) -> Diagnostic {
+        Diagnostic { msg, args, severity: Severity::Error, origin, related: Vec::new() }
+    }
+    pub fn warning(msg: Msg, origin: Origin, args: Vec<String>) -> Diagnostic {
+        Diagnostic { msg, args, severity: Severity::Warning, origin, related: Vec::new() }
+    }
+    pub fn with_related(mut self, origin: Origin, note: impl Into<String>) -> Diagnostic {
+        self.related.push(Related { origin, note: note.into() });
+        self
+    }
+    pub fn message(&self, lang: Lang) -> String {
+        fill(self.msg.template(lang), &self.args)
+    }
+    /// The reference's error line: `**** <context>: <message>` (CR LF in contexts → `|`).
+    pub fn reference_line(&self, lang: Lang) -> String {
+        let ctx = self.origin.context().replace("\r\n", "|");
+        let mark = if self.severity == Severity::Error { "****" } else { "++++" };
+        format!("{mark} {ctx}: {}", self.message(lang))
+    }
+}
+
+/// Builds an argument list from anything printable.
+#[macro_export]
+macro_rules! args {
+    ($($a:expr),* $(,)?) => { vec![$($a.to_string()),*] };
+}
+
+/// Collected diagnostics of a run, de-duplicated by their full text like the reference.
+#[derive(Debug, Default)]
+pub struct Diags {
+    pub list: Vec<Diagnostic>,
+    seen: HashSet<String>,
+}
+
+impl Diags {
+    pub fn push(&mut self, d: Diagnostic) {
+        let key = d.reference_line(Lang::En);
+        if self.seen.insert(key) {
+            self.list.push(d);
+        }
+    }
+    pub fn error(&mut self, msg: Msg, origin: Origin, args: Vec<String>) {
+        self.push(Diagnostic::error(msg, origin, args));
+    }
+    pub fn error_count(&self) -> usize {
+        self.list.iter().filter(|d| d.severity == Severity::Error).count()
+    }
+    pub fn has_errors(&self) -> bool {
+        self.error_count() > 0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_message_has_both_languages_and_matching_placeholders() {
+        for m in Msg::ALL {
+            let (en, de) = (m.template(Lang::En), m.template(Lang::De));
+            assert!(!en.is_empty() && !de.is_empty(), "{m:?}");
+            for i in 0..5 {
+                let p = format!("{{{i}}}");
+                assert_eq!(en.contains(&p), de.contains(&p), "{m:?} placeholder {p}");
+            }
+        }
+    }
+
+    #[test]
+    fn fill_replaces_placeholders() {
+        assert_eq!(fill("F={0} must be > {1}", &args!["-3", 0]), "F=-3 must be > 0");
+        assert_eq!(fill("a {x} b", &[]), "a {x} b");
+    }
+
+    #[test]
+    fn duplicates_are_collected_once() {
+        let mut d = Diags::default();
+        d.error(Msg::StartMissing, Origin::Options, vec![]);
+        d.error(Msg::StartMissing, Origin::Options, vec![]);
+        assert_eq!(d.list.len(), 1);
+        assert_eq!(d.list[0].reference_line(Lang::De), "**** Options: Start-Markierung fehlt");
+    }
+}

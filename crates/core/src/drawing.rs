@@ -1,0 +1,215 @@
+//! The drawing model both front-ends produce: paths with their markers, probes and segments,
+//! each with its raw parameter text and its origin. From here on everything is shared.
+
+use crate::diag::{Diags, FileRef, Msg, Origin};
+use crate::geom::{Geom, P2};
+use crate::params::ParamText;
+use crate::args;
+use regex::Regex;
+use std::sync::Arc;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Style {
+    /// CONTINUOUS: milled to B.
+    Mill,
+    /// DIVIDE: marked to D.
+    Mark,
+    /// BORDER: milled to B with support bars up to D.
+    Support,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum SweepKind {
+    /// DASHED: a sweep that may carry S and N.
+    Dashed,
+    /// HIDDEN: a sweep without parameters.
+    Hidden,
+    /// DOT: a skipped subpath embedding, travelled as a sweep.
+    Dot,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum SegKind {
+    Drill(Style),
+    Helix(Style),
+    Subpath,
+    Mill(Style),
+    Sweep(SweepKind),
+}
+
+impl SegKind {
+    /// Tie-break preference of the traversal (§5.1).
+    pub fn preference(self) -> u8 {
+        match self {
+            SegKind::Drill(_) => 1,
+            SegKind::Helix(_) => 2,
+            SegKind::Subpath => 3,
+            SegKind::Mill(_) => 4,
+            SegKind::Sweep(_) => 5,
+        }
+    }
+    /// Keys accepted in the element's text (reference-input.md §4.1), besides `:`.
+    pub fn allowed_keys(self) -> &'static str {
+        match self {
+            SegKind::Mill(_) => "BCDFINPQSUW",
+            SegKind::Sweep(_) => "NS",
+            SegKind::Drill(Style::Mark) => "CDFQ",
+            SegKind::Drill(_) => "BCFQ",
+            SegKind::Helix(Style::Mill) => "BFIQ",
+            SegKind::Helix(Style::Mark) => "DFIQ",
+            SegKind::Helix(Style::Support) => "BDFIPQU",
+            SegKind::Subpath => "HMNOT>",
+        }
+    }
+}
+
+/// Keys accepted in a path start text.
+pub const PATH_KEYS: &str = "ABCDEFIMOPRSTUWZ@";
+/// Keys the chain level accepts from its first segment (P and U missing is a reference quirk).
+pub const CHAIN_KEYS: &str = "NICWFBSQD";
+/// Keys accepted at a z-probe.
+pub const PROBE_KEYS: &str = "HLTZ";
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum Shape {
+    Circle { c: P2, r: f64 },
+    Path(Geom),
+}
+
+impl Shape {
+    pub fn start(&self) -> P2 {
+        match self {
+            Shape::Circle { c, .. } => *c,
+            Shape::Path(g) => g.start(),
+        }
+    }
+    pub fn end(&self) -> P2 {
+        match self {
+            Shape::Circle { c, .. } => *c,
+            Shape::Path(g) => g.end(),
+        }
+    }
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct RawSegment {
+    pub kind: SegKind,
+    pub shape: Shape,
+    pub text: Option<ParamText>,
+    pub origin: Origin,
+}
+
+impl RawSegment {
+    /// Traversal order key: N (or 9998); drills −10⁶, helixes −10⁶ + radius.
+    pub fn order(&self) -> f64 {
+        match (&self.kind, &self.shape) {
+            (SegKind::Drill(_), _) => -1_000_000.0,
+            (SegKind::Helix(_), Shape::Circle { r, .. }) => -1_000_000.0 + r,
+            (SegKind::Sweep(SweepKind::Hidden), _) => 9998.0,
+            _ => self.text.as_ref().and_then(|t| t.order()).map_or(9998.0, |n| n as f64),
+        }
+    }
+    /// `N5555` marks a legacy "backtracking" segment (only visible in comments).
+    pub fn backtrack(&self) -> bool {
+        !matches!(self.kind, SegKind::Sweep(SweepKind::Hidden)) && self.text.as_ref().and_then(|t| t.order()) == Some(5555)
+    }
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Marker {
+    pub pos: P2,
+    pub origin: Origin,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct ProbeDef {
+    pub center: P2,
+    pub text: Option<ParamText>,
+    pub origin: Origin,
+}
+
+/// One path as drawn, before traversal.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RawPath {
+    pub name: String,
+    pub file: Arc<FileRef>,
+    pub start: Option<Marker>,
+    pub end: Option<Marker>,
+    /// Turn markers (Ø 1.5 mm): dead ends with automatic return.
+    pub turns: Vec<Marker>,
+    /// The start text after `@` resolution.
+    pub start_text: Option<ParamText>,
+    /// The path whose start text this one uses (`@` reference).
+    pub at_ref: Option<String>,
+    pub probes: Vec<ProbeDef>,
+    pub segments: Vec<RawSegment>,
+}
+
+impl RawPath {
+    pub fn new(name: String, file: Arc<FileRef>) -> RawPath {
+        RawPath {
+            name,
+            file,
+            start: None,
+            end: None,
+            turns: Vec::new(),
+            start_text: None,
+            at_ref: None,
+            probes: Vec::new(),
+            segments: Vec::new(),
+        }
+    }
+    pub fn origin(&self) -> Origin {
+        Origin::Path { name: self.name.clone(), file: self.file.clone() }
+    }
+    /// The origin used for path-level messages: the start marker, else the path.
+    pub fn start_origin(&self) -> Origin {
+        self.start.as_ref().map_or_else(|| self.origin(), |m| m.origin.clone())
+    }
+}
+
+/// All paths of one input file, in the order they were created.
+#[derive(Debug, Clone, Default)]
+pub struct DrawingFile {
+    pub paths: Vec<RawPath>,
+    /// Lines of the `/x` debug output.
+    pub debug: Vec<String>,
+    /// e.g. `AC1015` for DXF.
+    pub version: String,
+}
+
+/// Start-text checks and `@` resolution, per file (reference-input.md §4.5, §5.1).
+pub fn resolve_start_texts(paths: &mut [RawPath], path_pattern: &Regex, pattern_text: &str, diags: &mut Diags) {
+    for p in paths.iter() {
+        if p.start.is_none() {
+            diags.error(Msg::ParametersTextMissing, p.origin(), vec![]);
+        }
+    }
+    let snapshot: Vec<(String, bool, Option<ParamText>)> =
+        paths.iter().map(|p| (p.name.clone(), p.start.is_some(), p.start_text.clone())).collect();
+    for p in paths.iter_mut() {
+        let Some(text) = &p.start_text else { continue };
+        let Some(target) = text.raw('@').map(str::to_string) else { continue };
+        let ctx = p.start_origin();
+        if text.params.len() > 1 {
+            diags.error(Msg::AtWithOthers, ctx, args![target]);
+            continue;
+        }
+        if !path_pattern.is_match(&target) {
+            diags.error(Msg::AtNoMatch, ctx, args![target, pattern_text]);
+            continue;
+        }
+        let Some((_, _, Some(referenced))) = snapshot.iter().find(|(n, has_start, _)| *n == target && *has_start) else {
+            diags.error(Msg::AtNotFound, ctx, args![target]);
+            continue;
+        };
+        if let Some(inner) = referenced.raw('@') {
+            diags.error(Msg::AtNested, ctx, args![inner]);
+            continue;
+        }
+        let mut resolved = referenced.clone();
+        resolved.origin = text.origin.clone();
+        p.start_text = Some(resolved);
+        p.at_ref = Some(target);
+    }
+}

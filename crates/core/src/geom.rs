@@ -1,0 +1,306 @@
+//! Tolerances, points, line and arc geometry, rigid transformations and number formatting.
+//!
+//! The tolerance predicates are the reference tool's (reference-input.md §0.1): a relative
+//! epsilon, and points compared by their *squared* distance. Many branches of the compiler
+//! depend on them, so they are reproduced literally.
+
+use std::fmt;
+
+pub const EPS: f64 = 1e-6;
+
+pub fn near_eps(a: f64, b: f64, eps: f64) -> bool {
+    (a - b).abs() <= eps * (a.abs().max(b.abs()) + 0.001)
+}
+pub fn near(a: f64, b: f64) -> bool {
+    near_eps(a, b, EPS)
+}
+/// `a ≥ b` with tolerance.
+pub fn ge(a: f64, b: f64) -> bool {
+    a >= b || near(a, b)
+}
+/// `a > b` beyond tolerance.
+pub fn gt(a: f64, b: f64) -> bool {
+    a > b && !near(a, b)
+}
+/// `|a − b| ≤ e`.
+pub fn absnear(a: f64, b: f64, e: f64) -> bool {
+    (a - b).abs() <= e
+}
+pub fn le(a: f64, b: f64) -> bool {
+    ge(b, a)
+}
+pub fn lt(a: f64, b: f64) -> bool {
+    gt(b, a)
+}
+
+/// Fixed-point text with three decimals; `-0.000` keeps its sign like the reference.
+pub fn f3(x: f64) -> String {
+    format!("{x:.3}")
+}
+
+/// Normalises an angle in degrees into [0, 360).
+pub fn normalize_angle(a: f64) -> f64 {
+    let r = a % 360.0;
+    if r.abs() < 1e-12 || (r.abs() - 360.0).abs() < 1e-12 {
+        0.0
+    } else if r < 0.0 {
+        r + 360.0
+    } else {
+        r
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct P2 {
+    pub x: f64,
+    pub y: f64,
+}
+
+impl P2 {
+    pub const fn new(x: f64, y: f64) -> Self {
+        P2 { x, y }
+    }
+    pub fn sub(self, o: P2) -> P2 {
+        P2::new(self.x - o.x, self.y - o.y)
+    }
+    pub fn add(self, o: P2) -> P2 {
+        P2::new(self.x + o.x, self.y + o.y)
+    }
+    pub fn scale(self, f: f64) -> P2 {
+        P2::new(self.x * f, self.y * f)
+    }
+    pub fn dot(self, o: P2) -> f64 {
+        self.x * o.x + self.y * o.y
+    }
+    pub fn len(self) -> f64 {
+        (self.x * self.x + self.y * self.y).sqrt()
+    }
+    pub fn dist2(self, o: P2) -> f64 {
+        let d = self.sub(o);
+        d.x * d.x + d.y * d.y
+    }
+    pub fn dist(self, o: P2) -> f64 {
+        self.dist2(o).sqrt()
+    }
+    /// Point identity of the reference: squared distance near 0 (≈ 3.16e-5 mm).
+    pub fn near(self, o: P2) -> bool {
+        near(self.dist2(o), 0.0)
+    }
+    /// The looser identity of the reference's consistency assertions (≈ 2.83e-4 mm).
+    pub fn assert_near(self, o: P2) -> bool {
+        near_eps(self.dist2(o), 0.0, 8e-5)
+    }
+    pub fn rotate(self, a: f64) -> P2 {
+        let (s, c) = a.sin_cos();
+        P2::new(self.x * c - self.y * s, self.x * s + self.y * c)
+    }
+    pub fn with_z(self, z: f64) -> P3 {
+        P3 { x: self.x, y: self.y, z }
+    }
+}
+
+/// `[x y]` with three decimals.
+impl fmt::Display for P2 {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "[{} {}]", f3(self.x), f3(self.y))
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct P3 {
+    pub x: f64,
+    pub y: f64,
+    pub z: f64,
+}
+
+impl P3 {
+    pub fn xy(self) -> P2 {
+        P2::new(self.x, self.y)
+    }
+    pub fn dist(self, o: P3) -> f64 {
+        let (dx, dy, dz) = (self.x - o.x, self.y - o.y, self.z - o.z);
+        (dx * dx + dy * dy + dz * dz).sqrt()
+    }
+}
+
+impl fmt::Display for P3 {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "[{} {} {}]", f3(self.x), f3(self.y), f3(self.z))
+    }
+}
+
+/// A straight line or a circular arc, in traversal direction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Geom {
+    Line { a: P2, b: P2 },
+    /// Angles in degrees, normalised; `ccw` runs from `a0` counter-clockwise to `a1`.
+    Arc { c: P2, r: f64, a0: f64, a1: f64, ccw: bool },
+}
+
+impl Geom {
+    pub fn start(&self) -> P2 {
+        match *self {
+            Geom::Line { a, .. } => a,
+            Geom::Arc { c, r, a0, .. } => arc_point(c, r, a0),
+        }
+    }
+    pub fn end(&self) -> P2 {
+        match *self {
+            Geom::Line { b, .. } => b,
+            Geom::Arc { c, r, a1, .. } => arc_point(c, r, a1),
+        }
+    }
+    pub fn reversed(&self) -> Geom {
+        match *self {
+            Geom::Line { a, b } => Geom::Line { a: b, b: a },
+            Geom::Arc { c, r, a0, a1, ccw } => Geom::Arc { c, r, a0: a1, a1: a0, ccw: !ccw },
+        }
+    }
+    /// Swept angle in degrees, in [0, 360).
+    pub fn sweep_deg(&self) -> f64 {
+        match *self {
+            Geom::Line { .. } => 0.0,
+            Geom::Arc { a0, a1, ccw, .. } => normalize_angle(if ccw { a1 - a0 } else { -(a1 - a0) }),
+        }
+    }
+    /// Length along the geometry (arc length for arcs).
+    pub fn length(&self) -> f64 {
+        match *self {
+            Geom::Line { a, b } => a.dist(b),
+            Geom::Arc { r, .. } => r * self.sweep_deg().to_radians(),
+        }
+    }
+    /// Straight distance between the end points.
+    pub fn chord(&self) -> f64 {
+        self.start().dist(self.end())
+    }
+    /// The piece between the distances `f0` and `f1` measured along the geometry from its start.
+    pub fn sub(&self, f0: f64, f1: f64) -> Geom {
+        match *self {
+            Geom::Line { a, b } => {
+                let len = a.dist(b);
+                let dir = b.sub(a).scale(1.0 / len);
+                Geom::Line { a: a.add(dir.scale(f0)), b: a.add(dir.scale(f1)) }
+            }
+            Geom::Arc { c, r, a0, ccw, .. } => {
+                let circumference = 2.0 * std::f64::consts::PI * r;
+                let sign = if ccw { 1.0 } else { -1.0 };
+                Geom::Arc {
+                    c,
+                    r,
+                    a0: normalize_angle(a0 + sign * (f0 / circumference * 360.0)),
+                    a1: normalize_angle(a0 + sign * (f1 / circumference * 360.0)),
+                    ccw,
+                }
+            }
+        }
+    }
+    pub fn transform(&self, t: &Transform) -> Geom {
+        match *self {
+            Geom::Line { a, b } => Geom::Line { a: t.apply(a), b: t.apply(b) },
+            Geom::Arc { c, r, a0, a1, ccw } => {
+                let d = t.angle.to_degrees();
+                Geom::Arc { c: t.apply(c), r, a0: normalize_angle(a0 + d), a1: normalize_angle(a1 + d), ccw }
+            }
+        }
+    }
+}
+
+pub fn arc_point(c: P2, r: f64, deg: f64) -> P2 {
+    let a = deg.to_radians();
+    P2::new(c.x + r * a.cos(), c.y + r * a.sin())
+}
+
+/// A rigid motion (rotation + translation) mapping one anchor pair onto another.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Transform {
+    pub from_start: P2,
+    pub from_end: P2,
+    pub to_start: P2,
+    pub to_end: P2,
+    /// Rotation in radians.
+    pub angle: f64,
+}
+
+impl Transform {
+    /// The top-level frame: the start marker becomes (0, 0), no rotation.
+    pub fn top_level(start: P2, end: P2) -> Transform {
+        Transform { from_start: start, from_end: end, to_start: P2::default(), to_end: end.sub(start), angle: 0.0 }
+    }
+
+    /// The rotation + translation that maps `from_start → to_start` and `from_end → to_end`;
+    /// `None` when the distances differ or the anchors coincide (rotation undefined).
+    pub fn between(from_start: P2, from_end: P2, to_start: P2, to_end: P2) -> Option<Transform> {
+        let u = from_end.sub(from_start);
+        let v = to_end.sub(to_start);
+        let (lu, lv) = (u.len(), v.len());
+        if lu == 0.0 || lv == 0.0 {
+            return None;
+        }
+        let a = (u.dot(v) / (lu * lv)).clamp(-1.0, 1.0).acos();
+        let angle = if u.rotate(a).dist(v) <= 1e-3 {
+            a
+        } else if u.rotate(-a).dist(v) <= 1e-3 {
+            -a
+        } else {
+            return None;
+        };
+        Some(Transform { from_start, from_end, to_start, to_end, angle })
+    }
+
+    pub fn apply(&self, p: P2) -> P2 {
+        p.sub(self.from_start).rotate(self.angle).add(self.to_start)
+    }
+
+    /// `[ [fs]=>[ts] / [fe]=>[te] ]`, the form used in subpath comments.
+    pub fn describe(&self) -> String {
+        format!("[ {}=>{} / {}=>{} ]", self.from_start, self.to_start, self.from_end, self.to_end)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tolerances() {
+        assert!(near(1.0, 1.0 + 1e-7));
+        assert!(!near(1.0, 1.0 + 2e-6));
+        assert!(near(0.0, 1e-9));
+        assert!(ge(1.0, 1.0 + 1e-7) && !gt(1.0 + 1e-7, 1.0));
+        assert!(P2::new(0.0, 0.0).near(P2::new(3e-5, 0.0)));
+        assert!(!P2::new(0.0, 0.0).near(P2::new(4e-5, 0.0)));
+        assert!(!near(f64::NAN, 1.0) && !ge(f64::NAN, 1.0) && !gt(f64::NAN, 1.0));
+    }
+
+    #[test]
+    fn formatting_keeps_negative_zero_and_rounds_to_even() {
+        assert_eq!(f3(-1e-15), "-0.000");
+        assert_eq!(f3(0.0625), "0.062");
+        assert_eq!(f3(57.6865), "57.686"); // binary value is below the tie
+        assert_eq!(format!("{:.0}", 2.5), "2");
+    }
+
+    #[test]
+    fn angles_and_arcs() {
+        assert_eq!(normalize_angle(-90.0), 270.0);
+        assert_eq!(normalize_angle(360.0), 0.0);
+        assert_eq!(normalize_angle(725.0), 5.0);
+        let arc = Geom::Arc { c: P2::new(0.0, 0.0), r: 2.0, a0: 0.0, a1: 90.0, ccw: true };
+        assert!((arc.length() - std::f64::consts::PI).abs() < 1e-12);
+        let rev = arc.reversed();
+        assert!((rev.length() - arc.length()).abs() < 1e-12);
+        assert!(rev.start().near(arc.end()));
+        let half = arc.sub(0.0, arc.length() / 2.0);
+        assert!(half.end().near(P2::new(2f64.sqrt(), 2f64.sqrt())));
+    }
+
+    #[test]
+    fn transform_maps_anchors() {
+        let t = Transform::between(P2::new(120.0, 170.0), P2::new(120.0, 100.0), P2::new(20.0, 0.0), P2::new(20.0, 70.0))
+            .unwrap();
+        assert!(t.apply(P2::new(120.0, 170.0)).near(P2::new(20.0, 0.0)));
+        assert!(t.apply(P2::new(120.0, 100.0)).near(P2::new(20.0, 70.0)));
+        assert!(Transform::between(P2::new(0.0, 0.0), P2::new(1.0, 0.0), P2::new(0.0, 0.0), P2::new(2.0, 0.0)).is_none());
+    }
+}

@@ -1,0 +1,138 @@
+//! millpath core: drawing model → validated path model → G-code, probing program, `_Z.txt`;
+//! and adjust-z. No file-system I/O of its own: files are read through [`FileSystem`] and
+//! outputs are returned to the caller, which writes them.
+
+pub mod adjustz;
+pub mod diag;
+pub mod drawing;
+pub mod dxf_front;
+pub mod gcode;
+pub mod geom;
+pub mod model;
+pub mod mtext;
+pub mod names;
+pub mod params;
+pub mod session;
+
+pub use diag::{Diagnostic, Diags, Lang, Msg, Origin, Severity};
+pub use session::{FileSystem, OsFileSystem, Session, Settings};
+
+use gcode::{generate, Output, Stats};
+use std::path::{Path, PathBuf};
+
+/// A file to be written.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OutputFile {
+    pub path: PathBuf,
+    pub content: String,
+}
+
+/// The result of compiling one input file.
+#[derive(Debug, Default)]
+pub struct FileOutcome {
+    /// Files to write (empty when anything went wrong).
+    pub outputs: Vec<OutputFile>,
+    /// Statistics of the compiled path(s).
+    pub stats: Vec<(String, Stats)>,
+}
+
+/// The input argument completed like the reference does: `.dxf` appended when missing.
+pub fn complete_input(arg: &str) -> PathBuf {
+    let lower = arg.to_ascii_lowercase();
+    if lower.ends_with(".dxf") || lower.ends_with(".mpath") {
+        PathBuf::from(arg)
+    } else {
+        PathBuf::from(format!("{arg}.dxf"))
+    }
+}
+
+/// Output prefix: the input path minus its extension, plus the path's `R` suffix.
+fn output_prefix(input: &Path, suffix: &str) -> PathBuf {
+    let s = input.to_string_lossy();
+    let cut = match s.rfind('.') {
+        Some(p) if !s[p..].contains('/') => &s[..p],
+        _ => &s[..],
+    };
+    PathBuf::from(format!("{cut}{suffix}"))
+}
+
+/// Compiles one command-line file (reference-input.md §7.5). Errors go to `session.diags`.
+pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOutcome {
+    let names = session.load_file(input);
+    let file_name = input.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let mut outcome = FileOutcome::default();
+    if session.settings.check {
+        let mut sorted = names.clone();
+        sorted.sort();
+        for name in sorted {
+            let verb = if session.lang() == Lang::De { "Prüfen von" } else { "Checking" };
+            session.info.push(format!("---- {verb} {name}"));
+            match session.build_top(&name) {
+                Err(abort) => session.diags.push(abort),
+                Ok(None) => {}
+                Ok(Some(model)) => match generate(&model, &file_name, banner, session.settings.sweep_speed, session.lang()) {
+                    Ok(g) => outcome.stats.push((name.clone(), g.stats)),
+                    Err(errs) => errs.into_iter().for_each(|e| session.diags.push(e)),
+                },
+            }
+        }
+        return outcome;
+    }
+    let mut built = Vec::new();
+    for name in &names {
+        match session.build_top(name) {
+            Err(abort) => {
+                session.diags.push(abort);
+                return outcome;
+            }
+            Ok(Some(m)) => built.push(m),
+            Ok(None) => {}
+        }
+    }
+    let file_origin = Origin::File(diag::FileRef::new(input.to_path_buf()));
+    if built.len() > 1 {
+        let mut list: Vec<&str> = built.iter().map(|m| m.name()).collect();
+        list.sort();
+        session.diags.error(Msg::MoreThanOnePath, file_origin, args![input.display(), list.join(", ")]);
+        return outcome;
+    }
+    let Some(model) = built.pop() else {
+        session.diags.error(Msg::NoErrorFreePath, file_origin, args![input.display()]);
+        return outcome;
+    };
+    if session.diags.has_errors() {
+        return outcome;
+    }
+    let generated = match generate(&model, &file_name, banner, session.settings.sweep_speed, session.lang()) {
+        Ok(g) => g,
+        Err(errs) => {
+            errs.into_iter().for_each(|e| session.diags.push(e));
+            return outcome;
+        }
+    };
+    let prefix = output_prefix(input, &model.params.r);
+    let with = |s: &str| PathBuf::from(format!("{}{s}", prefix.display()));
+    outcome.outputs = match generated.output {
+        Output::Milling(g) => vec![OutputFile { path: with("_Milling.gcode"), content: g }],
+        Output::Probing { probing, z_txt, clean } => vec![
+            OutputFile { path: with("_Probing.gcode"), content: probing },
+            OutputFile { path: with("_Z.txt"), content: z_txt },
+            OutputFile { path: with("_Clean.gcode"), content: clean },
+        ],
+    };
+    outcome.stats.push((model.name().to_string(), generated.stats));
+    outcome
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn inputs_and_prefixes() {
+        assert_eq!(complete_input("8999.02P"), PathBuf::from("8999.02P.dxf"));
+        assert_eq!(complete_input("X.DXF"), PathBuf::from("X.DXF"));
+        assert_eq!(output_prefix(Path::new("dir/8999.32P.dxf"), "_VAR"), PathBuf::from("dir/8999.32P_VAR"));
+        assert_eq!(output_prefix(Path::new("8999.23 Pv.dxf"), ""), PathBuf::from("8999.23 Pv"));
+    }
+}

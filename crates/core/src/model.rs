@@ -1,0 +1,199 @@
+//! The validated path model: traversal order, chains, effective parameters, support-bar
+//! geometry and subpath connections (reference-input.md §4–§6).
+
+use crate::diag::Origin;
+use crate::drawing::{RawPath, Style};
+use crate::geom::{Geom, Transform, P2};
+use crate::params::Vars;
+use std::rc::Rc;
+
+/// Effective values of a path start text.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PathParams {
+    pub f: f64,
+    /// NaN when missing (reported).
+    pub t: f64,
+    /// NaN when missing (reported).
+    pub o: f64,
+    pub s: f64,
+    pub a: f64,
+    pub z: f64,
+    pub v: f64,
+    pub b: Option<f64>,
+    pub d: Option<f64>,
+    pub i: Option<f64>,
+    pub w: Option<f64>,
+    pub p: Option<f64>,
+    pub u: Option<f64>,
+    pub c: Option<i64>,
+    pub m: Option<String>,
+    pub e: Option<String>,
+    pub r: String,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct ChainSeg {
+    /// Geometry in traversal direction.
+    pub geom: Geom,
+    pub style: Style,
+    pub f: f64,
+    pub b: Option<f64>,
+    pub d: Option<f64>,
+    pub q: Option<String>,
+    pub bt: bool,
+    /// Support-bar pieces along `geom` (BORDER segments long enough for bars).
+    pub bars: Option<Vec<Geom>>,
+    pub origin: Origin,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Chain {
+    pub segs: Vec<ChainSeg>,
+    pub i: Option<f64>,
+    pub w: Option<f64>,
+    pub origin: Origin,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Drill {
+    pub c: P2,
+    pub style: Style,
+    pub f: f64,
+    pub b: Option<f64>,
+    pub d: Option<f64>,
+    pub q: Option<String>,
+    pub origin: Origin,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Helix {
+    pub c: P2,
+    pub r: f64,
+    pub style: Style,
+    pub f: f64,
+    pub b: Option<f64>,
+    pub d: Option<f64>,
+    pub i: Option<f64>,
+    pub q: Option<String>,
+    /// Support-bar pieces along the milling circle (BORDER helixes).
+    pub bars: Option<Vec<Geom>>,
+    pub origin: Origin,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sweep {
+    pub a: P2,
+    pub b: P2,
+    pub s: f64,
+    pub bt: bool,
+    pub origin: Origin,
+}
+
+#[derive(Debug, Clone)]
+pub struct Embedding {
+    /// Entry and exit of the embedding line in traversal direction.
+    pub a: P2,
+    pub b: P2,
+    pub h: f64,
+    pub target: Option<Rc<Model>>,
+    pub origin: Origin,
+}
+
+#[derive(Debug, Clone)]
+pub enum Element {
+    Chain(Chain),
+    Drill(Drill),
+    Helix(Helix),
+    Sweep(Sweep),
+    Subpath(Embedding),
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Probe {
+    pub center: P2,
+    pub t: f64,
+    pub h: f64,
+    pub l: Option<String>,
+    pub z: f64,
+    pub origin: Origin,
+}
+
+/// A built path.
+#[derive(Debug)]
+pub struct Model {
+    pub raw: Rc<RawPath>,
+    pub vars: Vars,
+    pub start: P2,
+    pub end: P2,
+    pub params: PathParams,
+    pub elements: Vec<Element>,
+    pub probes: Vec<Probe>,
+}
+
+impl Model {
+    pub fn name(&self) -> &str {
+        &self.raw.name
+    }
+    /// `name[file]`, as in comments and messages.
+    pub fn label(&self) -> String {
+        format!("{}[{}]", self.raw.name, self.raw.file.name)
+    }
+}
+
+/// One probe placed in output coordinates.
+#[derive(Debug, Clone)]
+pub struct PlacedProbe {
+    pub probe: Probe,
+    pub pos: P2,
+    /// Accumulated H of the enclosing embeddings.
+    pub h: f64,
+}
+
+impl PlacedProbe {
+    /// Probe height `T + H + h`.
+    pub fn height(&self) -> f64 {
+        self.probe.t + self.probe.h + self.h
+    }
+}
+
+/// Collects the probes of a model and of everything it embeds (reference-output.md §12.1).
+pub fn collect_probes(model: &Model, t: &Transform, h: f64, out: &mut Vec<PlacedProbe>) {
+    for p in &model.probes {
+        let placed = PlacedProbe { probe: p.clone(), pos: t.apply(p.center), h };
+        if !out.iter().any(|q| q.probe == placed.probe && q.pos == placed.pos && q.h == placed.h) {
+            out.push(placed);
+        }
+    }
+    for e in &model.elements {
+        if let Element::Subpath(emb) = e {
+            if let Some(target) = &emb.target {
+                if let Some(sub) = sub_transform(target, emb, t) {
+                    collect_probes(target, &sub, h + emb.h, out);
+                }
+            }
+        }
+    }
+}
+
+/// The transformation of an embedded target in output coordinates.
+pub fn sub_transform(target: &Model, emb: &Embedding, outer: &Transform) -> Option<Transform> {
+    Transform::between(target.start, target.end, outer.apply(emb.a), outer.apply(emb.b))
+}
+
+/// Orders probes by greedy nearest neighbour from (0, 0).
+pub fn probe_tour(mut probes: Vec<PlacedProbe>) -> Vec<PlacedProbe> {
+    let mut out = Vec::with_capacity(probes.len());
+    let mut cur = P2::default();
+    while !probes.is_empty() {
+        let mut best = 0;
+        for (i, p) in probes.iter().enumerate() {
+            if p.pos.dist(cur) < probes[best].pos.dist(cur) {
+                best = i;
+            }
+        }
+        let p = probes.remove(best);
+        cur = p.pos;
+        out.push(p);
+    }
+    out
+}

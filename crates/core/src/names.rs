@@ -1,0 +1,134 @@
+//! Path-name and file-name patterns: which file may contain which path (reference-input.md §3).
+
+use regex::{Captures, Regex};
+use std::cmp::Ordering;
+
+pub const DEFAULT_PATH_PATTERN: &str = "([0-9]{4})[.]([0-9]+)([A-Z])";
+pub const DEFAULT_FILE_PATTERN: &str = "([0-9]{4})(?:[.]([0-9]+))?";
+
+/// The compiled forms of the user's `/n` and `/p` patterns.
+#[derive(Debug, Clone)]
+pub struct Patterns {
+    pub path_text: String,
+    /// `^(?i:N)$`: layer test and path side of file comparisons.
+    pub path_full: Regex,
+    /// `N`, case-sensitive, unanchored: `@` references.
+    pub path_cs: Regex,
+    /// `(?i)N`, unanchored: subpath targets in `>` values.
+    pub path_ci: Regex,
+    /// `^(?i:F)$`.
+    file_full: Regex,
+    /// `(?i)F`, unanchored.
+    file_any: Regex,
+    /// `(?i)(F)-(F)` and the group index of the second part.
+    file_range: Regex,
+    range_second: usize,
+}
+
+impl Patterns {
+    /// Compiles both patterns; `Err((which option, pattern, message))` for invalid ones.
+    pub fn new(path: &str, file: &str) -> Result<Patterns, (char, String, String)> {
+        fn bad(c: char, p: &str) -> impl Fn(regex::Error) -> (char, String, String) + '_ {
+            move |e| (c, p.to_string(), e.to_string())
+        }
+        let path_full = Regex::new(&format!("^(?i:{path})$")).map_err(bad('n', path))?;
+        let path_cs = Regex::new(path).map_err(bad('n', path))?;
+        let path_ci = Regex::new(&format!("(?i){path}")).map_err(bad('n', path))?;
+        let file_full = Regex::new(&format!("^(?i:{file})$")).map_err(bad('p', file))?;
+        let file_any = Regex::new(&format!("(?i){file}")).map_err(bad('p', file))?;
+        let file_range = Regex::new(&format!("(?i)({file})-({file})")).map_err(bad('p', file))?;
+        let range_second = 2 + file_any.captures_len() - 1;
+        Ok(Patterns { path_text: path.to_string(), path_full, path_cs, path_ci, file_full, file_any, file_range, range_second })
+    }
+
+    /// Compare(fileToken, pathName) of §3.2; `None` when either does not match its pattern.
+    pub fn compare(&self, file_token: &str, path_name: &str) -> Option<i64> {
+        let f = self.file_full.captures(file_token)?;
+        let p = self.path_full.captures(path_name)?;
+        let (mut gf, mut gp) = (0i64, 0i64);
+        let n = f.len().min(p.len());
+        for i in 1..n {
+            let a = group(&f, i);
+            let b = group(&p, i);
+            if !a.is_empty() {
+                gf += 1;
+            }
+            if !b.is_empty() {
+                gp += 1;
+            }
+            if a.is_empty() || b.is_empty() {
+                break;
+            }
+            let c = match (a.parse::<i32>(), b.parse::<i32>()) {
+                (Ok(x), Ok(y)) => (x as i64) - (y as i64),
+                _ => match a.to_lowercase().cmp(&b.to_lowercase()) {
+                    Ordering::Less => -1,
+                    Ordering::Equal => 0,
+                    Ordering::Greater => 1,
+                },
+            };
+            if c != 0 {
+                return Some(c);
+            }
+        }
+        Some(if gp >= gf { 0 } else { gf - gp })
+    }
+
+    /// Whether a file (name without directory and extension) may contain the path.
+    pub fn file_contains(&self, file_stem: &str, path_name: &str) -> bool {
+        for c in self.file_range.captures_iter(file_stem) {
+            let (Some(a), Some(b)) = (c.get(1), c.get(self.range_second)) else { continue };
+            if self.compare(a.as_str(), path_name).is_some_and(|x| x <= 0)
+                && self.compare(b.as_str(), path_name).is_some_and(|x| x >= 0)
+            {
+                return true;
+            }
+        }
+        self.file_any.find_iter(file_stem).any(|m| self.compare(m.as_str(), path_name) == Some(0))
+    }
+}
+
+fn group<'a>(c: &Captures<'a>, i: usize) -> &'a str {
+    c.get(i).map_or("", |m| m.as_str())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn default_patterns() {
+        let p = Patterns::new(DEFAULT_PATH_PATTERN, DEFAULT_FILE_PATTERN).unwrap();
+        assert!(p.file_contains("8998", "8998.2P"));
+        assert!(p.file_contains("8998", "8998.31T"));
+        assert!(p.file_contains("8999.01P", "8999.1P"));
+        assert!(p.file_contains("8998.31-8998.34P", "8998.31T"));
+        assert!(p.file_contains("8998.31-8998.34P", "8998.34P"));
+        assert!(p.file_contains("8998.31-8998.34P", "8998.33X"));
+        assert!(!p.file_contains("8998.31-8998.34P", "8998.2P"));
+        assert!(p.file_contains("2051 Pv Schlüssel", "2051.2P"));
+        assert!(p.file_contains("8999.23 Pv", "8999.23P"));
+        assert!(!p.file_contains("8999.24 Pv", "8999.23P"));
+        assert!(p.file_contains("1234-1236", "1235.99B"));
+        assert!(p.file_contains("1234.5-1234.10", "1234.8A"));
+        assert!(!p.file_contains("1234.5-1234.10", "1234.40A"));
+    }
+
+    #[test]
+    fn unit_test_patterns_of_the_reference() {
+        let p = Patterns::new("([0-9]+)[.]([0-9A-Z]+)", "([0-9]+)(?:[.]([0-9A-Z]+))?").unwrap();
+        assert_eq!(p.compare("8002", "8002.0"), Some(0));
+        assert_eq!(p.compare("8002", "8002.A"), Some(0));
+        assert!(p.file_contains("FILE 8000.4-8001,8000.1-8001.3", "8000.2"));
+        assert!(!p.file_contains("FILE 8000.4-8001,8000.1-8000.2", "8000.3"));
+        assert!(!p.file_contains("FILE 8000.0-8000.3,8000.5,8001", "8000.4"));
+        assert!(p.file_contains("FILE 8000-8002", "8002.99"));
+        assert!(!p.file_contains("FILE 8001-8003", "8000.99"));
+    }
+
+    #[test]
+    fn invalid_patterns_are_reported() {
+        assert_eq!(Patterns::new("(", DEFAULT_FILE_PATTERN).unwrap_err().0, 'n');
+        assert_eq!(Patterns::new(DEFAULT_PATH_PATTERN, "[").unwrap_err().0, 'p');
+    }
+}
