@@ -31,11 +31,19 @@ fn number(opt: &str, value: &str, errors: &mut Vec<Diagnostic>) -> Option<f64> {
     match millpath_core::params::parse_number(value) {
         Some(v) if v.is_finite() && v >= 0.0 => Some(v),
         Some(v) if v.is_finite() => {
-            errors.push(Diagnostic::error(Msg::OptionNegative, Origin::Options, args![opt, value]));
+            errors.push(Diagnostic::error(
+                Msg::OptionNegative,
+                Origin::Options,
+                args![opt, value],
+            ));
             None
         }
         _ => {
-            errors.push(Diagnostic::error(Msg::OptionNotNumber, Origin::Options, args![opt, value]));
+            errors.push(Diagnostic::error(
+                Msg::OptionNotNumber,
+                Origin::Options,
+                args![opt, value],
+            ));
             None
         }
     }
@@ -50,7 +58,10 @@ fn looks_like_absolute_file(arg: &str) -> bool {
     }
     let lower = arg.to_ascii_lowercase();
     Path::new(arg).is_file()
-        || (arg[1..].contains('/') && [".dxf", ".gcode", ".txt", ".mpath"].iter().any(|s| lower.ends_with(s)))
+        || (arg[1..].contains('/')
+            && [".dxf", ".gcode", ".txt", ".mpath"]
+                .iter()
+                .any(|s| lower.ends_with(s)))
 }
 
 pub fn parse(args: &[String], tool: Tool) -> Parsed {
@@ -64,7 +75,11 @@ pub fn parse(args: &[String], tool: Tool) -> Parsed {
             continue;
         }
         if arg.len() == 1 {
-            p.errors.push(Diagnostic::error(Msg::MissingOptionValue, Origin::Options, args![arg]));
+            p.errors.push(Diagnostic::error(
+                Msg::MissingOptionValue,
+                Origin::Options,
+                args![arg],
+            ));
             continue;
         }
         if arg[1..].eq_ignore_ascii_case("debug") {
@@ -87,7 +102,11 @@ pub fn parse(args: &[String], tool: Tool) -> Parsed {
             Tool::AdjustZ => "mxl".contains(letter),
         };
         if !takes_value {
-            p.errors.push(Diagnostic::error(Msg::OptionNotSupported, Origin::Options, args![opt]));
+            p.errors.push(Diagnostic::error(
+                Msg::OptionNotSupported,
+                Origin::Options,
+                args![opt],
+            ));
             continue;
         }
         let value = if !rest.is_empty() {
@@ -96,7 +115,11 @@ pub fn parse(args: &[String], tool: Tool) -> Parsed {
             i += 1;
             args[i - 1].clone()
         } else {
-            p.errors.push(Diagnostic::error(Msg::MissingOptionValue, Origin::Options, args![opt]));
+            p.errors.push(Diagnostic::error(
+                Msg::MissingOptionValue,
+                Origin::Options,
+                args![opt],
+            ));
             continue;
         };
         let s = &mut p.settings;
@@ -129,18 +152,34 @@ pub fn parse(args: &[String], tool: Tool) -> Parsed {
                         p.x = Some(value);
                     }
                 }
-                Err(e) => p.errors.push(Diagnostic::error(Msg::BadRegex, Origin::Options, args![opt, value, e])),
+                Err(e) => p.errors.push(Diagnostic::error(
+                    Msg::BadRegex,
+                    Origin::Options,
+                    args![opt, value, e],
+                )),
             },
             'd' => s.search_dirs.push(value.into()),
             'n' => s.path_pattern = value,
             'p' => s.file_pattern = value,
             'e' => match value.split_once(':') {
                 Some((a, b)) => s.restrictions.push((a.to_string(), b.to_string())),
-                None => p.errors.push(Diagnostic::error(Msg::EFormat, Origin::Options, args![value])),
+                None => p.errors.push(Diagnostic::error(
+                    Msg::EFormat,
+                    Origin::Options,
+                    args![value],
+                )),
             },
             'l' => {
-                if value.is_empty() || !value.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_') {
-                    p.errors.push(Diagnostic::error(Msg::OptionNotSupported, Origin::Options, args![format!("/l {value}")]));
+                if value.is_empty()
+                    || !value
+                        .chars()
+                        .all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_')
+                {
+                    p.errors.push(Diagnostic::error(
+                        Msg::OptionNotSupported,
+                        Origin::Options,
+                        args![format!("/l {value}")],
+                    ));
                 } else {
                     s.lang = Lang::from_name(&value);
                 }
@@ -151,23 +190,28 @@ pub fn parse(args: &[String], tool: Tool) -> Parsed {
     if tool == Tool::Dxf2GCode {
         let s = &p.settings;
         if !p.have_f || s.feed <= 0.0 {
-            p.errors.push(Diagnostic::error(Msg::FMissing, Origin::Options, vec![]));
+            p.errors
+                .push(Diagnostic::error(Msg::FMissing, Origin::Options, vec![]));
         }
         if !p.have_v || s.sweep_speed <= 0.0 {
-            p.errors.push(Diagnostic::error(Msg::VMissing, Origin::Options, vec![]));
+            p.errors
+                .push(Diagnostic::error(Msg::VMissing, Origin::Options, vec![]));
         }
         if !p.have_s || s.sweep_height <= 0.0 {
-            p.errors.push(Diagnostic::error(Msg::SMissing, Origin::Options, vec![]));
+            p.errors
+                .push(Diagnostic::error(Msg::SMissing, Origin::Options, vec![]));
         }
     } else if !p.help && p.m.is_none() {
-        p.errors.push(Diagnostic::error(Msg::MissingM, Origin::Options, vec![]));
+        p.errors
+            .push(Diagnostic::error(Msg::MissingM, Origin::Options, vec![]));
     }
     p
 }
 
 pub fn help_dxf2gcode(lang: Lang) -> &'static str {
     match lang {
-        Lang::En => "\
+        Lang::En => {
+            "\
 Usage: millpath pathdxf2gcode [options] FILE.dxf...
 Compiles path drawings to G-code, compatible with PathDxf2GCode.
   /f FEED       feed for milling moves in mm/min (required, > 0)
@@ -184,8 +228,10 @@ Compiles path drawings to G-code, compatible with PathDxf2GCode.
   /h, /?        this help
 Options may start with / or -, values may follow directly or as the next argument,
 a decimal comma is accepted. Exit status: 0 ok, 1 errors in the drawings, 2 option
-errors or help, 3 no files given.",
-        Lang::De => "\
+errors or help, 3 no files given."
+        }
+        Lang::De => {
+            "\
 Aufruf: millpath pathdxf2gcode [Optionen] DATEI.dxf...
 Übersetzt Pfadzeichnungen in G-Code, kompatibel mit PathDxf2GCode.
   /f VORSCHUB   Vorschub für Fräsbewegungen in mm/min (nötig, > 0)
@@ -202,26 +248,31 @@ Aufruf: millpath pathdxf2gcode [Optionen] DATEI.dxf...
   /h, /?        diese Hilfe
 Optionen beginnen mit / oder -, Werte direkt dahinter oder als nächstes Argument,
 Dezimalkomma erlaubt. Exit-Status: 0 ok, 1 Fehler in Zeichnungen, 2 Optionsfehler
-oder Hilfe, 3 keine Dateien angegeben.",
+oder Hilfe, 3 keine Dateien angegeben."
+        }
     }
 }
 
 pub fn help_adjustz(lang: Lang) -> &'static str {
     match lang {
-        Lang::En => "\
+        Lang::En => {
+            "\
 Usage: millpath pathgcodeadjustz /m MAX [/x REGEX] [/l LANG] FILE...
 Turns NAME_Clean.gcode and the measured NAME_Z.txt into NAME_Milling.gcode.
   /m MAX        largest allowed difference between a measured and the nominal height (mm)
   /x REGEX      print the input lines that match
   /l LANG       message language (en, de)
-FILE may be NAME.dxf, NAME_Clean.gcode, NAME_Z.txt or NAME.",
-        Lang::De => "\
+FILE may be NAME.dxf, NAME_Clean.gcode, NAME_Z.txt or NAME."
+        }
+        Lang::De => {
+            "\
 Aufruf: millpath pathgcodeadjustz /m MAX [/x REGEX] [/l SPRACHE] DATEI...
 Erzeugt aus NAME_Clean.gcode und der gemessenen NAME_Z.txt die NAME_Milling.gcode.
   /m MAX        größte erlaubte Abweichung zwischen gemessener und Soll-Höhe (mm)
   /x REGEX      passende Eingabezeilen ausgeben
   /l SPRACHE    Sprache der Meldungen (en, de)
-DATEI kann NAME.dxf, NAME_Clean.gcode, NAME_Z.txt oder NAME sein.",
+DATEI kann NAME.dxf, NAME_Clean.gcode, NAME_Z.txt oder NAME sein."
+        }
     }
 }
 
@@ -237,18 +288,45 @@ mod tests {
     fn attached_and_separate_values_and_decimal_comma() {
         let p = parse(&a(&["A", "/v1.1", "/f2,2", "/s3.3", "Z"]), Tool::Dxf2GCode);
         assert!(p.errors.is_empty(), "{:?}", p.errors);
-        assert_eq!((p.settings.sweep_speed, p.settings.feed, p.settings.sweep_height), (1.1, 2.2, 3.3));
+        assert_eq!(
+            (
+                p.settings.sweep_speed,
+                p.settings.feed,
+                p.settings.sweep_height
+            ),
+            (1.1, 2.2, 3.3)
+        );
         assert_eq!(p.files, vec!["A", "Z"]);
-        let p = parse(&a(&["-f", "1.1", "-v", "2,2", "/s", "3.3"]), Tool::Dxf2GCode);
+        let p = parse(
+            &a(&["-f", "1.1", "-v", "2,2", "/s", "3.3"]),
+            Tool::Dxf2GCode,
+        );
         assert!(p.errors.is_empty());
         assert_eq!(p.settings.sweep_speed, 2.2);
     }
 
     #[test]
     fn string_options() {
-        let p = parse(&a(&["/dDIR1", "/n([0-9]+)", "/dDIR2", "/f1", "/v1", "/s1", "/c", "/e", "L$:L$", "/ldE"]), Tool::Dxf2GCode);
+        let p = parse(
+            &a(&[
+                "/dDIR1",
+                "/n([0-9]+)",
+                "/dDIR2",
+                "/f1",
+                "/v1",
+                "/s1",
+                "/c",
+                "/e",
+                "L$:L$",
+                "/ldE",
+            ]),
+            Tool::Dxf2GCode,
+        );
         assert!(p.errors.is_empty());
-        assert_eq!(p.settings.search_dirs, vec![std::path::PathBuf::from("DIR1"), "DIR2".into()]);
+        assert_eq!(
+            p.settings.search_dirs,
+            vec![std::path::PathBuf::from("DIR1"), "DIR2".into()]
+        );
         assert_eq!(p.settings.path_pattern, "([0-9]+)");
         assert!(p.settings.check);
         assert_eq!(p.settings.restrictions, vec![("L$".into(), "L$".into())]);
@@ -268,7 +346,14 @@ mod tests {
         assert!(msgs.contains(&Msg::OptionNegative));
         assert!(msgs.contains(&Msg::FMissing));
         assert!(msgs.contains(&Msg::VMissing));
-        assert_eq!(p.errors.iter().find(|e| e.msg == Msg::OptionNotNumber).unwrap().message(Lang::En), "Option value x for /f is not a number");
+        assert_eq!(
+            p.errors
+                .iter()
+                .find(|e| e.msg == Msg::OptionNotNumber)
+                .unwrap()
+                .message(Lang::En),
+            "Option value x for /f is not a number"
+        );
         let p = parse(&a(&["/?"]), Tool::Dxf2GCode);
         assert!(p.help);
         let p = parse(&a(&["/x", "("]), Tool::Dxf2GCode);
@@ -288,7 +373,10 @@ mod tests {
 
     #[test]
     fn unix_absolute_paths_are_files() {
-        let p = parse(&a(&["/f1", "/v1", "/s1", "/home/me/parts/8999.01P.dxf"]), Tool::Dxf2GCode);
+        let p = parse(
+            &a(&["/f1", "/v1", "/s1", "/home/me/parts/8999.01P.dxf"]),
+            Tool::Dxf2GCode,
+        );
         assert_eq!(p.files, vec!["/home/me/parts/8999.01P.dxf"]);
     }
 }

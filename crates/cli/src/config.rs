@@ -26,7 +26,9 @@ pub const FILE_NAME: &str = "millpath.toml";
 
 /// The nearest `millpath.toml` at or above the directory of `input`.
 pub fn find(input: &Path) -> Option<PathBuf> {
-    let abs = std::fs::canonicalize(input).ok().or_else(|| std::env::current_dir().ok().map(|d| d.join(input)))?;
+    let abs = std::fs::canonicalize(input)
+        .ok()
+        .or_else(|| std::env::current_dir().ok().map(|d| d.join(input)))?;
     let mut dir = abs.parent();
     while let Some(d) = dir {
         let candidate = d.join(FILE_NAME);
@@ -41,7 +43,8 @@ pub fn find(input: &Path) -> Option<PathBuf> {
 /// Reads and parses a settings file; the error text names the file and the line.
 pub fn load(path: &Path) -> Result<FileConfig, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let mut cfg: FileConfig = toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut cfg: FileConfig =
+        toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
     let base = path.parent().unwrap_or(Path::new("."));
     cfg.search_dirs = cfg.search_dirs.iter().map(|d| base.join(d)).collect();
     Ok(cfg)

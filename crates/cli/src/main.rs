@@ -19,7 +19,11 @@ fn banner() -> String {
 }
 
 #[derive(Parser)]
-#[command(name = "millpath", version, about = "Compiles hand-drawn CNC milling paths (DXF) to G-code")]
+#[command(
+    name = "millpath",
+    version,
+    about = "Compiles hand-drawn CNC milling paths (DXF) to G-code"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -129,7 +133,11 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let code = match cli.command {
         Command::Compile { machine, files } => run_compile(&machine, &files),
-        Command::Check { machine, format, paths } => run_check(&machine, format, &paths),
+        Command::Check {
+            machine,
+            format,
+            paths,
+        } => run_check(&machine, format, &paths),
         Command::AdjustZ { max, lang, files } => {
             let lang = lang.map_or(Lang::En, to_lang);
             run_adjustz(max, None, lang, &files, false)
@@ -148,11 +156,19 @@ fn to_lang(l: LangArg) -> Lang {
 }
 
 fn write_outputs(outputs: &[millpath_core::OutputFile], lang: Lang, diags: &mut Diags) {
-    let verb = if lang == Lang::De { "Schreiben von" } else { "Writing" };
+    let verb = if lang == Lang::De {
+        "Schreiben von"
+    } else {
+        "Writing"
+    };
     for o in outputs {
         eprintln!("---- {verb} {}", o.path.display());
         if let Err(e) = write::write_atomic(&o.path, &o.content) {
-            diags.error(Msg::CannotWrite, Origin::Options, millpath_core::args![o.path.display(), e]);
+            diags.error(
+                Msg::CannotWrite,
+                Origin::Options,
+                millpath_core::args![o.path.display(), e],
+            );
         }
     }
 }
@@ -186,7 +202,10 @@ fn run_dxf2gcode(args: &[String]) -> u8 {
         return 2;
     }
     if parsed.files.is_empty() {
-        eprintln!("{}", Diagnostic::error(Msg::NoDxfFiles, Origin::Options, vec![]).reference_line(lang));
+        eprintln!(
+            "{}",
+            Diagnostic::error(Msg::NoDxfFiles, Origin::Options, vec![]).reference_line(lang)
+        );
         return 3;
     }
     let fs = OsFileSystem;
@@ -218,10 +237,17 @@ fn run_dxf2gcode(args: &[String]) -> u8 {
 }
 
 /// Settings: millpath.toml (nearest above the first input, or --config), then the flags.
-fn settings_for(m: &MachineArgs, first_input: Option<&Path>, require_machine: bool) -> Result<Settings, String> {
+fn settings_for(
+    m: &MachineArgs,
+    first_input: Option<&Path>,
+    require_machine: bool,
+) -> Result<Settings, String> {
     let mut s = Settings::default();
     let mut have = config::Have::default();
-    let cfg_path = m.config.clone().or_else(|| first_input.and_then(config::find));
+    let cfg_path = m
+        .config
+        .clone()
+        .or_else(|| first_input.and_then(config::find));
     if let Some(p) = cfg_path {
         config::load(&p)?.apply(&mut s, &mut have);
     }
@@ -248,7 +274,9 @@ fn settings_for(m: &MachineArgs, first_input: Option<&Path>, require_machine: bo
         s.file_pattern = p.clone();
     }
     for r in &m.restrictions {
-        let (a, b) = r.split_once(':').ok_or_else(|| format!("--restrict {r}: expected PARENT:CHILD"))?;
+        let (a, b) = r
+            .split_once(':')
+            .ok_or_else(|| format!("--restrict {r}: expected PARENT:CHILD"))?;
         s.restrictions.push((a.to_string(), b.to_string()));
     }
     s.debug_pattern = m.debug_texts.clone();
@@ -256,19 +284,33 @@ fn settings_for(m: &MachineArgs, first_input: Option<&Path>, require_machine: bo
         s.lang = to_lang(l);
     }
     if require_machine {
-        let missing: Vec<&str> = [("--feed / feed", have.feed), ("--sweep-speed / sweep_speed", have.sweep_speed), ("--sweep-height / sweep_height", have.sweep_height)]
-            .iter()
-            .filter(|(_, h)| !h)
-            .map(|(n, _)| *n)
-            .collect();
+        let missing: Vec<&str> = [
+            ("--feed / feed", have.feed),
+            ("--sweep-speed / sweep_speed", have.sweep_speed),
+            ("--sweep-height / sweep_height", have.sweep_height),
+        ]
+        .iter()
+        .filter(|(_, h)| !h)
+        .map(|(n, _)| *n)
+        .collect();
         if !missing.is_empty() {
             return Err(match s.lang {
-                Lang::En => format!("missing machine settings: {} (give them as options or in millpath.toml)", missing.join(", ")),
-                Lang::De => format!("Maschinenwerte fehlen: {} (als Option oder in millpath.toml angeben)", missing.join(", ")),
+                Lang::En => format!(
+                    "missing machine settings: {} (give them as options or in millpath.toml)",
+                    missing.join(", ")
+                ),
+                Lang::De => format!(
+                    "Maschinenwerte fehlen: {} (als Option oder in millpath.toml angeben)",
+                    missing.join(", ")
+                ),
             });
         }
-        for (name, v) in [("feed", s.feed), ("sweep speed", s.sweep_speed), ("sweep height", s.sweep_height)] {
-            if !(v > 0.0) {
+        for (name, v) in [
+            ("feed", s.feed),
+            ("sweep speed", s.sweep_speed),
+            ("sweep height", s.sweep_height),
+        ] {
+            if v.is_nan() || v <= 0.0 {
                 return Err(format!("{name} must be > 0 (is {v})"));
             }
         }
@@ -308,7 +350,13 @@ fn run_compile(m: &MachineArgs, files: &[String]) -> u8 {
         write_outputs(&outcome.outputs, lang, &mut write_errors);
         print_stats(&outcome, lang);
     }
-    let all: Vec<Diagnostic> = session.diags.list.iter().chain(write_errors.list.iter()).cloned().collect();
+    let all: Vec<Diagnostic> = session
+        .diags
+        .list
+        .iter()
+        .chain(write_errors.list.iter())
+        .cloned()
+        .collect();
     print_human(&all, lang);
     u8::from(all.iter().any(|d| d.severity == Severity::Error))
 }
@@ -316,10 +364,17 @@ fn run_compile(m: &MachineArgs, files: &[String]) -> u8 {
 fn collect_inputs(paths: &[PathBuf], out: &mut Vec<PathBuf>) {
     for p in paths {
         if p.is_dir() {
-            let mut entries: Vec<PathBuf> = std::fs::read_dir(p).map(|r| r.filter_map(|e| e.ok().map(|e| e.path())).collect()).unwrap_or_default();
+            let mut entries: Vec<PathBuf> = std::fs::read_dir(p)
+                .map(|r| r.filter_map(|e| e.ok().map(|e| e.path())).collect())
+                .unwrap_or_default();
             entries.sort();
-            let (dirs, files): (Vec<PathBuf>, Vec<PathBuf>) = entries.into_iter().partition(|e| e.is_dir());
-            out.extend(files.into_iter().filter(|f| f.extension().is_some_and(|e| e.eq_ignore_ascii_case("dxf"))));
+            let (dirs, files): (Vec<PathBuf>, Vec<PathBuf>) =
+                entries.into_iter().partition(|e| e.is_dir());
+            out.extend(
+                files
+                    .into_iter()
+                    .filter(|f| f.extension().is_some_and(|e| e.eq_ignore_ascii_case("dxf"))),
+            );
             collect_inputs(&dirs, out);
         } else {
             out.push(p.clone());
@@ -364,13 +419,20 @@ fn run_check(m: &MachineArgs, format: Format, paths: &[PathBuf]) -> u8 {
             eprintln!(
                 "{}",
                 match lang {
-                    Lang::En => format!("checked {} file(s): {errors} error(s), {warnings} warning(s)", inputs.len()),
-                    Lang::De => format!("{} Datei(en) geprüft: {errors} Fehler, {warnings} Warnung(en)", inputs.len()),
+                    Lang::En => format!(
+                        "checked {} file(s): {errors} error(s), {warnings} warning(s)",
+                        inputs.len()
+                    ),
+                    Lang::De => format!(
+                        "{} Datei(en) geprüft: {errors} Fehler, {warnings} Warnung(en)",
+                        inputs.len()
+                    ),
                 }
             );
         }
         Format::Json => {
-            let v: Vec<serde_json::Value> = all.iter().map(|d| report::json_value(d, lang)).collect();
+            let v: Vec<serde_json::Value> =
+                all.iter().map(|d| report::json_value(d, lang)).collect();
             println!("{}", serde_json::to_string_pretty(&serde_json::json!({ "files": inputs.len(), "errors": errors, "diagnostics": v })).unwrap_or_default());
         }
         Format::Github => {
@@ -395,16 +457,37 @@ fn run_adjustz_compat(args: &[String]) -> u8 {
         return 2;
     }
     if parsed.files.is_empty() {
-        eprintln!("{}", Diagnostic::error(Msg::NoDxfFiles, Origin::Options, vec![]).reference_line(lang));
+        eprintln!(
+            "{}",
+            Diagnostic::error(Msg::NoDxfFiles, Origin::Options, vec![]).reference_line(lang)
+        );
         return 3;
     }
-    run_adjustz(parsed.m.unwrap_or(0.0), parsed.x.as_deref(), lang, &parsed.files, true)
+    run_adjustz(
+        parsed.m.unwrap_or(0.0),
+        parsed.x.as_deref(),
+        lang,
+        &parsed.files,
+        true,
+    )
 }
 
-fn run_adjustz(max: f64, x: Option<&str>, lang: Lang, files: &[String], reference_lines: bool) -> u8 {
+fn run_adjustz(
+    max: f64,
+    x: Option<&str>,
+    lang: Lang,
+    files: &[String],
+    reference_lines: bool,
+) -> u8 {
     let mut diags = Diags::default();
     let show = x.and_then(|p| regex::Regex::new(p).ok());
-    let verb = |en: &str, de: &str| if lang == Lang::De { de.to_string() } else { en.to_string() };
+    let verb = |en: &str, de: &str| {
+        if lang == Lang::De {
+            de.to_string()
+        } else {
+            en.to_string()
+        }
+    };
     let mut planned = Vec::new();
     for f in files {
         let base = adjustz::base_path(f);
@@ -414,7 +497,11 @@ fn run_adjustz(max: f64, x: Option<&str>, lang: Lang, files: &[String], referenc
         let z_text = match std::fs::read_to_string(&z_path) {
             Ok(t) => t,
             Err(e) => {
-                diags.error(Msg::CannotRead, Origin::Input, millpath_core::args![z_path, e]);
+                diags.error(
+                    Msg::CannotRead,
+                    Origin::Input,
+                    millpath_core::args![z_path, e],
+                );
                 continue;
             }
         };
@@ -426,7 +513,11 @@ fn run_adjustz(max: f64, x: Option<&str>, lang: Lang, files: &[String], referenc
         let clean = match std::fs::read_to_string(&clean_path) {
             Ok(t) => t,
             Err(e) => {
-                diags.error(Msg::CannotRead, Origin::Input, millpath_core::args![clean_path, e]);
+                diags.error(
+                    Msg::CannotRead,
+                    Origin::Input,
+                    millpath_core::args![clean_path, e],
+                );
                 continue;
             }
         };
@@ -441,9 +532,17 @@ fn run_adjustz(max: f64, x: Option<&str>, lang: Lang, files: &[String], referenc
     // nothing is written when any file had an error
     if !diags.has_errors() {
         for (path, content) in planned {
-            eprintln!("---- {} {}", verb("Writing", "Schreiben von"), path.display());
+            eprintln!(
+                "---- {} {}",
+                verb("Writing", "Schreiben von"),
+                path.display()
+            );
             if let Err(e) = write::write_atomic(&path, &content) {
-                diags.error(Msg::CannotWrite, Origin::Options, millpath_core::args![path.display(), e]);
+                diags.error(
+                    Msg::CannotWrite,
+                    Origin::Options,
+                    millpath_core::args![path.display(), e],
+                );
             }
         }
     }

@@ -16,7 +16,12 @@ pub fn severity_word(s: Severity, lang: Lang) -> &'static str {
 
 /// `error[MP012]: message` with the location and related locations on further lines.
 pub fn human(d: &Diagnostic, lang: Lang) -> String {
-    let mut s = format!("{}[{}]: {}", severity_word(d.severity, lang), d.msg.code(), d.message(lang));
+    let mut s = format!(
+        "{}[{}]: {}",
+        severity_word(d.severity, lang),
+        d.msg.code(),
+        d.message(lang)
+    );
     match d.origin.location() {
         Some(loc) => s.push_str(&format!("\n  --> {loc}")),
         None => s.push_str(&format!("\n  --> {}", d.origin.context())),
@@ -43,10 +48,14 @@ fn location_fields(o: &Origin) -> serde_json::Value {
             "x": e.pos.x,
             "y": e.pos.y,
         }),
-        Origin::Path { name, file } => json!({ "file": file.path.display().to_string(), "path": name }),
+        Origin::Path { name, file } => {
+            json!({ "file": file.path.display().to_string(), "path": name })
+        }
         Origin::File(f) => json!({ "file": f.path.display().to_string() }),
         Origin::FileLine { file, line } => json!({ "file": file, "line": line }),
-        Origin::Span { file, start, end } => json!({ "file": file.path.display().to_string(), "start": start, "end": end }),
+        Origin::Span { file, start, end } => {
+            json!({ "file": file.path.display().to_string(), "start": start, "end": end })
+        }
         Origin::Options | Origin::Input => json!({}),
     }
 }
@@ -65,10 +74,17 @@ pub fn json_value(d: &Diagnostic, lang: Lang) -> serde_json::Value {
 
 /// `::error file=F,line=L,title=millpath MP012::message`
 pub fn github(d: &Diagnostic, lang: Lang) -> String {
-    let kind = if d.severity == Severity::Error { "error" } else { "warning" };
+    let kind = if d.severity == Severity::Error {
+        "error"
+    } else {
+        "warning"
+    };
     let mut props = Vec::new();
     if let Some(f) = d.origin.file() {
-        props.push(format!("file={}", escape_prop(&f.path.display().to_string())));
+        props.push(format!(
+            "file={}",
+            escape_prop(&f.path.display().to_string())
+        ));
     } else if let Origin::FileLine { file, .. } = &d.origin {
         props.push(format!("file={}", escape_prop(file)));
     }
@@ -77,7 +93,10 @@ pub fn github(d: &Diagnostic, lang: Lang) -> String {
         Origin::FileLine { line, .. } => props.push(format!("line={line}")),
         _ => {}
     }
-    props.push(format!("title={}", escape_prop(&format!("millpath {}", d.msg.code()))));
+    props.push(format!(
+        "title={}",
+        escape_prop(&format!("millpath {}", d.msg.code()))
+    ));
     let mut msg = d.message(lang);
     if let Origin::Entity(e) = &d.origin {
         msg = format!("{msg} ({} on layer {} at {})", e.code_name, e.layer, e.pos);
@@ -86,7 +105,9 @@ pub fn github(d: &Diagnostic, lang: Lang) -> String {
 }
 
 fn escape_data(s: &str) -> String {
-    s.replace('%', "%25").replace('\r', "%0D").replace('\n', "%0A")
+    s.replace('%', "%25")
+        .replace('\r', "%0D")
+        .replace('\n', "%0A")
 }
 
 fn escape_prop(s: &str) -> String {
@@ -104,7 +125,7 @@ mod tests {
         let file = FileRef::new("dir/a.dxf".into());
         Diagnostic::error(
             Msg::ValueMissing,
-            Origin::Entity(EntityOrigin {
+            Origin::Entity(Box::new(EntityOrigin {
                 file,
                 line: 120,
                 handle: "A4".into(),
@@ -112,7 +133,7 @@ mod tests {
                 code_name: "LINE",
                 pos: P2::new(1.0, 2.0),
                 path: "8999.1P".into(),
-            }),
+            })),
             vec!["B".into()],
         )
     }
@@ -120,13 +141,22 @@ mod tests {
     #[test]
     fn formats() {
         let d = sample();
-        assert_eq!(d.reference_line(Lang::En), "**** LINE @ [1.000 2.000] # 8999.1P[a.dxf]: B value missing");
+        assert_eq!(
+            d.reference_line(Lang::En),
+            "**** LINE @ [1.000 2.000] # 8999.1P[a.dxf]: B value missing"
+        );
         let h = human(&d, Lang::De);
-        assert!(h.starts_with("Fehler[") && h.contains("B-Wert fehlt") && h.contains("dir/a.dxf:120"), "{h}");
+        assert!(
+            h.starts_with("Fehler[") && h.contains("B-Wert fehlt") && h.contains("dir/a.dxf:120"),
+            "{h}"
+        );
         let j = json_value(&d, Lang::En);
         assert_eq!(j["location"]["line"], 120);
         assert_eq!(j["location"]["layer"], "8999_1P");
         let g = github(&d, Lang::En);
-        assert!(g.starts_with("::error file=dir/a.dxf,line=120,title=millpath MP"), "{g}");
+        assert!(
+            g.starts_with("::error file=dir/a.dxf,line=120,title=millpath MP"),
+            "{g}"
+        );
     }
 }

@@ -23,11 +23,18 @@ pub fn base_path(arg: &str) -> String {
 pub fn parse_z_file(text: &str, file: &str, max: f64, diags: &mut Diags) -> HashMap<String, f64> {
     let mut vars = HashMap::new();
     for (i, line) in text.lines().enumerate() {
-        let origin = Origin::FileLine { file: file.to_string(), line: i + 1 };
+        let origin = Origin::FileLine {
+            file: file.to_string(),
+            line: i + 1,
+        };
         if line.trim().is_empty() {
             continue;
         }
-        let parts: Vec<&str> = line.split(['#', '=']).filter(|p| !p.is_empty()).map(str::trim).collect();
+        let parts: Vec<&str> = line
+            .split(['#', '='])
+            .filter(|p| !p.is_empty())
+            .map(str::trim)
+            .collect();
         if parts.len() < 4 {
             diags.error(Msg::ZLineFormat, origin, vec![]);
             continue;
@@ -36,7 +43,11 @@ pub fn parse_z_file(text: &str, file: &str, max: f64, diags: &mut Diags) -> Hash
         let name = format!("#{}", parts[2]);
         let value_text = parts[3];
         let (Some(t), Some(v)) = (parse_number(t_text), parse_number(value_text)) else {
-            let bad = if parse_number(value_text).is_none() { value_text } else { t_text };
+            let bad = if parse_number(value_text).is_none() {
+                value_text
+            } else {
+                t_text
+            };
             diags.error(Msg::ZNotNumber, origin, args![bad, name]);
             continue;
         };
@@ -54,7 +65,8 @@ pub fn parse_z_file(text: &str, file: &str, max: f64, diags: &mut Diags) -> Hash
 fn z_regex() -> &'static Regex {
     static RE: OnceLock<Regex> = OnceLock::new();
     RE.get_or_init(|| {
-        Regex::new(r"[0-9.-]+\(=([0-9.-]+([\]\[)(+*/\-]|#[0-9]+|[0-9.-]+)*)\)").expect("static regex")
+        Regex::new(r"[0-9.-]+\(=([0-9.-]+([\]\[)(+*/\-]|#[0-9]+|[0-9.-]+)*)\)")
+            .expect("static regex")
     })
 }
 
@@ -73,7 +85,14 @@ pub fn rewrite(clean: &str, file: &str, vars: &HashMap<String, f64>, diags: &mut
                         out.push_str(&line[whole.end..]);
                     }
                     Err((msg, a)) => {
-                        diags.push(Diagnostic::error(msg, Origin::FileLine { file: file.to_string(), line: i + 1 }, a));
+                        diags.push(Diagnostic::error(
+                            msg,
+                            Origin::FileLine {
+                                file: file.to_string(),
+                                line: i + 1,
+                            },
+                            a,
+                        ));
                         out.push_str(line);
                     }
                 }
@@ -87,7 +106,12 @@ pub fn rewrite(clean: &str, file: &str, vars: &HashMap<String, f64>, diags: &mut
 
 /// Evaluates a probe expression (`0.800+0.794*[#51-2.000]`).
 pub fn eval(expr: &str, vars: &HashMap<String, f64>) -> Result<f64, (Msg, Vec<String>)> {
-    let mut p = Parser { s: expr.as_bytes(), i: 0, expr, vars };
+    let mut p = Parser {
+        s: expr.as_bytes(),
+        i: 0,
+        expr,
+        vars,
+    };
     let v = p.expr()?;
     if p.i < p.s.len() && p.s[p.i] != b'=' {
         return Err((Msg::ExprEndExpected, args![p.i, expr]));
@@ -133,14 +157,21 @@ impl Parser<'_> {
                     self.i += 1;
                 }
                 let name = &self.expr[start..self.i];
-                self.vars.get(name).copied().ok_or_else(|| (Msg::ZUnknownVariable, args![name, self.expr]))
+                self.vars
+                    .get(name)
+                    .copied()
+                    .ok_or_else(|| (Msg::ZUnknownVariable, args![name, self.expr]))
             }
             Some(open @ (b'(' | b'[')) => {
                 self.i += 1;
                 let v = self.expr()?;
                 let close = if open == b'(' { b')' } else { b']' };
                 if self.peek() != Some(close) {
-                    let msg = if open == b'(' { Msg::ExprParenExpected } else { Msg::ExprBracketExpected };
+                    let msg = if open == b'(' {
+                        Msg::ExprParenExpected
+                    } else {
+                        Msg::ExprBracketExpected
+                    };
                     return Err((msg, args![self.i, self.expr]));
                 }
                 self.i += 1;
@@ -155,7 +186,8 @@ impl Parser<'_> {
                     self.i += 1;
                 }
                 let text = &self.expr[start..self.i];
-                text.parse::<f64>().map_err(|_| (Msg::ExprBadNumber, args![text, start, self.expr]))
+                text.parse::<f64>()
+                    .map_err(|_| (Msg::ExprBadNumber, args![text, start, self.expr]))
             }
             Some(c) => Err((Msg::ExprUnexpected, args![c as char, self.i, self.expr])),
             None => Err((Msg::ExprUnexpected, args!["<end>", self.i, self.expr])),
@@ -182,9 +214,15 @@ mod tests {
     #[test]
     fn expression_errors_have_columns() {
         assert_eq!(eval("1+", &vars()).unwrap_err().0, Msg::ExprUnexpected);
-        assert_eq!(eval("(1+2", &vars()).unwrap_err(), (Msg::ExprParenExpected, args![4, "(1+2"]));
+        assert_eq!(
+            eval("(1+2", &vars()).unwrap_err(),
+            (Msg::ExprParenExpected, args![4, "(1+2"])
+        );
         assert_eq!(eval("[1", &vars()).unwrap_err().0, Msg::ExprBracketExpected);
-        assert_eq!(eval("1)", &vars()).unwrap_err(), (Msg::ExprEndExpected, args![1, "1)"]));
+        assert_eq!(
+            eval("1)", &vars()).unwrap_err(),
+            (Msg::ExprEndExpected, args![1, "1)"])
+        );
         assert_eq!(eval("#99", &vars()).unwrap_err().0, Msg::ZUnknownVariable);
         assert_eq!(eval("1..2", &vars()).unwrap_err().0, Msg::ExprBadNumber);
     }
@@ -194,7 +232,10 @@ mod tests {
         let mut d = Diags::default();
         let clean = "G00 Z5.000\nG01 Z0.800(=0.800+0.794*[#51-2.000]+0.206*[#52-2.000])\n";
         let out = rewrite(clean, "x_Clean.gcode", &vars(), &mut d);
-        assert_eq!(out, "G00 Z5.000\nG01 Z0.921(==0.800+0.794*[#51-2.000]+0.206*[#52-2.000])\n");
+        assert_eq!(
+            out,
+            "G00 Z5.000\nG01 Z0.921(==0.800+0.794*[#51-2.000]+0.206*[#52-2.000])\n"
+        );
         assert_eq!(rewrite(&out, "x", &vars(), &mut d), out);
         assert!(!d.has_errors());
     }
@@ -202,13 +243,26 @@ mod tests {
     #[test]
     fn z_file_lines() {
         let mut d = Diags::default();
-        let v = parse_z_file("([57.358 242.020]/T=2.000) #51=2,1\n\n([1.000 2.000]/L:a/T=2.000) #52=2.2\n", "z", 1.0, &mut d);
+        let v = parse_z_file(
+            "([57.358 242.020]/T=2.000) #51=2,1\n\n([1.000 2.000]/L:a/T=2.000) #52=2.2\n",
+            "z",
+            1.0,
+            &mut d,
+        );
         assert!(!d.has_errors());
         assert_eq!(v.get("#51"), Some(&2.1));
         let mut d = Diags::default();
         parse_z_file("([57.358 242.020]/T=2.000) #51=\n([0 0]/T=2.000) #52=x\n([0 0]/T=2.000) #53=5\n([0 0]/T=2.000) #53=2\n([0 0]/T=2.000) #53=2\n", "z", 1.0, &mut d);
         let msgs: Vec<Msg> = d.list.iter().map(|x| x.msg).collect();
-        assert_eq!(msgs, vec![Msg::ZLineFormat, Msg::ZNotNumber, Msg::ZTooFar, Msg::ZDuplicate]);
+        assert_eq!(
+            msgs,
+            vec![
+                Msg::ZLineFormat,
+                Msg::ZNotNumber,
+                Msg::ZTooFar,
+                Msg::ZDuplicate
+            ]
+        );
         assert_eq!(d.list[0].origin.context(), "z:1");
     }
 

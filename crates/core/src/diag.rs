@@ -35,7 +35,7 @@ pub enum Severity {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Origin {
     /// A DXF entity.
-    Entity(EntityOrigin),
+    Entity(Box<EntityOrigin>),
     /// A path as a whole: `name[file]`.
     Path { name: String, file: Arc<FileRef> },
     /// A whole input file.
@@ -43,7 +43,11 @@ pub enum Origin {
     /// A line of a text file (1-based), e.g. a `_Z.txt` line.
     FileLine { file: String, line: usize },
     /// A byte span in a text (`.mpath`) file.
-    Span { file: Arc<FileRef>, start: usize, end: usize },
+    Span {
+        file: Arc<FileRef>,
+        start: usize,
+        end: usize,
+    },
     /// The command line or the settings.
     Options,
     /// The command-line argument of a file that failed as a whole.
@@ -59,7 +63,10 @@ pub struct FileRef {
 
 impl FileRef {
     pub fn new(path: PathBuf) -> Arc<FileRef> {
-        let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+        let name = path
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
         Arc::new(FileRef { path, name })
     }
 }
@@ -82,7 +89,9 @@ impl Origin {
     /// The reference tool's context text (`MTEXT @ [47.167 229.104] # 8999.1P[8999.01P.dxf]`).
     pub fn context(&self) -> String {
         match self {
-            Origin::Entity(e) => format!("{} @ {} # {}[{}]", e.code_name, e.pos, e.path, e.file.name),
+            Origin::Entity(e) => {
+                format!("{} @ {} # {}[{}]", e.code_name, e.pos, e.path, e.file.name)
+            }
             Origin::Path { name, file } => format!("{}[{}]", name, file.name),
             Origin::File(f) => f.path.display().to_string(),
             Origin::FileLine { file, line } => format!("{file}:{line}"),
@@ -101,7 +110,11 @@ impl Origin {
                 e.line,
                 e.code_name,
                 e.layer,
-                if e.handle.is_empty() { String::new() } else { format!(", handle {}", e.handle) },
+                if e.handle.is_empty() {
+                    String::new()
+                } else {
+                    format!(", handle {}", e.handle)
+                },
                 e.pos
             )),
             Origin::Path { file, .. } | Origin::File(file) => Some(file.path.display().to_string()),
@@ -114,7 +127,9 @@ impl Origin {
     pub fn file(&self) -> Option<&Arc<FileRef>> {
         match self {
             Origin::Entity(e) => Some(&e.file),
-            Origin::Path { file, .. } | Origin::File(file) | Origin::Span { file, .. } => Some(file),
+            Origin::Path { file, .. } | Origin::File(file) | Origin::Span { file, .. } => {
+                Some(file)
+            }
             _ => None,
         }
     }
@@ -252,7 +267,10 @@ pub fn fill(template: &str, args: &[String]) -> String {
     while let Some(pos) = rest.find('{') {
         out.push_str(&rest[..pos]);
         let after = &rest[pos + 1..];
-        match after.find('}').and_then(|e| after[..e].parse::<usize>().ok().map(|i| (e, i))) {
+        match after
+            .find('}')
+            .and_then(|e| after[..e].parse::<usize>().ok().map(|i| (e, i)))
+        {
             Some((e, i)) => {
                 out.push_str(args.get(i).map(String::as_str).unwrap_or(""));
                 rest = &after[e + 1..];
@@ -284,13 +302,28 @@ pub struct Diagnostic {
 
 impl Diagnostic {
     pub fn error(msg: Msg, origin: Origin, args: Vec<String>) -> Diagnostic {
-        Diagnostic { msg, args, severity: Severity::Error, origin, related: Vec::new() }
+        Diagnostic {
+            msg,
+            args,
+            severity: Severity::Error,
+            origin,
+            related: Vec::new(),
+        }
     }
     pub fn warning(msg: Msg, origin: Origin, args: Vec<String>) -> Diagnostic {
-        Diagnostic { msg, args, severity: Severity::Warning, origin, related: Vec::new() }
+        Diagnostic {
+            msg,
+            args,
+            severity: Severity::Warning,
+            origin,
+            related: Vec::new(),
+        }
     }
     pub fn with_related(mut self, origin: Origin, note: impl Into<String>) -> Diagnostic {
-        self.related.push(Related { origin, note: note.into() });
+        self.related.push(Related {
+            origin,
+            note: note.into(),
+        });
         self
     }
     pub fn message(&self, lang: Lang) -> String {
@@ -299,7 +332,11 @@ impl Diagnostic {
     /// The reference's error line: `**** <context>: <message>` (CR LF in contexts → `|`).
     pub fn reference_line(&self, lang: Lang) -> String {
         let ctx = self.origin.context().replace("\r\n", "|");
-        let mark = if self.severity == Severity::Error { "****" } else { "++++" };
+        let mark = if self.severity == Severity::Error {
+            "****"
+        } else {
+            "++++"
+        };
         format!("{mark} {ctx}: {}", self.message(lang))
     }
 }
@@ -328,7 +365,10 @@ impl Diags {
         self.push(Diagnostic::error(msg, origin, args));
     }
     pub fn error_count(&self) -> usize {
-        self.list.iter().filter(|d| d.severity == Severity::Error).count()
+        self.list
+            .iter()
+            .filter(|d| d.severity == Severity::Error)
+            .count()
     }
     pub fn has_errors(&self) -> bool {
         self.error_count() > 0
@@ -353,7 +393,10 @@ mod tests {
 
     #[test]
     fn fill_replaces_placeholders() {
-        assert_eq!(fill("F={0} must be > {1}", &args!["-3", 0]), "F=-3 must be > 0");
+        assert_eq!(
+            fill("F={0} must be > {1}", &["-3".to_string(), "0".to_string()]),
+            "F=-3 must be > 0"
+        );
         assert_eq!(fill("a {x} b", &[]), "a {x} b");
     }
 
@@ -363,6 +406,9 @@ mod tests {
         d.error(Msg::StartMissing, Origin::Options, vec![]);
         d.error(Msg::StartMissing, Origin::Options, vec![]);
         assert_eq!(d.list.len(), 1);
-        assert_eq!(d.list[0].reference_line(Lang::De), "**** Options: Start-Markierung fehlt");
+        assert_eq!(
+            d.list[0].reference_line(Lang::De),
+            "**** Options: Start-Markierung fehlt"
+        );
     }
 }

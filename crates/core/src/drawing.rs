@@ -1,10 +1,10 @@
 //! The drawing model both front-ends produce: paths with their markers, probes and segments,
 //! each with its raw parameter text and its origin. From here on everything is shared.
 
+use crate::args;
 use crate::diag::{Diags, FileRef, Msg, Origin};
 use crate::geom::{Geom, P2};
 use crate::params::ParamText;
-use crate::args;
 use regex::Regex;
 use std::sync::Arc;
 
@@ -64,7 +64,8 @@ impl SegKind {
 }
 
 /// Keys accepted in a path start text.
-pub const PATH_KEYS: &str = "ABCDEFIMOPRSTUWZ@";
+/// (`@` is not among them: a resolved start text no longer has it, an unresolved one reports it.)
+pub const PATH_KEYS: &str = "ABCDEFIMOPRSTUWZ";
 /// Keys the chain level accepts from its first segment (P and U missing is a reference quirk).
 pub const CHAIN_KEYS: &str = "NICWFBSQD";
 /// Keys accepted at a z-probe.
@@ -106,12 +107,17 @@ impl RawSegment {
             (SegKind::Drill(_), _) => -1_000_000.0,
             (SegKind::Helix(_), Shape::Circle { r, .. }) => -1_000_000.0 + r,
             (SegKind::Sweep(SweepKind::Hidden), _) => 9998.0,
-            _ => self.text.as_ref().and_then(|t| t.order()).map_or(9998.0, |n| n as f64),
+            _ => self
+                .text
+                .as_ref()
+                .and_then(|t| t.order())
+                .map_or(9998.0, |n| n as f64),
         }
     }
     /// `N5555` marks a legacy "backtracking" segment (only visible in comments).
     pub fn backtrack(&self) -> bool {
-        !matches!(self.kind, SegKind::Sweep(SweepKind::Hidden)) && self.text.as_ref().and_then(|t| t.order()) == Some(5555)
+        !matches!(self.kind, SegKind::Sweep(SweepKind::Hidden))
+            && self.text.as_ref().and_then(|t| t.order()) == Some(5555)
     }
 }
 
@@ -160,11 +166,16 @@ impl RawPath {
         }
     }
     pub fn origin(&self) -> Origin {
-        Origin::Path { name: self.name.clone(), file: self.file.clone() }
+        Origin::Path {
+            name: self.name.clone(),
+            file: self.file.clone(),
+        }
     }
     /// The origin used for path-level messages: the start marker, else the path.
     pub fn start_origin(&self) -> Origin {
-        self.start.as_ref().map_or_else(|| self.origin(), |m| m.origin.clone())
+        self.start
+            .as_ref()
+            .map_or_else(|| self.origin(), |m| m.origin.clone())
     }
 }
 
@@ -179,17 +190,26 @@ pub struct DrawingFile {
 }
 
 /// Start-text checks and `@` resolution, per file (reference-input.md §4.5, §5.1).
-pub fn resolve_start_texts(paths: &mut [RawPath], path_pattern: &Regex, pattern_text: &str, diags: &mut Diags) {
+pub fn resolve_start_texts(
+    paths: &mut [RawPath],
+    path_pattern: &Regex,
+    pattern_text: &str,
+    diags: &mut Diags,
+) {
     for p in paths.iter() {
         if p.start.is_none() {
             diags.error(Msg::ParametersTextMissing, p.origin(), vec![]);
         }
     }
-    let snapshot: Vec<(String, bool, Option<ParamText>)> =
-        paths.iter().map(|p| (p.name.clone(), p.start.is_some(), p.start_text.clone())).collect();
+    let snapshot: Vec<(String, bool, Option<ParamText>)> = paths
+        .iter()
+        .map(|p| (p.name.clone(), p.start.is_some(), p.start_text.clone()))
+        .collect();
     for p in paths.iter_mut() {
         let Some(text) = &p.start_text else { continue };
-        let Some(target) = text.raw('@').map(str::to_string) else { continue };
+        let Some(target) = text.raw('@').map(str::to_string) else {
+            continue;
+        };
         let ctx = p.start_origin();
         if text.params.len() > 1 {
             diags.error(Msg::AtWithOthers, ctx, args![target]);
@@ -199,7 +219,10 @@ pub fn resolve_start_texts(paths: &mut [RawPath], path_pattern: &Regex, pattern_
             diags.error(Msg::AtNoMatch, ctx, args![target, pattern_text]);
             continue;
         }
-        let Some((_, _, Some(referenced))) = snapshot.iter().find(|(n, has_start, _)| *n == target && *has_start) else {
+        let Some((_, _, Some(referenced))) = snapshot
+            .iter()
+            .find(|(n, has_start, _)| *n == target && *has_start)
+        else {
             diags.error(Msg::AtNotFound, ctx, args![target]);
             continue;
         };

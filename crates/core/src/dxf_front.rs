@@ -3,7 +3,10 @@
 
 use crate::args;
 use crate::diag::{Diagnostic, Diags, EntityOrigin, FileRef, Msg, Origin};
-use crate::drawing::{resolve_start_texts, DrawingFile, Marker, ProbeDef, RawPath, RawSegment, SegKind, Shape, Style, SweepKind};
+use crate::drawing::{
+    resolve_start_texts, DrawingFile, Marker, ProbeDef, RawPath, RawSegment, SegKind, Shape, Style,
+    SweepKind,
+};
 use crate::geom::{f3, near, normalize_angle, Geom, P2};
 use crate::mtext::{mtext_plain, replace_percent_codes};
 use crate::params::{parse_number, ParamText};
@@ -26,7 +29,11 @@ pub struct FrontOptions<'a> {
 /// Normalised path name of a layer: drop a trailing `~letters` suffix, `_` → `.`.
 pub fn path_name_of_layer(layer: &str) -> String {
     let base = match layer.rfind('~') {
-        Some(p) if p + 1 < layer.len() && layer[p + 1..].chars().all(|c| c.is_ascii_alphabetic()) => &layer[..p],
+        Some(p)
+            if p + 1 < layer.len() && layer[p + 1..].chars().all(|c| c.is_ascii_alphabetic()) =>
+        {
+            &layer[..p]
+        }
         _ => layer,
     };
     base.replace('_', ".")
@@ -67,7 +74,11 @@ fn ocs_to_wcs(p: Point3, n: Point3) -> Point3 {
 }
 
 fn cross(a: Point3, b: Point3) -> Point3 {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 
 struct Obj<'a> {
@@ -88,7 +99,7 @@ struct Ctx<'a> {
 
 impl Ctx<'_> {
     fn origin(&self, e: &Entity, layer: &str, path: &str, pos: P2) -> Origin {
-        Origin::Entity(EntityOrigin {
+        Origin::Entity(Box::new(EntityOrigin {
             file: self.file.clone(),
             line: e.line,
             handle: e.handle.clone(),
@@ -96,23 +107,36 @@ impl Ctx<'_> {
             code_name: e.kind.code_name(),
             pos,
             path: path.to_string(),
-        })
+        }))
     }
 }
 
 fn to2(p: Point3, origin: &Origin) -> Result<P2, Diagnostic> {
     if !near(p[2], 0.0) {
-        return Err(Diagnostic::error(Msg::ZNotZero, origin.clone(), args![format!("({} {} {})", p[0], p[1], p[2])]));
+        return Err(Diagnostic::error(
+            Msg::ZNotZero,
+            origin.clone(),
+            args![format!("({} {} {})", p[0], p[1], p[2])],
+        ));
     }
     Ok(P2::new(p[0], p[1]))
 }
 
 /// Converts a parsed DXF drawing into the drawing model. `Err` aborts the file (it then
 /// contributes no paths); other problems are recorded in `diags`.
-pub fn dxf_to_drawing(d: &Drawing, file: &Arc<FileRef>, opts: &FrontOptions, diags: &mut Diags) -> Result<DrawingFile, Diagnostic> {
+pub fn dxf_to_drawing(
+    d: &Drawing,
+    file: &Arc<FileRef>,
+    opts: &FrontOptions,
+    diags: &mut Diags,
+) -> Result<DrawingFile, Diagnostic> {
     let ctx = Ctx { file };
     let table_lt = |name: &str| -> String {
-        d.linetypes.iter().find(|l| l.eq_ignore_ascii_case(name)).cloned().unwrap_or_else(|| name.to_string())
+        d.linetypes
+            .iter()
+            .find(|l| l.eq_ignore_ascii_case(name))
+            .cloned()
+            .unwrap_or_else(|| name.to_string())
     };
     let effective_lt = |e: &Entity, layer: &str| -> String {
         match &e.linetype {
@@ -156,23 +180,45 @@ pub fn dxf_to_drawing(d: &Drawing, file: &Arc<FileRef>, opts: &FrontOptions, dia
                 }
                 (Shape::Circle { c, r: *radius }, c)
             }
-            EntityKind::Arc { center, radius, start_angle, end_angle } => {
+            EntityKind::Arc {
+                center,
+                radius,
+                start_angle,
+                end_angle,
+            } => {
                 let c3 = ocs_to_wcs(*center, e.extrusion);
                 let o = ctx.origin(e, layer, &path, P2::new(c3[0], c3[1]));
                 let c = to2(c3, &o)?;
                 if *radius <= 0.0 {
                     return Err(Diagnostic::error(Msg::BadRadius, o, args![radius]));
                 }
-                let g = Geom::Arc { c, r: *radius, a0: normalize_angle(*start_angle), a1: normalize_angle(*end_angle), ccw: true };
+                let g = Geom::Arc {
+                    c,
+                    r: *radius,
+                    a0: normalize_angle(*start_angle),
+                    a1: normalize_angle(*end_angle),
+                    ccw: true,
+                };
                 (Shape::Path(g), g.start())
             }
         };
         let origin = ctx.origin(e, layer, &path, pos);
         let candidate = match &shape {
-            Shape::Circle { r, .. } => !(linetype == "HIDDEN" || (linetype == "PHANTOM" && near(*r, 1.0))),
+            Shape::Circle { r, .. } => {
+                !(linetype == "HIDDEN" || (linetype == "PHANTOM" && near(*r, 1.0)))
+            }
             Shape::Path(_) => linetype != "HIDDEN",
         };
-        objs.push(Obj { ent: e, layer, path, linetype, origin, shape, text: None, candidate });
+        objs.push(Obj {
+            ent: e,
+            layer,
+            path,
+            linetype,
+            origin,
+            shape,
+            text: None,
+            candidate,
+        });
     }
 
     // 2. texts → elements: TEXT first, then MTEXT, each in file order
@@ -181,7 +227,11 @@ pub fn dxf_to_drawing(d: &Drawing, file: &Arc<FileRef>, opts: &FrontOptions, dia
     let ordered: Vec<_> = texts
         .iter()
         .filter(|(e, _, _)| matches!(e.kind, EntityKind::Text(_)))
-        .chain(texts.iter().filter(|(e, _, _)| matches!(e.kind, EntityKind::MText(_))))
+        .chain(
+            texts
+                .iter()
+                .filter(|(e, _, _)| matches!(e.kind, EntityKind::MText(_))),
+        )
         .collect();
     for (e, layer, path) in ordered {
         let Some((value, raw, centre, radius, pos)) = search_circle(e, d.text_size) else {
@@ -197,7 +247,11 @@ pub fn dxf_to_drawing(d: &Drawing, file: &Arc<FileRef>, opts: &FrontOptions, dia
         let _ = raw;
         let origin = ctx.origin(e, layer, path, pos);
         match find_overlap(&objs, layer, centre, radius) {
-            None => diags.error(Msg::NoOverlap, origin, args![value, centre, f3(2.0 * radius)]),
+            None => diags.error(
+                Msg::NoOverlap,
+                origin,
+                args![value, centre, f3(2.0 * radius)],
+            ),
             Some(idx) => {
                 let pt = ParamText::parse(&value, origin)?;
                 objs[idx].text = Some(pt);
@@ -211,7 +265,12 @@ pub fn dxf_to_drawing(d: &Drawing, file: &Arc<FileRef>, opts: &FrontOptions, dia
                 debug.push(String::new());
                 debug.push("Object".into());
                 debug.push(format!("   {}", describe(&objs[*idx])));
-                debug.push(format!("has assigned text ''{}' @ {} d={}'", value, centre, f3(2.0 * radius)));
+                debug.push(format!(
+                    "has assigned text ''{}' @ {} d={}'",
+                    value,
+                    centre,
+                    f3(2.0 * radius)
+                ));
             }
         }
         debug.push(String::new());
@@ -228,7 +287,9 @@ pub fn dxf_to_drawing(d: &Drawing, file: &Arc<FileRef>, opts: &FrontOptions, dia
     };
     let mut special = vec![false; objs.len()];
     for (i, o) in objs.iter().enumerate() {
-        let Shape::Circle { c, r } = o.shape else { continue };
+        let Shape::Circle { c, r } = o.shape else {
+            continue;
+        };
         let lt = o.linetype.as_str();
         if !matches!(lt, "PHANTOM" | "DOT" | "DASHDOT") {
             continue;
@@ -236,28 +297,47 @@ pub fn dxf_to_drawing(d: &Drawing, file: &Arc<FileRef>, opts: &FrontOptions, dia
         special[i] = true;
         let pi = get_path(&mut paths, &o.path);
         let p = &mut paths[pi];
-        let marker = Marker { pos: c, origin: o.origin.clone() };
+        let marker = Marker {
+            pos: c,
+            origin: o.origin.clone(),
+        };
         if lt == "PHANTOM" && near(r, 0.5) {
             match &p.start {
-                Some(first) => diags.error(Msg::TwoStartMarkers, o.origin.clone(), args![first.pos, c]),
+                Some(first) => {
+                    diags.error(Msg::TwoStartMarkers, o.origin.clone(), args![first.pos, c])
+                }
                 None => {
                     p.start = Some(marker);
-                    p.start_text = Some(o.text.clone().unwrap_or_else(|| empty_text(o.origin.clone())));
+                    p.start_text = Some(
+                        o.text
+                            .clone()
+                            .unwrap_or_else(|| empty_text(o.origin.clone())),
+                    );
                 }
             }
         } else if lt == "PHANTOM" && near(r, 1.0) {
             match &p.end {
-                Some(first) => diags.error(Msg::TwoEndMarkers, o.origin.clone(), args![first.pos, c]),
+                Some(first) => {
+                    diags.error(Msg::TwoEndMarkers, o.origin.clone(), args![first.pos, c])
+                }
                 None => p.end = Some(marker),
             }
         } else if lt == "PHANTOM" && near(r, 0.75) {
             p.turns.push(marker);
         } else if (lt == "PHANTOM" || lt == "DASHDOT") && near(r, 3.0) {
-            p.probes.push(ProbeDef { center: c, text: o.text.clone(), origin: o.origin.clone() });
+            p.probes.push(ProbeDef {
+                center: c,
+                text: o.text.clone(),
+                origin: o.origin.clone(),
+            });
         } else if lt == "DOT" && near(r, 3.0) {
             // ignored z-probe
         } else {
-            diags.error(Msg::NoSpecialMeaning, o.origin.clone(), args![f3(2.0 * r), lt]);
+            diags.error(
+                Msg::NoSpecialMeaning,
+                o.origin.clone(),
+                args![f3(2.0 * r), lt],
+            );
         }
     }
 
@@ -266,13 +346,14 @@ pub fn dxf_to_drawing(d: &Drawing, file: &Arc<FileRef>, opts: &FrontOptions, dia
 
     // 5. drills and helixes, then lines, then arcs
     let find = |paths: &[RawPath], o: &Obj| -> Result<usize, Diagnostic> {
-        paths
-            .iter()
-            .position(|p| p.name == o.path)
-            .ok_or_else(|| Diagnostic::error(Msg::PathNotFoundForElement, o.origin.clone(), args![o.path]))
+        paths.iter().position(|p| p.name == o.path).ok_or_else(|| {
+            Diagnostic::error(Msg::PathNotFoundForElement, o.origin.clone(), args![o.path])
+        })
     };
     for (i, o) in objs.iter().enumerate() {
-        let Shape::Circle { r, .. } = o.shape else { continue };
+        let Shape::Circle { r, .. } = o.shape else {
+            continue;
+        };
         if special[i] {
             continue;
         }
@@ -309,10 +390,19 @@ pub fn dxf_to_drawing(d: &Drawing, file: &Arc<FileRef>, opts: &FrontOptions, dia
                 continue;
             }
         } else {
-            diags.error(Msg::DiameterSmallerThanO, o.origin.clone(), args![f3(2.0 * r), f3(o_value)]);
+            diags.error(
+                Msg::DiameterSmallerThanO,
+                o.origin.clone(),
+                args![f3(2.0 * r), f3(o_value)],
+            );
             continue;
         };
-        p.segments.push(RawSegment { kind, shape: o.shape.clone(), text: o.text.clone(), origin: o.origin.clone() });
+        p.segments.push(RawSegment {
+            kind,
+            shape: o.shape.clone(),
+            text: o.text.clone(),
+            origin: o.origin.clone(),
+        });
     }
     for want_line in [true, false] {
         for o in &objs {
@@ -340,14 +430,28 @@ pub fn dxf_to_drawing(d: &Drawing, file: &Arc<FileRef>, opts: &FrontOptions, dia
                 diags.error(Msg::LineTypeNotSupported, o.origin.clone(), args![lt]);
                 continue;
             };
-            paths[pi].segments.push(RawSegment { kind, shape: o.shape.clone(), text: o.text.clone(), origin: o.origin.clone() });
+            paths[pi].segments.push(RawSegment {
+                kind,
+                shape: o.shape.clone(),
+                text: o.text.clone(),
+                origin: o.origin.clone(),
+            });
         }
     }
-    Ok(DrawingFile { paths, debug, version: d.version.clone() })
+    Ok(DrawingFile {
+        paths,
+        debug,
+        version: d.version.clone(),
+    })
 }
 
 fn empty_text(origin: Origin) -> ParamText {
-    ParamText { text: String::new(), params: Vec::new(), vars: Vec::new(), origin }
+    ParamText {
+        text: String::new(),
+        params: Vec::new(),
+        vars: Vec::new(),
+        origin,
+    }
 }
 
 fn describe(o: &Obj) -> String {
@@ -371,9 +475,21 @@ fn describe(o: &Obj) -> String {
             f3(end[2])
         ),
         (EntityKind::Arc { .. }, Shape::Path(Geom::Arc { c, r, a0, a1, .. })) => {
-            format!("{head}Center=[{} {} 0.000] Dia={} Start={}° End={}°", f3(c.x), f3(c.y), f3(2.0 * r), f3(*a0), f3(*a1))
+            format!(
+                "{head}Center=[{} {} 0.000] Dia={} Start={}° End={}°",
+                f3(c.x),
+                f3(c.y),
+                f3(2.0 * r),
+                f3(*a0),
+                f3(*a1)
+            )
         }
-        (_, Shape::Circle { c, r }) => format!("{head}Center=[{} {} 0.000] Dia={}", f3(c.x), f3(c.y), f3(2.0 * r)),
+        (_, Shape::Circle { c, r }) => format!(
+            "{head}Center=[{} {} 0.000] Dia={}",
+            f3(c.x),
+            f3(c.y),
+            f3(2.0 * r)
+        ),
         _ => head,
     }
 }
@@ -400,10 +516,18 @@ fn search_circle(e: &Entity, default_height: f64) -> Option<(String, String, P2,
             if !centred && !near(normalize_angle(t.rotation), 0.0) {
                 return None;
             }
-            let p3 = if baseline { t.first } else { t.second.unwrap_or(t.first) };
+            let p3 = if baseline {
+                t.first
+            } else {
+                t.second.unwrap_or(t.first)
+            };
             let p3 = ocs_to_wcs(p3, e.extrusion);
             let pos = P2::new(p3[0], p3[1]);
-            let h = if t.height <= 0.0 { default_height } else { t.height };
+            let h = if t.height <= 0.0 {
+                default_height
+            } else {
+                t.height
+            };
             let n = t.value.chars().count() as f64;
             let w = 0.6 * h * n;
             let off = if centred {
@@ -414,7 +538,13 @@ fn search_circle(e: &Entity, default_height: f64) -> Option<(String, String, P2,
                 P2::new(w / 2.0, h / 2.0)
             };
             let r = 0.5 * (w * w + h * h).sqrt();
-            Some((replace_percent_codes(&t.value), t.value.clone(), pos.add(off), r, pos))
+            Some((
+                replace_percent_codes(&t.value),
+                t.value.clone(),
+                pos.add(off),
+                r,
+                pos,
+            ))
         }
         EntityKind::MText(m) => {
             let att = m.attachment;
@@ -445,7 +575,13 @@ fn search_circle(e: &Entity, default_height: f64) -> Option<(String, String, P2,
             };
             let r = (0.5 * (w * w + hh * hh).sqrt()).min(0.7 * hh);
             let pos = P2::new(m.insert[0], m.insert[1]);
-            Some((replace_percent_codes(&plain), m.value.clone(), pos.add(off), r, pos))
+            Some((
+                replace_percent_codes(&plain),
+                m.value.clone(),
+                pos.add(off),
+                r,
+                pos,
+            ))
         }
         _ => None,
     }
@@ -467,15 +603,29 @@ fn find_overlap(objs: &[Obj], layer: &str, c: P2, radius: f64) -> Option<usize> 
         return best.map(|b| b.0);
     }
     for (i, o) in objs.iter().enumerate() {
-        if let (true, Shape::Path(Geom::Arc { c: ac, r, a0, a1, .. })) = (free(o), &o.shape) {
+        if let (
+            true,
+            Shape::Path(Geom::Arc {
+                c: ac, r, a0, a1, ..
+            }),
+        ) = (free(o), &o.shape)
+        {
             let v = c.sub(*ac);
             let mut ang = v.y.atan2(v.x);
             if ang < 0.0 {
                 ang += 2.0 * std::f64::consts::PI;
             }
             let (s, e) = (a0.to_radians(), a1.to_radians());
-            let inside = if s < e { s <= ang && ang <= e } else { ang >= s || ang <= e };
-            let d = if inside { (v.len() - r).abs() } else { f64::INFINITY };
+            let inside = if s < e {
+                s <= ang && ang <= e
+            } else {
+                ang >= s || ang <= e
+            };
+            let d = if inside {
+                (v.len() - r).abs()
+            } else {
+                f64::INFINITY
+            };
             if d <= radius && best.is_none_or(|(_, bd)| d < bd) {
                 best = Some((i, d));
             }

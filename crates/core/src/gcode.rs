@@ -49,11 +49,17 @@ struct Emitter<'a> {
     pos: P3,
     probes: &'a [NamedProbe],
     errors: Vec<Diagnostic>,
+    /// Set after a skipped element: the position is no longer trustworthy.
+    lost: bool,
 }
 
 /// Trace comment text: trimmed, `)` → `]`, `\` → `/`.
 pub fn as_comment(indent: usize, text: &str) -> String {
-    format!("{}({})", " ".repeat(indent), text.trim().replace(')', "]").replace('\\', "/"))
+    format!(
+        "{}({})",
+        " ".repeat(indent),
+        text.trim().replace(')', "]").replace('\\', "/")
+    )
 }
 
 fn bt(b: bool) -> &'static str {
@@ -68,10 +74,20 @@ type Skip = Diagnostic;
 
 impl<'a> Emitter<'a> {
     fn comment(&mut self, indent: usize, text: &str) {
-        self.items.push(Item { kind: Kind::Comment, text: as_comment(indent, text), len: 0.0, feed: 0.0 });
+        self.items.push(Item {
+            kind: Kind::Comment,
+            text: as_comment(indent, text),
+            len: 0.0,
+            feed: 0.0,
+        });
     }
     fn push(&mut self, kind: Kind, text: String, len: f64, feed: f64) {
-        self.items.push(Item { kind, text, len, feed });
+        self.items.push(Item {
+            kind,
+            text,
+            len,
+            feed,
+        });
     }
 
     /// `F3(z)`, or with probes `F3(z)(=F3(z)+w*[#n-TH]…)` weighted by the 4 nearest probes.
@@ -79,8 +95,12 @@ impl<'a> Emitter<'a> {
         if self.probes.is_empty() {
             return f3(z);
         }
-        let mut weights: Vec<(f64, usize)> =
-            self.probes.iter().enumerate().map(|(i, p)| (1.0 / (p.placed.pos.dist(xy) + 0.001), i)).collect();
+        let mut weights: Vec<(f64, usize)> = self
+            .probes
+            .iter()
+            .enumerate()
+            .map(|(i, p)| (1.0 / (p.placed.pos.dist(xy) + 0.001), i))
+            .collect();
         // descending, ties keep tour order (stable sort)
         weights.sort_by(|a, b| b.0.partial_cmp(&a.0).unwrap_or(std::cmp::Ordering::Equal));
         weights.truncate(4);
@@ -88,7 +108,12 @@ impl<'a> Emitter<'a> {
         let mut s = format!("{}(={}", f3(z), f3(z));
         for (w, i) in weights {
             let p = &self.probes[i];
-            s.push_str(&format!("+{}*[{}-{}]", f3(w / sum), p.name, f3(p.placed.height())));
+            s.push_str(&format!(
+                "+{}*[{}-{}]",
+                f3(w / sum),
+                p.name,
+                f3(p.placed.height())
+            ));
         }
         s.push(')');
         s
@@ -117,13 +142,25 @@ impl<'a> Emitter<'a> {
     fn sweep_xy(&mut self, from: P3, to: P3) {
         let d = from.dist(to);
         if !near(d, 0.0) {
-            self.push(Kind::HSweep, format!("G00 X{} Y{}", f3(to.x), f3(to.y)), d, 0.0);
+            self.push(
+                Kind::HSweep,
+                format!("G00 X{} Y{}", f3(to.x), f3(to.y)),
+                d,
+                0.0,
+            );
         }
     }
 
     #[allow(clippy::too_many_arguments)]
     fn safe_sweep(&mut self, from: P3, to: P3, th: f64, s: f64, feed: f64, backtrack: bool) {
-        self.comment(2, &format!("SweepAndDrillSafelyFromTo {from} {to} s={} bt={}", f3(s), bt(backtrack)));
+        self.comment(
+            2,
+            &format!(
+                "SweepAndDrillSafelyFromTo {from} {to} s={} bt={}",
+                f3(s),
+                bt(backtrack)
+            ),
+        );
         if from.xy().near(to.xy()) {
             self.drill_or_pull(from.xy(), from.z, to.z, th, feed);
         } else {
@@ -141,9 +178,20 @@ impl<'a> Emitter<'a> {
             Geom::Line { .. } => {
                 self.comment(
                     2,
-                    &format!("MillLine s={a} e={b} fr={} to={} bt={}", f3(from_z), f3(to_z), bt(backtrack)),
+                    &format!(
+                        "MillLine s={a} e={b} fr={} to={} bt={}",
+                        f3(from_z),
+                        f3(to_z),
+                        bt(backtrack)
+                    ),
                 );
-                let t = format!("G01 F{} X{} Y{} Z{}", f3(feed), f3(b.x), f3(b.y), self.zexpr(to_z, a));
+                let t = format!(
+                    "G01 F{} X{} Y{} Z{}",
+                    f3(feed),
+                    f3(b.x),
+                    f3(b.y),
+                    self.zexpr(to_z, a)
+                );
                 self.push(Kind::Mill, t, a.dist(b), feed);
             }
             Geom::Arc { c, r, a0, a1, ccw } => {
@@ -177,10 +225,23 @@ impl<'a> Emitter<'a> {
 
     /// The support profile of one pass (§8.2); `b`, `d` are the bar depths.
     #[allow(clippy::too_many_arguments)]
-    fn profile(&mut self, pieces: &[Geom], forward: bool, z: f64, b: f64, d: f64, th: f64, feed: f64, backtrack: bool) {
+    fn profile(
+        &mut self,
+        pieces: &[Geom],
+        forward: bool,
+        z: f64,
+        b: f64,
+        d: f64,
+        th: f64,
+        feed: f64,
+        backtrack: bool,
+    ) {
         const STEPS: [&str; 4] = ["Bar", "Down", "Between", "Up"];
-        let ordered: Vec<Geom> =
-            if forward { pieces.to_vec() } else { pieces.iter().rev().map(Geom::reversed).collect() };
+        let ordered: Vec<Geom> = if forward {
+            pieces.to_vec()
+        } else {
+            pieces.iter().rev().map(Geom::reversed).collect()
+        };
         for (k, piece) in ordered.iter().enumerate() {
             let step = STEPS[k % 4];
             self.comment(2, &format!("Support.{step}"));
@@ -208,23 +269,37 @@ impl<'a> Emitter<'a> {
             };
             if let Err(d) = r {
                 self.errors.push(d);
+                self.lost = true;
             }
         }
     }
 
     fn subpath(&mut self, fr: Frame, emb: &Embedding) {
         let Some(target) = &emb.target else { return };
-        let Some(t) = sub_transform(target, emb, &fr.t) else { return };
+        let Some(t) = sub_transform(target, emb, &fr.t) else {
+            return;
+        };
         let label = format!("{} t={}", target.label(), t.describe());
         self.comment(2, &format!("START Subpath {label}"));
-        self.emit_model(Frame { model: target, t, h: fr.h + emb.h });
+        self.emit_model(Frame {
+            model: target,
+            t,
+            h: fr.h + emb.h,
+        });
         self.comment(2, &format!("END Subpath {label}"));
     }
 
     fn sweep(&mut self, fr: Frame, s: &Sweep) -> Result<(), Skip> {
         let (a, b) = (fr.t.apply(s.a), fr.t.apply(s.b));
-        if !self.pos.xy().assert_near(a) {
-            return Err(Diagnostic::error(Msg::NotNear, s.origin.clone(), args![a, self.pos.xy()]));
+        if self.lost {
+            self.pos = a.with_z(self.pos.z);
+            self.lost = false;
+        } else if !self.pos.xy().assert_near(a) {
+            return Err(Diagnostic::error(
+                Msg::NotNear,
+                s.origin.clone(),
+                args![a, self.pos.xy()],
+            ));
         }
         let p = &fr.model.params;
         let height = fr.h + s.s;
@@ -235,7 +310,11 @@ impl<'a> Emitter<'a> {
     fn drill(&mut self, fr: Frame, d: &Drill) -> Result<(), Skip> {
         let p = &fr.model.params;
         let c = fr.t.apply(d.c);
-        let (key, depth) = if d.style == Style::Mark { ("D", d.d) } else { ("B", d.b) };
+        let (key, depth) = if d.style == Style::Mark {
+            ("D", d.d)
+        } else {
+            ("B", d.b)
+        };
         let depth = depth.ok_or_else(|| missing(key, &d.origin))?;
         self.comment(2, &format!("Drill l={c}"));
         if let Some(q) = &d.q {
@@ -251,7 +330,11 @@ impl<'a> Emitter<'a> {
         let h = fr.h;
         let c = fr.t.apply(hx.c);
         let th = h + p.t;
-        let (key, depth) = if hx.style == Style::Mill { ("B", hx.b) } else { ("D", hx.d) };
+        let (key, depth) = if hx.style == Style::Mill {
+            ("B", hx.b)
+        } else {
+            ("D", hx.d)
+        };
         let bottom = h + depth.ok_or_else(|| missing(key, &hx.origin))?;
         let infeed = hx.i.ok_or_else(|| missing("I", &hx.origin))?;
         let r1 = hx.r - p.o / 2.0;
@@ -260,23 +343,46 @@ impl<'a> Emitter<'a> {
             self.comment(4, &format!("Q:{q}"));
         }
         self.comment(2, &format!("MillHelix l={c} r={}", f3(hx.r)));
-        self.push(Kind::HSweep, format!("G00 X{} Y{}", f3(c.x), f3(c.y - r1)), r1, 0.0);
+        self.push(
+            Kind::HSweep,
+            format!("G00 X{} Y{}", f3(c.x), f3(c.y - r1)),
+            r1,
+            0.0,
+        );
         let (mut d, mut done) = (th, th);
         let mut z = self.pos.z;
         let half = r1 * std::f64::consts::PI;
         while gt(done, bottom) {
             self.comment(4, &format!("MillSemiCircle l={}", f3(d)));
             let b1 = (d - infeed / 2.0).max(bottom);
-            let t = format!("G02 F{} I0 J{} X{} Y{} Z{}", f3(hx.f), f3(r1), f3(c.x), f3(c.y + r1), self.zexpr(b1, c));
+            let t = format!(
+                "G02 F{} I0 J{} X{} Y{} Z{}",
+                f3(hx.f),
+                f3(r1),
+                f3(c.x),
+                f3(c.y + r1),
+                self.zexpr(b1, c)
+            );
             self.push(Kind::Mill, t, half, hx.f);
             let b0 = (b1 - infeed / 2.0).max(bottom);
-            let t = format!("G02 F{} I0 J{} X{} Y{} Z{}", f3(hx.f), f3(-r1), f3(c.x), f3(c.y - r1), self.zexpr(b0, c));
+            let t = format!(
+                "G02 F{} I0 J{} X{} Y{} Z{}",
+                f3(hx.f),
+                f3(-r1),
+                f3(c.x),
+                f3(c.y - r1),
+                self.zexpr(b0, c)
+            );
             self.push(Kind::Mill, t, half, hx.f);
             z = b0;
             done = d;
             d -= infeed;
         }
-        self.pos = P3 { x: c.x, y: c.y - r1, z };
+        self.pos = P3 {
+            x: c.x,
+            y: c.y - r1,
+            z,
+        };
         if let (Style::Support, Some(pieces)) = (hx.style, &hx.bars) {
             let b = hx.b.ok_or_else(|| missing("B", &hx.origin))?;
             let dd = hx.d.ok_or_else(|| missing("D", &hx.origin))?;
@@ -289,14 +395,24 @@ impl<'a> Emitter<'a> {
             }
         }
         if le(hx.r, p.o) {
-            self.push(Kind::HSweep, format!("G00 X{} Y{}", f3(c.x), f3(c.y)), r1, 0.0);
+            self.push(
+                Kind::HSweep,
+                format!("G00 X{} Y{}", f3(c.x), f3(c.y)),
+                r1,
+                0.0,
+            );
             self.pos = c.with_z(self.pos.z);
         } else {
             // deliberate difference: the pull-up height is raised by h as well
             let s = h + p.s;
             let t = format!("G00 Z{}", self.zexpr(s, c));
             self.push(Kind::VSweep, t, s - done, 0.0);
-            self.push(Kind::HSweep, format!("G00 X{} Y{}", f3(c.x), f3(c.y)), r1, 0.0);
+            self.push(
+                Kind::HSweep,
+                format!("G00 X{} Y{}", f3(c.x), f3(c.y)),
+                r1,
+                0.0,
+            );
             self.pos = c.with_z(s);
         }
         Ok(())
@@ -313,7 +429,11 @@ impl<'a> Emitter<'a> {
         let mut passes: Vec<Vec<f64>> = Vec::with_capacity(ch.segs.len());
         let mut geoms = Vec::with_capacity(ch.segs.len());
         for s in &ch.segs {
-            let (key, depth) = if s.style == Style::Mark { ("D", s.d) } else { ("B", s.b) };
+            let (key, depth) = if s.style == Style::Mark {
+                ("D", s.d)
+            } else {
+                ("B", s.b)
+            };
             let bottom = h + depth.ok_or_else(|| missing(key, &s.origin))?;
             passes.push(pass_depths(first, bottom, infeed));
             geoms.push(s.geom.transform(&fr.t));
@@ -326,7 +446,14 @@ impl<'a> Emitter<'a> {
         }
     }
 
-    fn fast(&mut self, fr: Frame, ch: &Chain, passes: &[Vec<f64>], geoms: &[Geom], th: f64) -> Result<(), Skip> {
+    fn fast(
+        &mut self,
+        fr: Frame,
+        ch: &Chain,
+        passes: &[Vec<f64>],
+        geoms: &[Geom],
+        th: f64,
+    ) -> Result<(), Skip> {
         let p = &fr.model.params;
         let total: usize = passes.iter().map(Vec::len).sum();
         let mut done_count = vec![0usize; passes.len()];
@@ -351,7 +478,11 @@ impl<'a> Emitter<'a> {
             let Some((si, forward, _)) = best else { break };
             let z = passes[si][done_count[si]];
             done_count[si] += 1;
-            let g = if forward { geoms[si] } else { geoms[si].reversed() };
+            let g = if forward {
+                geoms[si]
+            } else {
+                geoms[si].reversed()
+            };
             let seg = &ch.segs[si];
             self.safe_sweep(self.pos, g.start().with_z(z), th, s, seg.f, false);
             self.segment_pass(fr, seg, &g, forward, z, th);
@@ -362,7 +493,14 @@ impl<'a> Emitter<'a> {
         Ok(())
     }
 
-    fn sweepless(&mut self, fr: Frame, ch: &Chain, passes: &[Vec<f64>], geoms: &[Geom], th: f64) -> Result<(), Skip> {
+    fn sweepless(
+        &mut self,
+        fr: Frame,
+        ch: &Chain,
+        passes: &[Vec<f64>],
+        geoms: &[Geom],
+        th: f64,
+    ) -> Result<(), Skip> {
         let runs = passes.iter().map(Vec::len).max().unwrap_or(0);
         let chain_start = geoms[0].start();
         let chain_end = geoms[geoms.len() - 1].end();
@@ -378,7 +516,11 @@ impl<'a> Emitter<'a> {
                 } else if head.near(g.end()) {
                     false
                 } else {
-                    return Err(Diagnostic::error(Msg::NotNear, ch.segs[si].origin.clone(), args![head, g.start()]));
+                    return Err(Diagnostic::error(
+                        Msg::NotNear,
+                        ch.segs[si].origin.clone(),
+                        args![head, g.start()],
+                    ));
                 };
                 head = if forward { g.end() } else { g.start() };
                 run.push((si, z, forward));
@@ -393,7 +535,11 @@ impl<'a> Emitter<'a> {
         }
         for (si, z, forward) in edges {
             let seg = &ch.segs[si];
-            let g = if forward { geoms[si] } else { geoms[si].reversed() };
+            let g = if forward {
+                geoms[si]
+            } else {
+                geoms[si].reversed()
+            };
             self.drill_or_pull(self.pos.xy(), self.pos.z, z, th, seg.f);
             self.segment_pass(fr, seg, &g, forward, z, th);
         }
@@ -401,13 +547,29 @@ impl<'a> Emitter<'a> {
     }
 
     /// One pass of one chain segment (§7.4). `g` is already in pass direction.
-    fn segment_pass(&mut self, fr: Frame, seg: &ChainSeg, g: &Geom, forward: bool, z: f64, th: f64) {
+    fn segment_pass(
+        &mut self,
+        fr: Frame,
+        seg: &ChainSeg,
+        g: &Geom,
+        forward: bool,
+        z: f64,
+        th: f64,
+    ) {
         if let Some(q) = &seg.q {
             self.comment(4, &format!("Q:{q}"));
         }
         // deliberate difference: the clamp uses the raised bottom (+h)
-        let full_bottom = fr.h + if seg.style == Style::Mill { seg.b } else { seg.d }.unwrap_or(f64::NAN);
-        if let (Style::Support, Some(pieces), Some(b), Some(d)) = (seg.style, &seg.bars, seg.b, seg.d) {
+        let full_bottom = fr.h
+            + if seg.style == Style::Mill {
+                seg.b
+            } else {
+                seg.d
+            }
+            .unwrap_or(f64::NAN);
+        if let (Style::Support, Some(pieces), Some(b), Some(d)) =
+            (seg.style, &seg.bars, seg.b, seg.d)
+        {
             if lt(z, full_bottom) {
                 let pieces: Vec<Geom> = pieces.iter().map(|p| p.transform(&fr.t)).collect();
                 self.profile(&pieces, forward, z, fr.h + b, fr.h + d, th, seg.f, seg.bt);
@@ -499,13 +661,31 @@ impl Stats {
     /// The five statistics texts, e.g. `Fräslänge:     115 mm   ca.  2 min`.
     pub fn lines(&self, lang: Lang) -> [String; 5] {
         let labels = match lang {
-            Lang::En => ["Milling length:", "Drill length:", "Sweeps:", "Sum:", "Command count:"],
-            Lang::De => ["Fräslänge:", "Bohrungen:", "Leerfahrten:", "Summe:", "Befehlszahl:"],
+            Lang::En => [
+                "Milling length:",
+                "Drill length:",
+                "Sweeps:",
+                "Sum:",
+                "Command count:",
+            ],
+            Lang::De => [
+                "Fräslänge:",
+                "Bohrungen:",
+                "Leerfahrten:",
+                "Summe:",
+                "Befehlszahl:",
+            ],
         };
         let ticks = |m: f64| (m * TICKS_PER_MINUTE).trunc();
-        let (tm, td, ts) = (ticks(self.mill_min), ticks(self.drill_min), ticks(self.sweep_min));
+        let (tm, td, ts) = (
+            ticks(self.mill_min),
+            ticks(self.drill_min),
+            ticks(self.sweep_min),
+        );
         let minutes = |t: f64| (t / TICKS_PER_MINUTE).ceil();
-        let line = |l: &str, len: f64, t: f64| format!("{l:<12} {:>5.0} mm   ca.{:>3.0} min", len, minutes(t));
+        let line = |l: &str, len: f64, t: f64| {
+            format!("{l:<12} {:>5.0} mm   ca.{:>3.0} min", len, minutes(t))
+        };
         [
             line(labels[0], self.mill, tm),
             line(labels[1], self.drill, td),
@@ -520,7 +700,11 @@ impl Stats {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Output {
     Milling(String),
-    Probing { probing: String, z_txt: String, clean: String },
+    Probing {
+        probing: String,
+        z_txt: String,
+        clean: String,
+    },
 }
 
 #[derive(Debug, Clone)]
@@ -537,7 +721,17 @@ fn prologue(banner: &str, file_name: &str, start: f64) -> Vec<String> {
         "F150".into(),
         "G17 G21 G40 G49 G54 G80 G90 G94".into(),
         "T1".into(),
-        as_comment(0, &format!("SweepSafelyTo {}", P3 { x: 0.0, y: 0.0, z: start })),
+        as_comment(
+            0,
+            &format!(
+                "SweepSafelyTo {}",
+                P3 {
+                    x: 0.0,
+                    y: 0.0,
+                    z: start
+                }
+            ),
+        ),
         format!("G00 Z{}", f3(start)),
         "G00 X0.000 Y0.000".into(),
     ]
@@ -545,9 +739,19 @@ fn prologue(banner: &str, file_name: &str, start: f64) -> Vec<String> {
 
 /// Generates the G-code of a top-level model. `Err` holds the errors that make the output
 /// unusable (the caller writes nothing then).
-pub fn generate(model: &Model, file_name: &str, banner: &str, sweep_speed: f64, lang: Lang) -> Result<Generated, Vec<Diagnostic>> {
+pub fn generate(
+    model: &Model,
+    file_name: &str,
+    banner: &str,
+    sweep_speed: f64,
+    lang: Lang,
+) -> Result<Generated, Vec<Diagnostic>> {
     if model.elements.is_empty() {
-        return Err(vec![Diagnostic::error(Msg::NoSegments, model.raw.start_origin(), vec![])]);
+        return Err(vec![Diagnostic::error(
+            Msg::NoSegments,
+            model.raw.start_origin(),
+            vec![],
+        )]);
     }
     let top = Transform::top_level(model.start, model.end);
     let mut placed = Vec::new();
@@ -555,15 +759,37 @@ pub fn generate(model: &Model, file_name: &str, banner: &str, sweep_speed: f64, 
     let probes: Vec<NamedProbe> = probe_tour(placed)
         .into_iter()
         .enumerate()
-        .map(|(i, p)| NamedProbe { placed: p, name: format!("#{}", 51 + i) })
+        .map(|(i, p)| NamedProbe {
+            placed: p,
+            name: format!("#{}", 51 + i),
+        })
         .collect();
     let s = model.params.s;
     let sx = s * START_OFFSET;
-    let mut em = Emitter { items: Vec::new(), pos: P3 { x: 0.0, y: 0.0, z: sx }, probes: &probes, errors: Vec::new() };
+    let mut em = Emitter {
+        items: Vec::new(),
+        pos: P3 {
+            x: 0.0,
+            y: 0.0,
+            z: sx,
+        },
+        probes: &probes,
+        errors: Vec::new(),
+        lost: false,
+    };
     em.comment(2, &format!("Model {}", model.label()));
-    em.emit_model(Frame { model, t: top, h: 0.0 });
+    em.emit_model(Frame {
+        model,
+        t: top,
+        h: 0.0,
+    });
     let last_z = em.pos.z;
-    em.push(Kind::VSweep, format!("G00 Z{}", f3(sx)), (last_z - sx).abs(), 0.0);
+    em.push(
+        Kind::VSweep,
+        format!("G00 Z{}", f3(sx)),
+        (last_z - sx).abs(),
+        0.0,
+    );
     if !em.errors.is_empty() {
         return Err(em.errors);
     }
@@ -577,14 +803,21 @@ pub fn generate(model: &Model, file_name: &str, banner: &str, sweep_speed: f64, 
     lines.push("%".into());
     let body = join(&lines);
     if probes.is_empty() {
-        return Ok(Generated { output: Output::Milling(body), stats });
+        return Ok(Generated {
+            output: Output::Milling(body),
+            stats,
+        });
     }
     // probing program and Z file
     let mut pl = prologue(banner, file_name, s);
     let mut cur = P2::default();
     for p in &probes {
         if !near(p.placed.pos.dist(cur), 0.0) {
-            pl.push(format!("G00 X{} Y{}", f3(p.placed.pos.x), f3(p.placed.pos.y)));
+            pl.push(format!(
+                "G00 X{} Y{}",
+                f3(p.placed.pos.x),
+                f3(p.placed.pos.y)
+            ));
         }
         cur = p.placed.pos;
         pl.push(format!("G00 Z{}", f3(p.placed.height() + model.params.o)));
@@ -601,12 +834,29 @@ pub fn generate(model: &Model, file_name: &str, banner: &str, sweep_speed: f64, 
     let z_lines: Vec<String> = probes
         .iter()
         .map(|p| {
-            let label = p.placed.probe.l.as_ref().map(|l| format!("/L:{l}")).unwrap_or_default();
-            let inner = format!("{}{label}/T={}", p.placed.probe.center, f3(p.placed.height()));
+            let label = p
+                .placed
+                .probe
+                .l
+                .as_ref()
+                .map(|l| format!("/L:{l}"))
+                .unwrap_or_default();
+            let inner = format!(
+                "{}{label}/T={}",
+                p.placed.probe.center,
+                f3(p.placed.height())
+            );
             format!("{} {}=", as_comment(0, &inner), p.name)
         })
         .collect();
-    Ok(Generated { output: Output::Probing { probing: join(&pl), z_txt: join(&z_lines), clean: body }, stats })
+    Ok(Generated {
+        output: Output::Probing {
+            probing: join(&pl),
+            z_txt: join(&z_lines),
+            clean: body,
+        },
+        stats,
+    })
 }
 
 fn join(lines: &[String]) -> String {
@@ -625,15 +875,29 @@ mod tests {
         assert_eq!(p.len(), 2);
         assert!((p[0] - 0.8).abs() < 1e-12 && p[1] == -0.3);
         let p = pass_depths(1.0 - 0.6, -0.1, 0.6);
-        assert_eq!(p.iter().map(|z| f3(*z)).collect::<Vec<_>>(), ["0.400", "-0.100"]);
+        assert_eq!(
+            p.iter().map(|z| f3(*z)).collect::<Vec<_>>(),
+            ["0.400", "-0.100"]
+        );
         // a mark below the first pass gets a single pass at D
         assert_eq!(pass_depths(0.8, 1.5, 1.2), vec![1.5]);
     }
 
     #[test]
     fn optimizer_keeps_only_the_last_sweep_of_a_run() {
-        let mk = |k, t: &str| Item { kind: k, text: t.into(), len: 1.0, feed: 1.0 };
-        let mut v = vec![mk(Kind::HSweep, "G00 X1 Y1"), mk(Kind::Comment, "(c)"), mk(Kind::HSweep, "G00 X2 Y2"), mk(Kind::VSweep, "G00 Z1"), mk(Kind::HSweep, "G00 X3 Y3")];
+        let mk = |k, t: &str| Item {
+            kind: k,
+            text: t.into(),
+            len: 1.0,
+            feed: 1.0,
+        };
+        let mut v = vec![
+            mk(Kind::HSweep, "G00 X1 Y1"),
+            mk(Kind::Comment, "(c)"),
+            mk(Kind::HSweep, "G00 X2 Y2"),
+            mk(Kind::VSweep, "G00 Z1"),
+            mk(Kind::HSweep, "G00 X3 Y3"),
+        ];
         optimize(&mut v);
         assert_eq!(v[0].text, "; G00 X1 Y1");
         assert_eq!(v[2].text, "G00 X2 Y2");
@@ -644,7 +908,15 @@ mod tests {
 
     #[test]
     fn statistics_lines() {
-        let s = Stats { mill: 115.374, mill_min: 115.374 / 150.0 * 1.4, drill: 3.5, drill_min: 3.5 / 150.0 * 1.4, sweep: 65.99, sweep_min: 65.99 / 500.0 * 1.4, count: 8 };
+        let s = Stats {
+            mill: 115.374,
+            mill_min: 115.374 / 150.0 * 1.4,
+            drill: 3.5,
+            drill_min: 3.5 / 150.0 * 1.4,
+            sweep: 65.99,
+            sweep_min: 65.99 / 500.0 * 1.4,
+            count: 8,
+        };
         let de = s.lines(Lang::De);
         assert_eq!(de[0], "Fräslänge:     115 mm   ca.  2 min");
         assert_eq!(de[4], "Befehlszahl: 8");
@@ -652,7 +924,10 @@ mod tests {
         assert_eq!(en[0], "Milling length:   115 mm   ca.  2 min");
         assert_eq!(en[1], "Drill length:     4 mm   ca.  1 min");
         assert_eq!(en[3], "Sum:           185 mm   ca.  2 min");
-        assert_eq!(Stats::default().lines(Lang::De)[1], "Bohrungen:       0 mm   ca.  0 min");
+        assert_eq!(
+            Stats::default().lines(Lang::De)[1],
+            "Bohrungen:       0 mm   ca.  0 min"
+        );
     }
 
     #[test]

@@ -60,9 +60,11 @@ impl P2 {
     pub const fn new(x: f64, y: f64) -> Self {
         P2 { x, y }
     }
+    #[allow(clippy::should_implement_trait)] // plain helpers, no operator overloading needed
     pub fn sub(self, o: P2) -> P2 {
         P2::new(self.x - o.x, self.y - o.y)
     }
+    #[allow(clippy::should_implement_trait)]
     pub fn add(self, o: P2) -> P2 {
         P2::new(self.x + o.x, self.y + o.y)
     }
@@ -95,7 +97,11 @@ impl P2 {
         P2::new(self.x * c - self.y * s, self.x * s + self.y * c)
     }
     pub fn with_z(self, z: f64) -> P3 {
-        P3 { x: self.x, y: self.y, z }
+        P3 {
+            x: self.x,
+            y: self.y,
+            z,
+        }
     }
 }
 
@@ -132,9 +138,18 @@ impl fmt::Display for P3 {
 /// A straight line or a circular arc, in traversal direction.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Geom {
-    Line { a: P2, b: P2 },
+    Line {
+        a: P2,
+        b: P2,
+    },
     /// Angles in degrees, normalised; `ccw` runs from `a0` counter-clockwise to `a1`.
-    Arc { c: P2, r: f64, a0: f64, a1: f64, ccw: bool },
+    Arc {
+        c: P2,
+        r: f64,
+        a0: f64,
+        a1: f64,
+        ccw: bool,
+    },
 }
 
 impl Geom {
@@ -153,14 +168,22 @@ impl Geom {
     pub fn reversed(&self) -> Geom {
         match *self {
             Geom::Line { a, b } => Geom::Line { a: b, b: a },
-            Geom::Arc { c, r, a0, a1, ccw } => Geom::Arc { c, r, a0: a1, a1: a0, ccw: !ccw },
+            Geom::Arc { c, r, a0, a1, ccw } => Geom::Arc {
+                c,
+                r,
+                a0: a1,
+                a1: a0,
+                ccw: !ccw,
+            },
         }
     }
     /// Swept angle in degrees, in [0, 360).
     pub fn sweep_deg(&self) -> f64 {
         match *self {
             Geom::Line { .. } => 0.0,
-            Geom::Arc { a0, a1, ccw, .. } => normalize_angle(if ccw { a1 - a0 } else { -(a1 - a0) }),
+            Geom::Arc { a0, a1, ccw, .. } => {
+                normalize_angle(if ccw { a1 - a0 } else { -(a1 - a0) })
+            }
         }
     }
     /// Length along the geometry (arc length for arcs).
@@ -180,7 +203,10 @@ impl Geom {
             Geom::Line { a, b } => {
                 let len = a.dist(b);
                 let dir = b.sub(a).scale(1.0 / len);
-                Geom::Line { a: a.add(dir.scale(f0)), b: a.add(dir.scale(f1)) }
+                Geom::Line {
+                    a: a.add(dir.scale(f0)),
+                    b: a.add(dir.scale(f1)),
+                }
             }
             Geom::Arc { c, r, a0, ccw, .. } => {
                 let circumference = 2.0 * std::f64::consts::PI * r;
@@ -197,10 +223,19 @@ impl Geom {
     }
     pub fn transform(&self, t: &Transform) -> Geom {
         match *self {
-            Geom::Line { a, b } => Geom::Line { a: t.apply(a), b: t.apply(b) },
+            Geom::Line { a, b } => Geom::Line {
+                a: t.apply(a),
+                b: t.apply(b),
+            },
             Geom::Arc { c, r, a0, a1, ccw } => {
                 let d = t.angle.to_degrees();
-                Geom::Arc { c: t.apply(c), r, a0: normalize_angle(a0 + d), a1: normalize_angle(a1 + d), ccw }
+                Geom::Arc {
+                    c: t.apply(c),
+                    r,
+                    a0: normalize_angle(a0 + d),
+                    a1: normalize_angle(a1 + d),
+                    ccw,
+                }
             }
         }
     }
@@ -225,7 +260,13 @@ pub struct Transform {
 impl Transform {
     /// The top-level frame: the start marker becomes (0, 0), no rotation.
     pub fn top_level(start: P2, end: P2) -> Transform {
-        Transform { from_start: start, from_end: end, to_start: P2::default(), to_end: end.sub(start), angle: 0.0 }
+        Transform {
+            from_start: start,
+            from_end: end,
+            to_start: P2::default(),
+            to_end: end.sub(start),
+            angle: 0.0,
+        }
     }
 
     /// The rotation + translation that maps `from_start → to_start` and `from_end → to_end`;
@@ -245,7 +286,13 @@ impl Transform {
         } else {
             return None;
         };
-        Some(Transform { from_start, from_end, to_start, to_end, angle })
+        Some(Transform {
+            from_start,
+            from_end,
+            to_start,
+            to_end,
+            angle,
+        })
     }
 
     pub fn apply(&self, p: P2) -> P2 {
@@ -254,7 +301,10 @@ impl Transform {
 
     /// `[ [fs]=>[ts] / [fe]=>[te] ]`, the form used in subpath comments.
     pub fn describe(&self) -> String {
-        format!("[ {}=>{} / {}=>{} ]", self.from_start, self.to_start, self.from_end, self.to_end)
+        format!(
+            "[ {}=>{} / {}=>{} ]",
+            self.from_start, self.to_start, self.from_end, self.to_end
+        )
     }
 }
 
@@ -277,7 +327,7 @@ mod tests {
     fn formatting_keeps_negative_zero_and_rounds_to_even() {
         assert_eq!(f3(-1e-15), "-0.000");
         assert_eq!(f3(0.0625), "0.062");
-        assert_eq!(f3(57.6865), "57.686"); // binary value is below the tie
+        assert_eq!(f3(1.0005), "1.000"); // binary value is below the tie
         assert_eq!(format!("{:.0}", 2.5), "2");
     }
 
@@ -286,7 +336,13 @@ mod tests {
         assert_eq!(normalize_angle(-90.0), 270.0);
         assert_eq!(normalize_angle(360.0), 0.0);
         assert_eq!(normalize_angle(725.0), 5.0);
-        let arc = Geom::Arc { c: P2::new(0.0, 0.0), r: 2.0, a0: 0.0, a1: 90.0, ccw: true };
+        let arc = Geom::Arc {
+            c: P2::new(0.0, 0.0),
+            r: 2.0,
+            a0: 0.0,
+            a1: 90.0,
+            ccw: true,
+        };
         assert!((arc.length() - std::f64::consts::PI).abs() < 1e-12);
         let rev = arc.reversed();
         assert!((rev.length() - arc.length()).abs() < 1e-12);
@@ -297,10 +353,21 @@ mod tests {
 
     #[test]
     fn transform_maps_anchors() {
-        let t = Transform::between(P2::new(120.0, 170.0), P2::new(120.0, 100.0), P2::new(20.0, 0.0), P2::new(20.0, 70.0))
-            .unwrap();
+        let t = Transform::between(
+            P2::new(120.0, 170.0),
+            P2::new(120.0, 100.0),
+            P2::new(20.0, 0.0),
+            P2::new(20.0, 70.0),
+        )
+        .unwrap();
         assert!(t.apply(P2::new(120.0, 170.0)).near(P2::new(20.0, 0.0)));
         assert!(t.apply(P2::new(120.0, 100.0)).near(P2::new(20.0, 70.0)));
-        assert!(Transform::between(P2::new(0.0, 0.0), P2::new(1.0, 0.0), P2::new(0.0, 0.0), P2::new(2.0, 0.0)).is_none());
+        assert!(Transform::between(
+            P2::new(0.0, 0.0),
+            P2::new(1.0, 0.0),
+            P2::new(0.0, 0.0),
+            P2::new(2.0, 0.0)
+        )
+        .is_none());
     }
 }

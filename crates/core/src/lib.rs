@@ -15,7 +15,7 @@ pub mod params;
 pub mod session;
 
 pub use diag::{Diagnostic, Diags, Lang, Msg, Origin, Severity};
-pub use session::{FileSystem, OsFileSystem, Session, Settings};
+pub use session::{FileSystem, MemFileSystem, OsFileSystem, Session, Settings};
 
 use gcode::{generate, Output, Stats};
 use std::path::{Path, PathBuf};
@@ -59,18 +59,31 @@ fn output_prefix(input: &Path, suffix: &str) -> PathBuf {
 /// Compiles one command-line file (reference-input.md §7.5). Errors go to `session.diags`.
 pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOutcome {
     let names = session.load_file(input);
-    let file_name = input.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let file_name = input
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
     let mut outcome = FileOutcome::default();
     if session.settings.check {
         let mut sorted = names.clone();
         sorted.sort();
         for name in sorted {
-            let verb = if session.lang() == Lang::De { "Prüfen von" } else { "Checking" };
+            let verb = if session.lang() == Lang::De {
+                "Prüfen von"
+            } else {
+                "Checking"
+            };
             session.info.push(format!("---- {verb} {name}"));
             match session.build_top(&name) {
                 Err(abort) => session.diags.push(abort),
                 Ok(None) => {}
-                Ok(Some(model)) => match generate(&model, &file_name, banner, session.settings.sweep_speed, session.lang()) {
+                Ok(Some(model)) => match generate(
+                    &model,
+                    &file_name,
+                    banner,
+                    session.settings.sweep_speed,
+                    session.lang(),
+                ) {
                     Ok(g) => outcome.stats.push((name.clone(), g.stats)),
                     Err(errs) => errs.into_iter().for_each(|e| session.diags.push(e)),
                 },
@@ -93,17 +106,29 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
     if built.len() > 1 {
         let mut list: Vec<&str> = built.iter().map(|m| m.name()).collect();
         list.sort();
-        session.diags.error(Msg::MoreThanOnePath, file_origin, args![input.display(), list.join(", ")]);
+        session.diags.error(
+            Msg::MoreThanOnePath,
+            file_origin,
+            args![input.display(), list.join(", ")],
+        );
         return outcome;
     }
     let Some(model) = built.pop() else {
-        session.diags.error(Msg::NoErrorFreePath, file_origin, args![input.display()]);
+        session
+            .diags
+            .error(Msg::NoErrorFreePath, file_origin, args![input.display()]);
         return outcome;
     };
     if session.diags.has_errors() {
         return outcome;
     }
-    let generated = match generate(&model, &file_name, banner, session.settings.sweep_speed, session.lang()) {
+    let generated = match generate(
+        &model,
+        &file_name,
+        banner,
+        session.settings.sweep_speed,
+        session.lang(),
+    ) {
         Ok(g) => g,
         Err(errs) => {
             errs.into_iter().for_each(|e| session.diags.push(e));
@@ -113,14 +138,32 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
     let prefix = output_prefix(input, &model.params.r);
     let with = |s: &str| PathBuf::from(format!("{}{s}", prefix.display()));
     outcome.outputs = match generated.output {
-        Output::Milling(g) => vec![OutputFile { path: with("_Milling.gcode"), content: g }],
-        Output::Probing { probing, z_txt, clean } => vec![
-            OutputFile { path: with("_Probing.gcode"), content: probing },
-            OutputFile { path: with("_Z.txt"), content: z_txt },
-            OutputFile { path: with("_Clean.gcode"), content: clean },
+        Output::Milling(g) => vec![OutputFile {
+            path: with("_Milling.gcode"),
+            content: g,
+        }],
+        Output::Probing {
+            probing,
+            z_txt,
+            clean,
+        } => vec![
+            OutputFile {
+                path: with("_Probing.gcode"),
+                content: probing,
+            },
+            OutputFile {
+                path: with("_Z.txt"),
+                content: z_txt,
+            },
+            OutputFile {
+                path: with("_Clean.gcode"),
+                content: clean,
+            },
         ],
     };
-    outcome.stats.push((model.name().to_string(), generated.stats));
+    outcome
+        .stats
+        .push((model.name().to_string(), generated.stats));
     outcome
 }
 
@@ -132,7 +175,13 @@ mod tests {
     fn inputs_and_prefixes() {
         assert_eq!(complete_input("8999.02P"), PathBuf::from("8999.02P.dxf"));
         assert_eq!(complete_input("X.DXF"), PathBuf::from("X.DXF"));
-        assert_eq!(output_prefix(Path::new("dir/8999.32P.dxf"), "_VAR"), PathBuf::from("dir/8999.32P_VAR"));
-        assert_eq!(output_prefix(Path::new("8999.23 Pv.dxf"), ""), PathBuf::from("8999.23 Pv"));
+        assert_eq!(
+            output_prefix(Path::new("dir/8999.32P.dxf"), "_VAR"),
+            PathBuf::from("dir/8999.32P_VAR")
+        );
+        assert_eq!(
+            output_prefix(Path::new("8999.23 Pv.dxf"), ""),
+            PathBuf::from("8999.23 Pv")
+        );
     }
 }

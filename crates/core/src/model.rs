@@ -159,8 +159,15 @@ impl PlacedProbe {
 /// Collects the probes of a model and of everything it embeds (reference-output.md §12.1).
 pub fn collect_probes(model: &Model, t: &Transform, h: f64, out: &mut Vec<PlacedProbe>) {
     for p in &model.probes {
-        let placed = PlacedProbe { probe: p.clone(), pos: t.apply(p.center), h };
-        if !out.iter().any(|q| q.probe == placed.probe && q.pos == placed.pos && q.h == placed.h) {
+        let placed = PlacedProbe {
+            probe: p.clone(),
+            pos: t.apply(p.center),
+            h,
+        };
+        if !out
+            .iter()
+            .any(|q| q.probe == placed.probe && q.pos == placed.pos && q.h == placed.h)
+        {
             out.push(placed);
         }
     }
@@ -177,7 +184,12 @@ pub fn collect_probes(model: &Model, t: &Transform, h: f64, out: &mut Vec<Placed
 
 /// The transformation of an embedded target in output coordinates.
 pub fn sub_transform(target: &Model, emb: &Embedding, outer: &Transform) -> Option<Transform> {
-    Transform::between(target.start, target.end, outer.apply(emb.a), outer.apply(emb.b))
+    Transform::between(
+        target.start,
+        target.end,
+        outer.apply(emb.a),
+        outer.apply(emb.b),
+    )
 }
 
 /// Orders probes by greedy nearest neighbour from (0, 0).

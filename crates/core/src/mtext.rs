@@ -12,7 +12,9 @@ pub fn mtext_plain(value: &str) -> String {
         match c {
             '{' | '}' => i += 1,
             '\\' => {
-                let Some(&code) = chars.get(i + 1) else { return out };
+                let Some(&code) = chars.get(i + 1) else {
+                    return out;
+                };
                 match code {
                     '\\' | '{' | '}' => {
                         out.push(code);
@@ -33,12 +35,16 @@ pub fn mtext_plain(value: &str) -> String {
                                     break;
                                 }
                                 '\\' => {
-                                    let Some(&n) = chars.get(i + 1) else { return out };
+                                    let Some(&n) = chars.get(i + 1) else {
+                                        return out;
+                                    };
                                     out.push(n);
                                     i += 2;
                                 }
                                 '^' => {
-                                    let Some(&n) = chars.get(i + 1) else { return out };
+                                    let Some(&n) = chars.get(i + 1) else {
+                                        return out;
+                                    };
                                     if n != ' ' {
                                         out.push('^');
                                         out.push(n);
@@ -76,7 +82,9 @@ pub fn mtext_plain(value: &str) -> String {
 
 /// BeckerCAD encodings of Ø, ° and ±.
 pub fn replace_percent_codes(text: &str) -> String {
-    text.replace("%%c", "_D").replace("%%d", "_G").replace("%%p", "_+")
+    text.replace("%%c", "_D")
+        .replace("%%d", "_G")
+        .replace("%%p", "_+")
 }
 
 #[cfg(test)]
@@ -85,7 +93,10 @@ mod tests {
 
     #[test]
     fn plain_text() {
-        assert_eq!(mtext_plain("\\W1.135081;M2x20\\PO2\\PT2\\PI1,2\\PB-0,3"), "M2x20\r\nO2\r\nT2\r\nI1,2\r\nB-0,3");
+        assert_eq!(
+            mtext_plain("\\W1.135081;M2x20\\PO2\\PT2\\PI1,2\\PB-0,3"),
+            "M2x20\r\nO2\r\nT2\r\nI1,2\r\nB-0,3"
+        );
         assert_eq!(mtext_plain("{\\fArial|b0;B1}\\PS5"), "B1\r\nS5");
         assert_eq!(mtext_plain("a\\\\b\\{c\\}"), "a\\b{c}");
         assert_eq!(mtext_plain("\\S1#2;x"), "1/2x");

@@ -38,7 +38,16 @@ impl Patterns {
         let file_any = Regex::new(&format!("(?i){file}")).map_err(bad('p', file))?;
         let file_range = Regex::new(&format!("(?i)({file})-({file})")).map_err(bad('p', file))?;
         let range_second = 2 + file_any.captures_len() - 1;
-        Ok(Patterns { path_text: path.to_string(), path_full, path_cs, path_ci, file_full, file_any, file_range, range_second })
+        Ok(Patterns {
+            path_text: path.to_string(),
+            path_full,
+            path_cs,
+            path_ci,
+            file_full,
+            file_any,
+            file_range,
+            range_second,
+        })
     }
 
     /// Compare(fileToken, pathName) of §3.2; `None` when either does not match its pattern.
@@ -77,14 +86,18 @@ impl Patterns {
     /// Whether a file (name without directory and extension) may contain the path.
     pub fn file_contains(&self, file_stem: &str, path_name: &str) -> bool {
         for c in self.file_range.captures_iter(file_stem) {
-            let (Some(a), Some(b)) = (c.get(1), c.get(self.range_second)) else { continue };
+            let (Some(a), Some(b)) = (c.get(1), c.get(self.range_second)) else {
+                continue;
+            };
             if self.compare(a.as_str(), path_name).is_some_and(|x| x <= 0)
                 && self.compare(b.as_str(), path_name).is_some_and(|x| x >= 0)
             {
                 return true;
             }
         }
-        self.file_any.find_iter(file_stem).any(|m| self.compare(m.as_str(), path_name) == Some(0))
+        self.file_any
+            .find_iter(file_stem)
+            .any(|m| self.compare(m.as_str(), path_name) == Some(0))
     }
 }
 

@@ -39,7 +39,10 @@ fn join_continuations(text: &str) -> String {
             let mut j = i + 1;
             while j < chars.len() && matches!(chars[j], '\r' | '\n') {
                 j += 1;
-                while j < chars.len() && chars[j].is_whitespace() && !matches!(chars[j], '\r' | '\n') {
+                while j < chars.len()
+                    && chars[j].is_whitespace()
+                    && !matches!(chars[j], '\r' | '\n')
+                {
                     j += 1;
                 }
             }
@@ -67,7 +70,11 @@ impl ParamText {
                 let mut vc = value.chars();
                 if let Some(name) = vc.next() {
                     if vars.iter().any(|(n, _)| *n == name) {
-                        return Err(Diagnostic::error(Msg::DuplicateVariable, origin, args![name, text]));
+                        return Err(Diagnostic::error(
+                            Msg::DuplicateVariable,
+                            origin,
+                            args![name, text],
+                        ));
                     }
                     vars.push((name, vc.collect()));
                 }
@@ -82,7 +89,11 @@ impl ParamText {
             params.push((key, value));
         }
         if !dup.is_empty() {
-            return Err(Diagnostic::error(Msg::DuplicateParameter, origin, args![text, dup]));
+            return Err(Diagnostic::error(
+                Msg::DuplicateParameter,
+                origin,
+                args![text, dup],
+            ));
         }
         for (k, v) in &params {
             let msg = match k {
@@ -95,11 +106,19 @@ impl ParamText {
                 return Err(Diagnostic::error(msg, origin, args![v]));
             }
         }
-        Ok(ParamText { text: text.to_string(), params, vars, origin })
+        Ok(ParamText {
+            text: text.to_string(),
+            params,
+            vars,
+            origin,
+        })
     }
 
     pub fn raw(&self, key: char) -> Option<&str> {
-        self.params.iter().find(|(k, _)| *k == key).map(|(_, v)| v.as_str())
+        self.params
+            .iter()
+            .find(|(k, _)| *k == key)
+            .map(|(_, v)| v.as_str())
     }
     pub fn has(&self, key: char) -> bool {
         self.raw(key).is_some()
@@ -124,7 +143,12 @@ pub fn parse_number(value: &str) -> Option<f64> {
         "Infinity" | "+Infinity" => Some(f64::INFINITY),
         "-Infinity" => Some(f64::NEG_INFINITY),
         "NaN" => Some(f64::NAN),
-        _ if s.chars().all(|c| c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e' | 'E')) => s.parse().ok(),
+        _ if s
+            .chars()
+            .all(|c| c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e' | 'E')) =>
+        {
+            s.parse().ok()
+        }
         _ => None,
     }
 }
@@ -160,15 +184,24 @@ impl Vars {
                 return Err(changed.unwrap_or('?'));
             }
         }
-        let culprit = self.0.iter().find(|(n, v)| v.contains(&format!("={n}"))).map(|(n, _)| *n);
-        Err(culprit.or_else(|| self.0.first().map(|(n, _)| *n)).unwrap_or('?'))
+        let culprit = self
+            .0
+            .iter()
+            .find(|(n, v)| v.contains(&format!("={n}")))
+            .map(|(n, _)| *n);
+        Err(culprit
+            .or_else(|| self.0.first().map(|(n, _)| *n))
+            .unwrap_or('?'))
     }
 
     pub fn names(&self) -> BTreeSet<char> {
         self.0.iter().map(|(n, _)| *n).collect()
     }
     pub fn get(&self, name: char) -> Option<&str> {
-        self.0.iter().find(|(n, _)| *n == name).map(|(_, v)| v.as_str())
+        self.0
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, v)| v.as_str())
     }
 }
 
@@ -184,7 +217,9 @@ pub fn parse_definition(name: char, def: &str) -> Result<VarDef, (Msg, Vec<Strin
     let d = def.trim();
     if d.contains(',') {
         let cleaned = d.replace('?', "");
-        return Ok(VarDef::List(cleaned.split(',').map(|s| s.trim().to_string()).collect()));
+        return Ok(VarDef::List(
+            cleaned.split(',').map(|s| s.trim().to_string()).collect(),
+        ));
     }
     if let Some(rest) = d.strip_prefix('?') {
         if rest.is_empty() {
@@ -255,7 +290,10 @@ mod tests {
 
     #[test]
     fn tokens_and_continuations() {
-        assert_eq!(tokenize("M2x20\r\nO2\r\nT2 I1,2"), vec!["M2x20", "O2", "T2", "I1,2"]);
+        assert_eq!(
+            tokenize("M2x20\r\nO2\r\nT2 I1,2"),
+            vec!["M2x20", "O2", "T2", "I1,2"]
+        );
         assert_eq!(tokenize(":Y?~\r\n   VD  B1"), vec![":Y?VD", "B1"]);
         assert_eq!(tokenize(":B-0.5~3.0"), vec![":B-0.5~3.0"]);
         assert_eq!(tokenize("a\tb c"), vec!["a\tb", "c"]);
@@ -302,17 +340,49 @@ mod tests {
 
     #[test]
     fn definitions_and_check_values() {
-        assert_eq!(parse_definition('A', "P1,P2,P3").unwrap(), VarDef::List(vec!["P1".into(), "P2".into(), "P3".into()]));
-        assert_eq!(parse_definition('A', "?PQ").unwrap(), VarDef::List(vec!["P".into(), "Q".into()]));
-        assert_eq!(parse_definition('B', "-0.5~3.0").unwrap(), VarDef::Range(-0.5, 3.0));
-        assert_eq!(parse_definition('B', "0,5~2").unwrap(), VarDef::List(vec!["0".into(), "5~2".into()]));
-        assert_eq!(parse_definition('B', "1~2~3").unwrap_err().0, Msg::RangeFormat);
-        assert_eq!(parse_definition('B', "a~2").unwrap_err().0, Msg::RangeNumber);
-        assert_eq!(parse_definition('B', "7").unwrap_err().0, Msg::DefinitionFormat);
-        assert_eq!(parse_definition('B', "?").unwrap_err().0, Msg::EmptyCharList);
+        assert_eq!(
+            parse_definition('A', "P1,P2,P3").unwrap(),
+            VarDef::List(vec!["P1".into(), "P2".into(), "P3".into()])
+        );
+        assert_eq!(
+            parse_definition('A', "?PQ").unwrap(),
+            VarDef::List(vec!["P".into(), "Q".into()])
+        );
+        assert_eq!(
+            parse_definition('B', "-0.5~3.0").unwrap(),
+            VarDef::Range(-0.5, 3.0)
+        );
+        assert_eq!(
+            parse_definition('B', "0,5~2").unwrap(),
+            VarDef::List(vec!["0".into(), "5~2".into()])
+        );
+        assert_eq!(
+            parse_definition('B', "1~2~3").unwrap_err().0,
+            Msg::RangeFormat
+        );
+        assert_eq!(
+            parse_definition('B', "a~2").unwrap_err().0,
+            Msg::RangeNumber
+        );
+        assert_eq!(
+            parse_definition('B', "7").unwrap_err().0,
+            Msg::DefinitionFormat
+        );
+        assert_eq!(
+            parse_definition('B', "?").unwrap_err().0,
+            Msg::EmptyCharList
+        );
         assert!(VarDef::Range(-0.5, 3.0).accepts("1"));
         assert!(!VarDef::Range(-0.5, 3.0).accepts("4"));
-        let cv = check_values(&[('B', "-0.5~3.0".into()), ('Q', "?PQR".into()), ('X', "D,V".into())]).unwrap();
-        assert_eq!(cv.0, vec![('B', "-0.5".into()), ('Q', "Q".into()), ('X', "D".into())]);
+        let cv = check_values(&[
+            ('B', "-0.5~3.0".into()),
+            ('Q', "?PQR".into()),
+            ('X', "D,V".into()),
+        ])
+        .unwrap();
+        assert_eq!(
+            cv.0,
+            vec![('B', "-0.5".into()), ('Q', "Q".into()), ('X', "D".into())]
+        );
     }
 }

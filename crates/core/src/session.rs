@@ -3,7 +3,9 @@
 
 use crate::args;
 use crate::diag::{Diagnostic, Diags, FileRef, Lang, Msg, Origin};
-use crate::drawing::{RawPath, RawSegment, SegKind, Shape, Style, SweepKind, CHAIN_KEYS, PATH_KEYS, PROBE_KEYS};
+use crate::drawing::{
+    RawPath, RawSegment, SegKind, Shape, Style, SweepKind, CHAIN_KEYS, PATH_KEYS, PROBE_KEYS,
+};
 use crate::dxf_front::{dxf_to_drawing, FrontOptions};
 use crate::geom::{absnear, f3, ge, gt, le, near, Geom, Transform, P2};
 use crate::model::*;
@@ -125,7 +127,11 @@ impl<'a> Session<'a> {
         let patterns = match Patterns::new(&settings.path_pattern, &settings.file_pattern) {
             Ok(p) => Some(p),
             Err((c, p, e)) => {
-                errors.push(Diagnostic::error(Msg::BadRegex, Origin::Options, args![format!("/{c}"), p, e]));
+                errors.push(Diagnostic::error(
+                    Msg::BadRegex,
+                    Origin::Options,
+                    args![format!("/{c}"), p, e],
+                ));
                 None
             }
         };
@@ -133,9 +139,11 @@ impl<'a> Session<'a> {
         for (parent, child) in &settings.restrictions {
             match (Regex::new(parent), Regex::new(child)) {
                 (Ok(a), Ok(b)) => restrictions.push((a, b)),
-                (Err(e), _) | (_, Err(e)) => {
-                    errors.push(Diagnostic::error(Msg::EInvalid, Origin::Options, args![format!("{parent}:{child}"), e]))
-                }
+                (Err(e), _) | (_, Err(e)) => errors.push(Diagnostic::error(
+                    Msg::EInvalid,
+                    Origin::Options,
+                    args![format!("{parent}:{child}"), e],
+                )),
             }
         }
         let debug = match settings.debug_pattern.as_deref().map(Regex::new) {
@@ -181,7 +189,8 @@ impl<'a> Session<'a> {
         let bytes = match self.fs.read(path) {
             Ok(b) => b,
             Err(e) => {
-                self.diags.error(Msg::CannotRead, Origin::Input, args![path.display(), e]);
+                self.diags
+                    .error(Msg::CannotRead, Origin::Input, args![path.display(), e]);
                 return Vec::new();
             }
         };
@@ -213,13 +222,29 @@ impl<'a> Session<'a> {
         names
     }
 
-    fn parse_drawing(&mut self, bytes: &[u8], file: &Arc<FileRef>) -> Result<crate::drawing::DrawingFile, Diagnostic> {
+    fn parse_drawing(
+        &mut self,
+        bytes: &[u8],
+        file: &Arc<FileRef>,
+    ) -> Result<crate::drawing::DrawingFile, Diagnostic> {
         let dxf = millpath_dxf::read_dxf(bytes).map_err(|e| {
-            Diagnostic::error(Msg::CannotLoadDxf, Origin::File(file.clone()), args![file.path.display(), e])
+            Diagnostic::error(
+                Msg::CannotLoadDxf,
+                Origin::File(file.clone()),
+                args![file.path.display(), e],
+            )
         })?;
-        let verb = if self.lang() == Lang::De { "Einlesen von" } else { "Reading" };
+        let verb = if self.lang() == Lang::De {
+            "Einlesen von"
+        } else {
+            "Reading"
+        };
         let full = std::fs::canonicalize(&file.path).unwrap_or_else(|_| file.path.clone());
-        self.info.push(format!("---- {verb} {} (DXF-Version: {})", full.display(), dxf.version));
+        self.info.push(format!(
+            "---- {verb} {} (DXF-Version: {})",
+            full.display(),
+            dxf.version
+        ));
         let opts = FrontOptions {
             layer_pattern: &self.patterns.path_full,
             path_pattern: &self.patterns.path_cs,
@@ -237,13 +262,24 @@ impl<'a> Session<'a> {
 
     /// Finds the files that may contain `name` and loads them; returns the matching files.
     fn search(&mut self, name: &str, near_file: &Path) -> Result<Vec<PathBuf>, Abort> {
-        let mut dirs = vec![near_file.parent().map(Path::to_path_buf).unwrap_or_default()];
+        let mut dirs = vec![near_file
+            .parent()
+            .map(Path::to_path_buf)
+            .unwrap_or_default()];
         dirs.extend(self.settings.search_dirs.iter().cloned());
         let mut matching = Vec::new();
         for dir in dirs {
-            let dir_or_cwd = if dir.as_os_str().is_empty() { PathBuf::from(".") } else { dir.clone() };
+            let dir_or_cwd = if dir.as_os_str().is_empty() {
+                PathBuf::from(".")
+            } else {
+                dir.clone()
+            };
             if !self.fs.is_dir(&dir_or_cwd) {
-                return Err(Diagnostic::error(Msg::SearchDirMissing, Origin::Options, args![dir_or_cwd.display()]));
+                return Err(Diagnostic::error(
+                    Msg::SearchDirMissing,
+                    Origin::Options,
+                    args![dir_or_cwd.display()],
+                ));
             }
             let mut files = self.fs.list_dir(&dir_or_cwd).unwrap_or_default();
             files.sort();
@@ -252,9 +288,16 @@ impl<'a> Session<'a> {
                 if !is_dxf {
                     continue;
                 }
-                let stem = f.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+                let stem = f
+                    .file_stem()
+                    .map(|s| s.to_string_lossy().into_owned())
+                    .unwrap_or_default();
                 if self.patterns.file_contains(&stem, name) {
-                    let f = if dir.as_os_str().is_empty() { PathBuf::from(f.file_name().unwrap_or_default()) } else { f };
+                    let f = if dir.as_os_str().is_empty() {
+                        PathBuf::from(f.file_name().unwrap_or_default())
+                    } else {
+                        f
+                    };
                     self.load_file(&f);
                     matching.push(f);
                 }
@@ -266,34 +309,61 @@ impl<'a> Session<'a> {
     /// Builds (or fetches) the model of a top-level path.
     pub fn build_top(&mut self, name: &str) -> Result<Option<Rc<Model>>, Abort> {
         let vars = if self.settings.check {
-            let defs = self.raw.get(name).and_then(|r| r.start_text.as_ref().map(|t| t.vars.clone())).unwrap_or_default();
+            let defs = self
+                .raw
+                .get(name)
+                .and_then(|r| r.start_text.as_ref().map(|t| t.vars.clone()))
+                .unwrap_or_default();
             match check_values(&defs) {
                 Ok(v) => v,
                 Err((msg, a)) => {
                     let origin = self.raw.get(name).map_or(Origin::Input, |r| r.origin());
                     let inner = Diagnostic::error(msg, origin.clone(), a);
-                    self.diags.error(Msg::VariableDefinitionError, origin, args![inner.message(self.lang())]);
+                    self.diags.error(
+                        Msg::VariableDefinitionError,
+                        origin,
+                        args![inner.message(self.lang())],
+                    );
                     Vars::default()
                 }
             }
         } else {
             Vars::default()
         };
-        self.build(name, &vars, &BuildCtx { depth: 0, top: true })
+        self.build(
+            name,
+            &vars,
+            &BuildCtx {
+                depth: 0,
+                top: true,
+            },
+        )
     }
 
-    fn build(&mut self, name: &str, vars: &Vars, cx: &BuildCtx) -> Result<Option<Rc<Model>>, Abort> {
+    fn build(
+        &mut self,
+        name: &str,
+        vars: &Vars,
+        cx: &BuildCtx,
+    ) -> Result<Option<Rc<Model>>, Abort> {
         let key = (name.to_string(), vars.clone());
         if let Some(m) = self.models.get(&key) {
             return Ok(m.clone());
         }
-        let Some(raw) = self.raw.get(name).cloned() else { return Ok(None) };
+        let Some(raw) = self.raw.get(name).cloned() else {
+            return Ok(None);
+        };
         let model = self.build_model(raw, vars, cx)?;
         self.models.insert(key, model.clone());
         Ok(model)
     }
 
-    fn build_model(&mut self, raw: Rc<RawPath>, vars: &Vars, cx: &BuildCtx) -> Result<Option<Rc<Model>>, Abort> {
+    fn build_model(
+        &mut self,
+        raw: Rc<RawPath>,
+        vars: &Vars,
+        cx: &BuildCtx,
+    ) -> Result<Option<Rc<Model>>, Abort> {
         // 1. markers
         let (Some(start), Some(end)) = (raw.start.clone(), raw.end.clone()) else {
             if raw.start.is_none() {
@@ -326,12 +396,21 @@ impl<'a> Session<'a> {
                 Shape::Path(g) => Some(if step.reversed { g.reversed() } else { *g }),
                 Shape::Circle { .. } => None,
             };
-            let kind = if step.turn_back { turn_back_kind(seg.kind) } else { seg.kind };
+            let kind = if step.turn_back {
+                turn_back_kind(seg.kind)
+            } else {
+                seg.kind
+            };
             if let (SegKind::Mill(style), Some(g)) = (kind, geom) {
                 let first = chain.is_none();
                 if first {
                     let (i, w) = self.chain_params(seg, &params, &ev);
-                    chain = Some(Chain { segs: Vec::new(), i, w, origin: seg.origin.clone() });
+                    chain = Some(Chain {
+                        segs: Vec::new(),
+                        i,
+                        w,
+                        origin: seg.origin.clone(),
+                    });
                 }
                 let cs = self.chain_seg(seg, style, g, &params, &ev, first)?;
                 if let Some(c) = chain.as_mut() {
@@ -342,7 +421,11 @@ impl<'a> Session<'a> {
             if let Some(c) = chain.take() {
                 elements.push(Element::Chain(c));
             }
-            let text = if step.turn_back { None } else { seg.text.as_ref() };
+            let text = if step.turn_back {
+                None
+            } else {
+                seg.text.as_ref()
+            };
             match (kind, &seg.shape) {
                 (SegKind::Drill(style), Shape::Circle { c, .. }) => {
                     if let Some(t) = text {
@@ -364,12 +447,22 @@ impl<'a> Session<'a> {
                         self.check_text(t, kind.allowed_keys(), &seg.origin, &ev);
                     }
                     if gt(2.0 * r, params.a) {
-                        self.diags.error(Msg::HelixTooLarge, seg.origin.clone(), args![f3(2.0 * r), fmt_num(params.a)]);
+                        self.diags.error(
+                            Msg::HelixTooLarge,
+                            seg.origin.clone(),
+                            args![f3(2.0 * r), fmt_num(params.a)],
+                        );
                     }
                     let b = ev.num(text, 'B').or(params.b);
                     let d = ev.num(text, 'D').or(params.d);
                     let bars = if style == Style::Support {
-                        let circle = Geom::Arc { c: *c, r: r - params.o / 2.0, a0: 270.0, a1: 270.0 * (1.0 + 1e-6), ccw: false };
+                        let circle = Geom::Arc {
+                            c: *c,
+                            r: r - params.o / 2.0,
+                            a0: 270.0,
+                            a1: 270.0 * (1.0 + 1e-6),
+                            ccw: false,
+                        };
                         let p = ev.num(text, 'P').or(params.p);
                         let u = ev.num(text, 'U').or(params.u);
                         support_bars(&circle, params.o, p, u, b, d, &seg.origin)?
@@ -391,14 +484,21 @@ impl<'a> Session<'a> {
                     self.validate_child(&seg.origin, text, &params, &ev);
                 }
                 (SegKind::Sweep(sk), _) => {
-                    let g = geom.unwrap_or(Geom::Line { a: seg.shape.start(), b: seg.shape.end() });
+                    let g = geom.unwrap_or(Geom::Line {
+                        a: seg.shape.start(),
+                        b: seg.shape.end(),
+                    });
                     let text = if sk == SweepKind::Dashed { text } else { None };
                     if let Some(t) = text {
                         self.check_text(t, kind.allowed_keys(), &seg.origin, &ev);
                     }
                     let s = ev.num(text, 'S').unwrap_or(params.s);
                     if text.is_some_and(|t| t.has('S')) && le(s, params.t) {
-                        self.diags.error(Msg::SNotAboveT, seg.origin.clone(), args![fmt_num(s), fmt_num(params.t)]);
+                        self.diags.error(
+                            Msg::SNotAboveT,
+                            seg.origin.clone(),
+                            args![fmt_num(s), fmt_num(params.t)],
+                        );
                     }
                     elements.push(Element::Sweep(Sweep {
                         a: g.start(),
@@ -409,7 +509,10 @@ impl<'a> Session<'a> {
                     }));
                 }
                 (SegKind::Subpath, _) => {
-                    let g = geom.unwrap_or(Geom::Line { a: seg.shape.start(), b: seg.shape.end() });
+                    let g = geom.unwrap_or(Geom::Line {
+                        a: seg.shape.start(),
+                        b: seg.shape.end(),
+                    });
                     if let Some(t) = text {
                         self.check_text(t, kind.allowed_keys(), &seg.origin, &ev);
                     }
@@ -455,22 +558,36 @@ impl<'a> Session<'a> {
                     let size = emb.a.dist(emb.b);
                     let tsize = t.start.dist(t.end);
                     if !absnear(size, tsize, 1e-3) {
-                        self.diags.error(Msg::SizeMismatch, emb.origin.clone(), args![f3(size), t.label(), f3(tsize)]);
+                        self.diags.error(
+                            Msg::SizeMismatch,
+                            emb.origin.clone(),
+                            args![f3(size), t.label(), f3(tsize)],
+                        );
                     } else if Transform::between(t.start, t.end, emb.a, emb.b).is_none() {
-                        self.diags.error(Msg::CannotPlace, emb.origin.clone(), args![t.label()]);
+                        self.diags
+                            .error(Msg::CannotPlace, emb.origin.clone(), args![t.label()]);
                     }
                 }
                 emb.target = target;
             }
         }
 
-        Ok(Some(Rc::new(Model { raw: raw.clone(), vars: vars.clone(), start: start.pos, end: end.pos, params, elements, probes })))
+        Ok(Some(Rc::new(Model {
+            raw: raw.clone(),
+            vars: vars.clone(),
+            start: start.pos,
+            end: end.pos,
+            params,
+            elements,
+            probes,
+        })))
     }
 
     fn check_self_references(&mut self, raw: &RawPath, vars: &Vars) {
         for (name, value) in &vars.0 {
             if vars.interpolate(&format!("={name}")).is_err() {
-                self.diags.error(Msg::SelfReference, raw.start_origin(), args![name, value]);
+                self.diags
+                    .error(Msg::SelfReference, raw.start_origin(), args![name, value]);
             }
         }
     }
@@ -489,7 +606,13 @@ impl<'a> Session<'a> {
             Some(v) => v,
             None => missing("O", &mut self.diags),
         };
-        let s = ev.num(t_, 'S').unwrap_or(if cx.top && !self.settings.check { self.settings.sweep_height } else { t + o });
+        let s = ev
+            .num(t_, 'S')
+            .unwrap_or(if cx.top && !self.settings.check {
+                self.settings.sweep_height
+            } else {
+                t + o
+            });
         PathParams {
             f: ev.num(t_, 'F').unwrap_or(self.settings.feed),
             t,
@@ -511,26 +634,47 @@ impl<'a> Session<'a> {
         }
     }
 
-    fn chain_params(&mut self, first: &RawSegment, params: &PathParams, ev: &Eval) -> (Option<f64>, Option<f64>) {
+    fn chain_params(
+        &mut self,
+        first: &RawSegment,
+        params: &PathParams,
+        ev: &Eval,
+    ) -> (Option<f64>, Option<f64>) {
         let text = first.text.as_ref();
         if let Some(t) = text {
             for (k, _) in &t.params {
                 if !CHAIN_KEYS.contains(*k) {
-                    self.diags.error(Msg::Unsupported, first.origin.clone(), args![k, text_context(t)]);
+                    self.diags.error(
+                        Msg::Unsupported,
+                        first.origin.clone(),
+                        args![k, text_context(t)],
+                    );
                 }
             }
         }
         let i = ev.num(text, 'I').or(params.i);
         let w = ev.num(text, 'W').or(params.w);
         if text.is_some_and(|t| t.has('I')) && i.is_some_and(|i| le(i, 0.0)) {
-            self.diags.error(Msg::MustBePositive, first.origin.clone(), args!["I", fmt_num(i.unwrap_or(0.0))]);
+            self.diags.error(
+                Msg::MustBePositive,
+                first.origin.clone(),
+                args!["I", fmt_num(i.unwrap_or(0.0))],
+            );
         }
         if text.is_some_and(|t| t.has('W')) && w.is_some_and(|w| le(w, 0.0)) {
-            self.diags.error(Msg::MustBePositive, first.origin.clone(), args!["W", fmt_num(w.unwrap_or(0.0))]);
+            self.diags.error(
+                Msg::MustBePositive,
+                first.origin.clone(),
+                args!["W", fmt_num(w.unwrap_or(0.0))],
+            );
         }
         if let Some(c) = ev.num(text, 'C') {
             if c.trunc() <= 0.0 {
-                self.diags.error(Msg::MustBePositive, first.origin.clone(), args!["C", fmt_num(c.trunc())]);
+                self.diags.error(
+                    Msg::MustBePositive,
+                    first.origin.clone(),
+                    args!["C", fmt_num(c.trunc())],
+                );
             }
         }
         (i, w)
@@ -551,7 +695,11 @@ impl<'a> Session<'a> {
             if t.has('S') {
                 let s = ev.num(text, 'S').unwrap_or(params.s);
                 if le(s, params.t) {
-                    self.diags.error(Msg::SNotAboveT, seg.origin.clone(), args![fmt_num(s), fmt_num(params.t)]);
+                    self.diags.error(
+                        Msg::SNotAboveT,
+                        seg.origin.clone(),
+                        args![fmt_num(s), fmt_num(params.t)],
+                    );
                 }
             }
         }
@@ -582,23 +730,39 @@ impl<'a> Session<'a> {
     fn check_text(&mut self, t: &ParamText, allowed: &str, origin: &Origin, ev: &Eval) {
         for (k, raw) in &t.params {
             if !allowed.contains(*k) {
-                self.diags.error(Msg::Unsupported, origin.clone(), args![k, text_context(t)]);
+                self.diags
+                    .error(Msg::Unsupported, origin.clone(), args![k, text_context(t)]);
                 continue;
             }
             if "ABCDFHIOPSTUWZ".contains(*k) {
                 let v = ev.vars.interpolate(raw).unwrap_or_else(|_| raw.clone());
                 if parse_number(&v).is_none() {
-                    self.diags.push(Diagnostic::warning(Msg::NotANumber, origin.clone(), args![k, v]));
+                    self.diags.push(Diagnostic::warning(
+                        Msg::NotANumber,
+                        origin.clone(),
+                        args![k, v],
+                    ));
                 }
             }
             if *k == 'N' && raw.trim().parse::<i64>().is_err() {
-                self.diags.push(Diagnostic::warning(Msg::NotANumber, origin.clone(), args![k, raw]));
+                self.diags.push(Diagnostic::warning(
+                    Msg::NotANumber,
+                    origin.clone(),
+                    args![k, raw],
+                ));
             }
         }
     }
 
     /// Range checks of a path (§4.3, all values) .
-    fn validate(&mut self, origin: &Origin, p: &PathParams, _text: Option<&ParamText>, _ev: &Eval, _path: bool) {
+    fn validate(
+        &mut self,
+        origin: &Origin,
+        p: &PathParams,
+        _text: Option<&ParamText>,
+        _ev: &Eval,
+        _path: bool,
+    ) {
         let d = &mut self.diags;
         let pos = |d: &mut Diags, key: &str, v: f64| {
             if le(v, 0.0) {
@@ -618,16 +782,28 @@ impl<'a> Session<'a> {
         pos(d, "O", p.o);
         pos(d, "T", p.t);
         if le(p.s, p.t) {
-            d.error(Msg::SNotAboveT, origin.clone(), args![fmt_num(p.s), fmt_num(p.t)]);
+            d.error(
+                Msg::SNotAboveT,
+                origin.clone(),
+                args![fmt_num(p.s), fmt_num(p.t)],
+            );
         }
         if let Some(b) = p.b {
             if ge(b, p.t) {
-                d.error(Msg::BAboveT, origin.clone(), args![fmt_num(b), fmt_num(p.t)]);
+                d.error(
+                    Msg::BAboveT,
+                    origin.clone(),
+                    args![fmt_num(b), fmt_num(p.t)],
+                );
             }
         }
         if let Some(dd) = p.d {
             if ge(dd, p.t) {
-                d.error(Msg::DAboveT, origin.clone(), args![fmt_num(dd), fmt_num(p.t)]);
+                d.error(
+                    Msg::DAboveT,
+                    origin.clone(),
+                    args![fmt_num(dd), fmt_num(p.t)],
+                );
             }
         }
         pos(d, "A", p.a);
@@ -636,7 +812,11 @@ impl<'a> Session<'a> {
         }
         if let (Some(b), Some(dd)) = (p.b, p.d) {
             if ge(b, dd) {
-                d.error(Msg::DNotAboveB, origin.clone(), args![fmt_num(dd), fmt_num(b)]);
+                d.error(
+                    Msg::DNotAboveB,
+                    origin.clone(),
+                    args![fmt_num(dd), fmt_num(b)],
+                );
             }
         }
         if let Some(pp) = p.p {
@@ -648,26 +828,42 @@ impl<'a> Session<'a> {
     }
 
     /// Range checks of an element's own values against the path's T.
-    fn validate_child(&mut self, origin: &Origin, text: Option<&ParamText>, p: &PathParams, ev: &Eval) {
+    fn validate_child(
+        &mut self,
+        origin: &Origin,
+        text: Option<&ParamText>,
+        p: &PathParams,
+        ev: &Eval,
+    ) {
         let Some(t) = text else { return };
         if let Some(f) = ev.num(text, 'F') {
             if le(f, 0.0) {
-                self.diags.error(Msg::MustBePositive, origin.clone(), args!["F", fmt_num(f)]);
+                self.diags
+                    .error(Msg::MustBePositive, origin.clone(), args!["F", fmt_num(f)]);
             }
         }
         if t.has('I') {
             if let Some(i) = ev.num(text, 'I').filter(|i| le(*i, 0.0)) {
-                self.diags.error(Msg::MustBePositive, origin.clone(), args!["I", fmt_num(i)]);
+                self.diags
+                    .error(Msg::MustBePositive, origin.clone(), args!["I", fmt_num(i)]);
             }
         }
         if let Some(b) = ev.num(text, 'B') {
             if ge(b, p.t) {
-                self.diags.error(Msg::BAboveT, origin.clone(), args![fmt_num(b), fmt_num(p.t)]);
+                self.diags.error(
+                    Msg::BAboveT,
+                    origin.clone(),
+                    args![fmt_num(b), fmt_num(p.t)],
+                );
             }
         }
         if let Some(d) = ev.num(text, 'D') {
             if ge(d, p.t) {
-                self.diags.error(Msg::DAboveT, origin.clone(), args![fmt_num(d), fmt_num(p.t)]);
+                self.diags.error(
+                    Msg::DAboveT,
+                    origin.clone(),
+                    args![fmt_num(d), fmt_num(p.t)],
+                );
             }
         }
     }
@@ -685,16 +881,25 @@ impl<'a> Session<'a> {
         let end_origin = with_pos(&seg.origin, seg.shape.end());
         let t_sub = ev.num(text, 'T').unwrap_or(params.t);
         if params.t < t_sub {
-            self.diags.error(Msg::TLessThanSub, raw.start_origin(), args![fmt_num(params.t), fmt_num(t_sub), ""]);
+            self.diags.error(
+                Msg::TLessThanSub,
+                raw.start_origin(),
+                args![fmt_num(params.t), fmt_num(t_sub), ""],
+            );
         }
         let Some(target_text) = ev.string(text, '>') else {
-            return Err(Diagnostic::error(Msg::ValueMissing, seg.origin.clone(), args![">..."]));
+            return Err(Diagnostic::error(
+                Msg::ValueMissing,
+                seg.origin.clone(),
+                args![">..."],
+            ));
         };
         // restrictions: the path's E, else the first matching /e pair
         let own_e = match params.e.as_deref().map(|e| (e, Regex::new(e))) {
             Some((_, Ok(re))) => Some(re),
             Some((e, Err(err))) => {
-                self.diags.error(Msg::BadE, raw.start_origin(), args![e, err]);
+                self.diags
+                    .error(Msg::BadE, raw.start_origin(), args![e, err]);
                 None
             }
             None => None,
@@ -708,46 +913,90 @@ impl<'a> Session<'a> {
                 .is_none_or(|(_, child)| child.is_match(&target_text)),
         };
         if !allowed {
-            self.diags.error(Msg::Forbidden, end_origin.clone(), args![target_text, raw.name]);
+            self.diags.error(
+                Msg::Forbidden,
+                end_origin.clone(),
+                args![target_text, raw.name],
+            );
         }
         let Some(m) = self.patterns.path_ci.find(&target_text) else {
-            return Err(Diagnostic::error(Msg::InvalidPathName, seg.origin.clone(), args![target_text]));
+            return Err(Diagnostic::error(
+                Msg::InvalidPathName,
+                seg.origin.clone(),
+                args![target_text],
+            ));
         };
         let target_name = m.as_str().to_string();
         if cx.depth > 9 {
-            return Err(Diagnostic::error(Msg::NestingTooDeep, seg.origin.clone(), args![target_name]));
+            return Err(Diagnostic::error(
+                Msg::NestingTooDeep,
+                seg.origin.clone(),
+                args![target_name],
+            ));
         }
         let assignment = Vars(
-            text.map(|t| t.vars.iter().map(|(n, v)| (*n, ev.vars.interpolate(v).unwrap_or_else(|_| v.clone()))).collect())
-                .unwrap_or_default(),
+            text.map(|t| {
+                t.vars
+                    .iter()
+                    .map(|(n, v)| (*n, ev.vars.interpolate(v).unwrap_or_else(|_| v.clone())))
+                    .collect()
+            })
+            .unwrap_or_default(),
         );
         let mut files = Vec::new();
         if !self.raw.contains_key(&target_name) {
             files = self.search(&target_name, &raw.file.path)?;
         }
-        let target = self.build(&target_name, &assignment, &BuildCtx { depth: cx.depth + 1, top: false })?;
+        let target = self.build(
+            &target_name,
+            &assignment,
+            &BuildCtx {
+                depth: cx.depth + 1,
+                top: false,
+            },
+        )?;
         let Some(target) = target else {
             let list: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
-            self.diags.error(Msg::CouldNotFind, end_origin, args![target_name, list.join(", ")]);
+            self.diags.error(
+                Msg::CouldNotFind,
+                end_origin,
+                args![target_name, list.join(", ")],
+            );
             return Ok(None);
         };
         // material, bit and thickness must agree
         let file_origin = Origin::File(raw.file.clone());
         let m_line = ev.string(text, 'M').or_else(|| params.m.clone());
         if m_line.is_none() || target.params.m.is_none() {
-            self.diags.error(Msg::ValueMissing, seg.origin.clone(), args!["M"]);
+            self.diags
+                .error(Msg::ValueMissing, seg.origin.clone(), args!["M"]);
         }
         let missing = "***Missing***".to_string();
-        let (ml, mt) = (m_line.unwrap_or_else(|| missing.clone()), target.params.m.clone().unwrap_or(missing));
+        let (ml, mt) = (
+            m_line.unwrap_or_else(|| missing.clone()),
+            target.params.m.clone().unwrap_or(missing),
+        );
         if ml != mt {
-            self.diags.error(Msg::MMismatch, file_origin.clone(), args![ml, target.label(), mt]);
+            self.diags.error(
+                Msg::MMismatch,
+                file_origin.clone(),
+                args![ml, target.label(), mt],
+            );
         }
         let o_line = ev.num(text, 'O').unwrap_or(params.o);
-        if !near(o_line, target.params.o) && !(o_line.is_nan() || target.params.o.is_nan()) {
-            self.diags.error(Msg::OMismatch, file_origin.clone(), args![fmt_num(o_line), target.label(), fmt_num(target.params.o)]);
+        if !(near(o_line, target.params.o) || o_line.is_nan() || target.params.o.is_nan()) {
+            self.diags.error(
+                Msg::OMismatch,
+                file_origin.clone(),
+                args![fmt_num(o_line), target.label(), fmt_num(target.params.o)],
+            );
         }
-        if !near(t_sub, target.params.t) && !(t_sub.is_nan() || target.params.t.is_nan()) {
-            self.diags.error(Msg::TMismatch, file_origin, args![fmt_num(t_sub), target.label(), fmt_num(target.params.t)]);
+        if !(near(t_sub, target.params.t) || t_sub.is_nan() || target.params.t.is_nan()) {
+            self.diags.error(
+                Msg::TMismatch,
+                file_origin,
+                args![fmt_num(t_sub), target.label(), fmt_num(target.params.t)],
+            );
         }
         self.check_assignment(&target, &assignment, &seg.origin);
         Ok(Some(target))
@@ -755,20 +1004,42 @@ impl<'a> Session<'a> {
 
     /// Assignments of an embedding against the target's definitions (§6.5).
     fn check_assignment(&mut self, target: &Model, assignment: &Vars, origin: &Origin) {
-        let defs = target.raw.start_text.as_ref().map(|t| t.vars.clone()).unwrap_or_default();
-        let missing_values: String = defs.iter().filter(|(n, _)| assignment.get(*n).is_none()).map(|(n, _)| *n).collect();
+        let defs = target
+            .raw
+            .start_text
+            .as_ref()
+            .map(|t| t.vars.clone())
+            .unwrap_or_default();
+        let missing_values: String = defs
+            .iter()
+            .filter(|(n, _)| assignment.get(*n).is_none())
+            .map(|(n, _)| *n)
+            .collect();
         if !missing_values.is_empty() {
-            self.diags.error(Msg::MissingValues, origin.clone(), args![missing_values]);
+            self.diags
+                .error(Msg::MissingValues, origin.clone(), args![missing_values]);
         }
-        let missing_defs: String = assignment.0.iter().filter(|(n, _)| !defs.iter().any(|(d, _)| d == n)).map(|(n, _)| *n).collect();
+        let missing_defs: String = assignment
+            .0
+            .iter()
+            .filter(|(n, _)| !defs.iter().any(|(d, _)| d == n))
+            .map(|(n, _)| *n)
+            .collect();
         if !missing_defs.is_empty() {
-            self.diags.error(Msg::MissingDefinitions, origin.clone(), args![missing_defs]);
+            self.diags
+                .error(Msg::MissingDefinitions, origin.clone(), args![missing_defs]);
         }
         for (name, def) in &defs {
-            let Some(value) = assignment.get(*name) else { continue };
+            let Some(value) = assignment.get(*name) else {
+                continue;
+            };
             match parse_definition(*name, def) {
                 Ok(d) if d.accepts(value) => {}
-                Ok(_) => self.diags.error(Msg::ValueNotInDefinition, origin.clone(), args![value, def.trim(), name]),
+                Ok(_) => self.diags.error(
+                    Msg::ValueNotInDefinition,
+                    origin.clone(),
+                    args![value, def.trim(), name],
+                ),
                 Err((msg, a)) => self.diags.error(msg, origin.clone(), a),
             }
         }
@@ -790,7 +1061,9 @@ impl<'a> Session<'a> {
         let is_turn = |p: P2| raw.turns.iter().any(|m| m.pos.near(p));
         loop {
             let remaining = taken.iter().any(|t| !t);
-            let cands: Vec<usize> = (0..segs.len()).filter(|&i| !taken[i] && at(&segs[i], p)).collect();
+            let cands: Vec<usize> = (0..segs.len())
+                .filter(|&i| !taken[i] && at(&segs[i], p))
+                .collect();
             if cands.is_empty() {
                 let must_return = if remaining { true } else { !p.near(end) };
                 if must_return && is_turn(p) && !trail.is_empty() {
@@ -800,7 +1073,11 @@ impl<'a> Session<'a> {
                         if matches!(segs[step.index].shape, Shape::Circle { .. }) {
                             continue;
                         }
-                        out.push(Step { index: step.index, reversed: !step.reversed, turn_back: true });
+                        out.push(Step {
+                            index: step.index,
+                            reversed: !step.reversed,
+                            turn_back: true,
+                        });
                         let sh = &segs[step.index].shape;
                         p = if step.reversed { sh.end() } else { sh.start() };
                         let open = (0..segs.len()).any(|i| !taken[i] && at(&segs[i], p));
@@ -823,7 +1100,10 @@ impl<'a> Session<'a> {
                         || raw.origin(),
                         |s| {
                             let sh = &segs[s.index].shape;
-                            with_pos(&segs[s.index].origin, if s.reversed { sh.end() } else { sh.start() })
+                            with_pos(
+                                &segs[s.index].origin,
+                                if s.reversed { sh.end() } else { sh.start() },
+                            )
                         },
                     );
                     self.diags.error(Msg::NoMoreSegments, o, args![p]);
@@ -834,26 +1114,49 @@ impl<'a> Session<'a> {
                 .iter()
                 .min_by(|&&a, &&b| {
                     let (sa, sb) = (&segs[a], &segs[b]);
-                    let ka = (sa.order(), sa.kind.preference(), sa.shape.start().dist(sa.shape.end()));
-                    let kb = (sb.order(), sb.kind.preference(), sb.shape.start().dist(sb.shape.end()));
+                    let ka = (
+                        sa.order(),
+                        sa.kind.preference(),
+                        sa.shape.start().dist(sa.shape.end()),
+                    );
+                    let kb = (
+                        sb.order(),
+                        sb.kind.preference(),
+                        sb.shape.start().dist(sb.shape.end()),
+                    );
                     ka.partial_cmp(&kb).unwrap_or(std::cmp::Ordering::Equal)
                 })
                 .unwrap_or(&cands[0]);
             taken[best] = true;
             let s = &segs[best];
             let reversed = matches!(s.shape, Shape::Path(_)) && s.shape.end().near(p);
-            out.push(Step { index: best, reversed, turn_back: false });
+            out.push(Step {
+                index: best,
+                reversed,
+                turn_back: false,
+            });
             trail.push(out.len() - 1);
             if let Shape::Path(_) = s.shape {
-                p = if reversed { s.shape.start() } else { s.shape.end() };
+                p = if reversed {
+                    s.shape.start()
+                } else {
+                    s.shape.end()
+                };
             }
         }
         if let Some(last) = out.last() {
             let sh = &segs[last.index].shape;
             let last_end = if last.reversed { sh.start() } else { sh.end() };
-            let last_end = if matches!(sh, Shape::Circle { .. }) { sh.start() } else { last_end };
+            let last_end = if matches!(sh, Shape::Circle { .. }) {
+                sh.start()
+            } else {
+                last_end
+            };
             if !last_end.near(end) {
-                let o = raw.end.as_ref().map_or_else(|| raw.origin(), |m| m.origin.clone());
+                let o = raw
+                    .end
+                    .as_ref()
+                    .map_or_else(|| raw.origin(), |m| m.origin.clone());
                 self.diags.error(Msg::EndNotAtLast, o, args![end]);
             }
         }
@@ -885,7 +1188,11 @@ struct Eval<'v> {
 impl Eval<'_> {
     fn string(&self, t: Option<&ParamText>, key: char) -> Option<String> {
         let raw = t?.raw(key)?;
-        Some(self.vars.interpolate(raw).unwrap_or_else(|_| raw.to_string()))
+        Some(
+            self.vars
+                .interpolate(raw)
+                .unwrap_or_else(|_| raw.to_string()),
+        )
     }
     fn num(&self, t: Option<&ParamText>, key: char) -> Option<f64> {
         parse_number(&self.string(t, key)?)
@@ -922,14 +1229,16 @@ fn support_bars(
     d: Option<f64>,
     origin: &Origin,
 ) -> Result<Option<Vec<Geom>>, Abort> {
-    let need = |v: Option<f64>, k: &str| v.ok_or_else(|| Diagnostic::error(Msg::ValueMissing, origin.clone(), args![k]));
+    let need = |v: Option<f64>, k: &str| {
+        v.ok_or_else(|| Diagnostic::error(Msg::ValueMissing, origin.clone(), args![k]))
+    };
     let p = need(p, "P")?;
     let u = need(u, "U")?;
     let b = need(b, "B")?;
     let d = need(d, "D")?;
     let len = g.length();
     let n = (len / (u + p)).floor();
-    if !(n >= 1.0) || !n.is_finite() {
+    if n.is_nan() || n < 1.0 || !n.is_finite() {
         return Ok(None);
     }
     let delta = d - b;
@@ -953,4 +1262,47 @@ fn support_bars(
     pieces.push(g.sub(t + i + w, t + 2.0 * i + w));
     pieces.push(g.sub(t + 2.0 * i + w, len));
     Ok(Some(pieces))
+}
+
+/// Files held in memory (tests, unsaved editor buffers).
+#[derive(Debug, Default, Clone)]
+pub struct MemFileSystem {
+    pub files: std::collections::BTreeMap<PathBuf, Vec<u8>>,
+}
+
+impl MemFileSystem {
+    pub fn add(&mut self, path: impl Into<PathBuf>, content: impl Into<Vec<u8>>) -> &mut Self {
+        self.files.insert(path.into(), content.into());
+        self
+    }
+}
+
+impl FileSystem for MemFileSystem {
+    fn read(&self, path: &Path) -> std::io::Result<Vec<u8>> {
+        self.files
+            .get(path)
+            .cloned()
+            .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::NotFound, "not found"))
+    }
+    fn list_dir(&self, dir: &Path) -> std::io::Result<Vec<PathBuf>> {
+        let dir = if dir == Path::new(".") {
+            Path::new("")
+        } else {
+            dir
+        };
+        Ok(self
+            .files
+            .keys()
+            .filter(|p| p.parent() == Some(dir))
+            .cloned()
+            .collect())
+    }
+    fn is_dir(&self, dir: &Path) -> bool {
+        let dir = if dir == Path::new(".") {
+            Path::new("")
+        } else {
+            dir
+        };
+        self.files.keys().any(|p| p.parent() == Some(dir))
+    }
 }

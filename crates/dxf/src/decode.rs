@@ -16,8 +16,8 @@ pub(crate) fn encoding_for(version: &str, codepage: &str) -> &'static Encoding {
     let cp = codepage.trim().to_ascii_uppercase();
     let label = if let Some(num) = cp.strip_prefix("ANSI_") {
         format!("windows-{num}")
-    } else if cp.starts_with("DOS") {
-        format!("ibm{}", &cp[3..])
+    } else if let Some(num) = cp.strip_prefix("DOS") {
+        format!("ibm{num}")
     } else {
         cp
     };
@@ -37,7 +37,7 @@ pub fn decode_unicode_escapes(s: &str) -> String {
     while i < chars.len() {
         let c = chars[i];
         if c == '\\'
-            && chars.len() - i - 1 >= 7
+            && chars.len() - i > 7
             && matches!(chars[i + 1], 'U' | 'u')
             && chars[i + 2] == '+'
         {
@@ -72,8 +72,14 @@ mod tests {
 
     #[test]
     fn code_pages() {
-        assert_eq!(encoding_for("AC1015", "ANSI_1252"), encoding_rs::WINDOWS_1252);
-        assert_eq!(encoding_for("AC1015", "ANSI_1251"), encoding_rs::WINDOWS_1251);
+        assert_eq!(
+            encoding_for("AC1015", "ANSI_1252"),
+            encoding_rs::WINDOWS_1252
+        );
+        assert_eq!(
+            encoding_for("AC1015", "ANSI_1251"),
+            encoding_rs::WINDOWS_1251
+        );
         assert_eq!(encoding_for("AC1024", "ANSI_1252"), encoding_rs::UTF_8);
         assert_eq!(encoding_for("AC1009", ""), encoding_rs::WINDOWS_1252);
     }

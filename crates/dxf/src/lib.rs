@@ -8,6 +8,7 @@
 
 mod decode;
 mod reader;
+pub mod writer;
 
 pub use decode::decode_unicode_escapes;
 pub use reader::read_dxf;
@@ -151,13 +152,25 @@ pub enum DxfErrorKind {
 impl fmt::Display for DxfError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match &self.kind {
-            DxfErrorKind::Truncated => write!(f, "line {}: file ends in the middle of a group", self.line),
-            DxfErrorKind::BadGroupCode(s) => write!(f, "line {}: '{}' is not a group code", self.line, s),
-            DxfErrorKind::BadNumber { code, value } => {
-                write!(f, "line {}: value '{}' of group {} is not a number", self.line, value, code)
+            DxfErrorKind::Truncated => {
+                write!(f, "line {}: file ends in the middle of a group", self.line)
             }
-            DxfErrorKind::Binary => write!(f, "binary DXF files are not supported; export as ASCII DXF"),
-            DxfErrorKind::NotDxf => write!(f, "line {}: not a DXF file (no SECTION found)", self.line),
+            DxfErrorKind::BadGroupCode(s) => {
+                write!(f, "line {}: '{}' is not a group code", self.line, s)
+            }
+            DxfErrorKind::BadNumber { code, value } => {
+                write!(
+                    f,
+                    "line {}: value '{}' of group {} is not a number",
+                    self.line, value, code
+                )
+            }
+            DxfErrorKind::Binary => {
+                write!(f, "binary DXF files are not supported; export as ASCII DXF")
+            }
+            DxfErrorKind::NotDxf => {
+                write!(f, "line {}: not a DXF file (no SECTION found)", self.line)
+            }
         }
     }
 }

@@ -22,25 +22,38 @@ fn split_pairs(bytes: &[u8]) -> Result<Vec<Pair<'_>>, DxfError> {
     let mut lines = bytes.split(|&b| b == b'\n').map(trim_eol);
     let mut pairs = Vec::new();
     let mut line_no = 0usize;
-    loop {
-        let Some(code_line) = lines.next() else { break };
+    while let Some(code_line) = lines.next() {
         line_no += 1;
         let code_text = String::from_utf8_lossy(code_line);
         let code_trim = code_text.trim();
         if code_trim.is_empty() {
             // trailing empty lines at the end of the file are harmless
-            if lines.clone().all(|l| l.iter().all(|b| b.is_ascii_whitespace())) {
+            if lines
+                .clone()
+                .all(|l| l.iter().all(|b| b.is_ascii_whitespace()))
+            {
                 break;
             }
-            return Err(DxfError { line: line_no, kind: DxfErrorKind::BadGroupCode(String::new()) });
+            return Err(DxfError {
+                line: line_no,
+                kind: DxfErrorKind::BadGroupCode(String::new()),
+            });
         }
-        let code: i32 = code_trim
-            .parse()
-            .map_err(|_| DxfError { line: line_no, kind: DxfErrorKind::BadGroupCode(code_trim.chars().take(40).collect()) })?;
+        let code: i32 = code_trim.parse().map_err(|_| DxfError {
+            line: line_no,
+            kind: DxfErrorKind::BadGroupCode(code_trim.chars().take(40).collect()),
+        })?;
         let Some(value) = lines.next() else {
-            return Err(DxfError { line: line_no, kind: DxfErrorKind::Truncated });
+            return Err(DxfError {
+                line: line_no,
+                kind: DxfErrorKind::Truncated,
+            });
         };
-        pairs.push(Pair { code, value, line: line_no });
+        pairs.push(Pair {
+            code,
+            value,
+            line: line_no,
+        });
         line_no += 1;
     }
     Ok(pairs)
@@ -63,15 +76,26 @@ fn raw_str(p: &Pair) -> String {
 
 fn num(p: &Pair) -> Result<f64, DxfError> {
     let s = raw_str(p);
-    s.parse::<f64>()
-        .map_err(|_| DxfError { line: p.line + 1, kind: DxfErrorKind::BadNumber { code: p.code, value: s.chars().take(40).collect() } })
+    s.parse::<f64>().map_err(|_| DxfError {
+        line: p.line + 1,
+        kind: DxfErrorKind::BadNumber {
+            code: p.code,
+            value: s.chars().take(40).collect(),
+        },
+    })
 }
 
 fn int(p: &Pair) -> Result<i32, DxfError> {
     let s = raw_str(p);
     s.parse::<i32>()
         .or_else(|_| s.parse::<f64>().map(|f| f as i32))
-        .map_err(|_| DxfError { line: p.line + 1, kind: DxfErrorKind::BadNumber { code: p.code, value: s.chars().take(40).collect() } })
+        .map_err(|_| DxfError {
+            line: p.line + 1,
+            kind: DxfErrorKind::BadNumber {
+                code: p.code,
+                value: s.chars().take(40).collect(),
+            },
+        })
 }
 
 fn is(p: &Pair, code: i32, value: &str) -> bool {
@@ -79,15 +103,24 @@ fn is(p: &Pair, code: i32, value: &str) -> bool {
 }
 
 fn trim_ascii(s: &[u8]) -> &[u8] {
-    let start = s.iter().position(|b| !b.is_ascii_whitespace()).unwrap_or(s.len());
-    let end = s.iter().rposition(|b| !b.is_ascii_whitespace()).map_or(start, |e| e + 1);
+    let start = s
+        .iter()
+        .position(|b| !b.is_ascii_whitespace())
+        .unwrap_or(s.len());
+    let end = s
+        .iter()
+        .rposition(|b| !b.is_ascii_whitespace())
+        .map_or(start, |e| e + 1);
     &s[start..end]
 }
 
 /// Reads a DXF file (ASCII, R12 to current versions).
 pub fn read_dxf(bytes: &[u8]) -> Result<Drawing, DxfError> {
     if bytes.starts_with(b"AutoCAD Binary DXF") {
-        return Err(DxfError { line: 0, kind: DxfErrorKind::Binary });
+        return Err(DxfError {
+            line: 0,
+            kind: DxfErrorKind::Binary,
+        });
     }
     let pairs = split_pairs(bytes)?;
     // Sections: (name, first pair index after the name, index of ENDSEC).
@@ -95,7 +128,11 @@ pub fn read_dxf(bytes: &[u8]) -> Result<Drawing, DxfError> {
     let mut i = 0;
     while i < pairs.len() {
         if is(&pairs[i], 0, "SECTION") {
-            let name = pairs.get(i + 1).filter(|p| p.code == 2).map(raw_str).unwrap_or_default();
+            let name = pairs
+                .get(i + 1)
+                .filter(|p| p.code == 2)
+                .map(raw_str)
+                .unwrap_or_default();
             let start = i + 2;
             let mut j = start;
             while j < pairs.len() && !is(&pairs[j], 0, "ENDSEC") {
@@ -106,7 +143,10 @@ pub fn read_dxf(bytes: &[u8]) -> Result<Drawing, DxfError> {
             }
             if j >= pairs.len() || !is(&pairs[j], 0, "ENDSEC") {
                 let line = pairs.get(j).or(pairs.last()).map_or(0, |p| p.line);
-                return Err(DxfError { line, kind: DxfErrorKind::Truncated });
+                return Err(DxfError {
+                    line,
+                    kind: DxfErrorKind::Truncated,
+                });
             }
             sections.push((name, start, j));
             i = j + 1;
@@ -117,17 +157,25 @@ pub fn read_dxf(bytes: &[u8]) -> Result<Drawing, DxfError> {
         }
     }
     if sections.is_empty() {
-        return Err(DxfError { line: pairs.first().map_or(1, |p| p.line), kind: DxfErrorKind::NotDxf });
+        return Err(DxfError {
+            line: pairs.first().map_or(1, |p| p.line),
+            kind: DxfErrorKind::NotDxf,
+        });
     }
 
-    let mut drawing = Drawing { text_size: 2.5, ..Default::default() };
+    let mut drawing = Drawing {
+        text_size: 2.5,
+        ..Default::default()
+    };
     // Header first: it decides the string decoding.
     for (name, s, e) in &sections {
         if name == "HEADER" {
             read_header(&pairs[*s..*e], &mut drawing)?;
         }
     }
-    let ctx = Ctx { enc: encoding_for(&drawing.version, &drawing.codepage) };
+    let ctx = Ctx {
+        enc: encoding_for(&drawing.version, &drawing.codepage),
+    };
     for (name, s, e) in &sections {
         match name.as_str() {
             "TABLES" => read_tables(&ctx, &pairs[*s..*e], &mut drawing),
@@ -184,7 +232,8 @@ fn read_tables(ctx: &Ctx, pairs: &[Pair], d: &mut Drawing) {
                 let name = rec.iter().find(|p| p.code == 2).map(|p| ctx.text(p));
                 let lt = rec.iter().find(|p| p.code == 6).map(|p| ctx.text(p));
                 if let Some(name) = name {
-                    d.layers.insert(name, lt.unwrap_or_else(|| "Continuous".to_string()));
+                    d.layers
+                        .insert(name, lt.unwrap_or_else(|| "Continuous".to_string()));
                 }
             }
             _ => {}
@@ -262,9 +311,20 @@ fn read_entity(ctx: &Ctx, kind: &str, rec: &[Pair]) -> Result<Option<Entity>, Dx
         return Ok(None);
     }
     let kind = match kind {
-        "LINE" => EntityKind::Line { start: p10, end: p11 },
-        "CIRCLE" => EntityKind::Circle { center: p10, radius: r40 },
-        "ARC" => EntityKind::Arc { center: p10, radius: r40, start_angle: a50.unwrap_or(0.0), end_angle: a51 },
+        "LINE" => EntityKind::Line {
+            start: p10,
+            end: p11,
+        },
+        "CIRCLE" => EntityKind::Circle {
+            center: p10,
+            radius: r40,
+        },
+        "ARC" => EntityKind::Arc {
+            center: p10,
+            radius: r40,
+            start_angle: a50.unwrap_or(0.0),
+            end_angle: a51,
+        },
         "TEXT" => EntityKind::Text(Text {
             value: text,
             first: p10,
@@ -284,7 +344,15 @@ fn read_entity(ctx: &Ctx, kind: &str, rec: &[Pair]) -> Result<Option<Entity>, Dx
             direction: has11.then_some(p11),
         }),
     };
-    Ok(Some(Entity { line: rec[0].line, handle, layer, linetype, linetype_scale, extrusion, kind }))
+    Ok(Some(Entity {
+        line: rec[0].line,
+        handle,
+        layer,
+        linetype,
+        linetype_scale,
+        extrusion,
+        kind,
+    }))
 }
 
 #[cfg(test)]
@@ -307,7 +375,13 @@ mod tests {
         assert_eq!(d.ignored_entities, 1);
         let e = &d.entities[0];
         assert_eq!(e.handle, "A1");
-        assert_eq!(e.kind, EntityKind::Line { start: [1.5, 2.0, 0.0], end: [3.0, 4.0, 0.0] });
+        assert_eq!(
+            e.kind,
+            EntityKind::Line {
+                start: [1.5, 2.0, 0.0],
+                end: [3.0, 4.0, 0.0]
+            }
+        );
         assert_eq!(src.lines().nth(e.line - 1).unwrap().trim(), "0");
         assert_eq!(src.lines().nth(e.line).unwrap(), "LINE");
         match &d.entities[1].kind {
@@ -340,17 +414,25 @@ mod tests {
         assert!(err.line > 20);
         let bad = dxf("  0\nLINE\n  8\nP1\n 10\nabc\n");
         let err = read_dxf(bad.as_bytes()).unwrap_err();
-        assert!(matches!(err.kind, DxfErrorKind::BadNumber { code: 10, .. }), "{err:?}");
+        assert!(
+            matches!(err.kind, DxfErrorKind::BadNumber { code: 10, .. }),
+            "{err:?}"
+        );
         assert_eq!(bad.lines().nth(err.line - 1), Some("abc"));
         let err = read_dxf(b"hello\nworld\n").unwrap_err();
         assert!(matches!(err.kind, DxfErrorKind::BadGroupCode(_)));
         assert!(read_dxf(b"").is_err());
-        assert_eq!(read_dxf(b"AutoCAD Binary DXF\r\n\x1a\0").unwrap_err().kind, DxfErrorKind::Binary);
+        assert_eq!(
+            read_dxf(b"AutoCAD Binary DXF\r\n\x1a\0").unwrap_err().kind,
+            DxfErrorKind::Binary
+        );
     }
 
     #[test]
     fn paper_space_entities_are_skipped() {
-        let d = read_dxf(dxf("  0\nLINE\n  8\nP1\n 67\n1\n  0\nCIRCLE\n  8\nP1\n 40\n2\n").as_bytes()).unwrap();
+        let d =
+            read_dxf(dxf("  0\nLINE\n  8\nP1\n 67\n1\n  0\nCIRCLE\n  8\nP1\n 40\n2\n").as_bytes())
+                .unwrap();
         assert_eq!(d.entities.len(), 1);
         assert_eq!(d.entities[0].kind.code_name(), "CIRCLE");
     }

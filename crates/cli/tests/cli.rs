@@ -1,0 +1,255 @@
+//! The command line end to end: exit statuses, output files, settings, report formats.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn millpath(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_millpath"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap()
+}
+
+fn example() -> String {
+    std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/plate/1234.1P.dxf"),
+    )
+    .unwrap()
+}
+
+fn names(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn compat_exit_statuses() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("1234.1P.dxf"), example()).unwrap();
+    assert_eq!(
+        millpath(dir.path(), &["pathdxf2gcode", "/?"]).status.code(),
+        Some(2)
+    );
+    assert_eq!(
+        millpath(dir.path(), &["pathdxf2gcode"]).status.code(),
+        Some(2)
+    );
+    let o = millpath(dir.path(), &["pathdxf2gcode", "/v500", "/s5", "1234.1P"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("**** Options: /f missing or not > 0"));
+    assert_eq!(
+        millpath(dir.path(), &["pathdxf2gcode", "/f150", "/v500", "/s5"])
+            .status
+            .code(),
+        Some(3)
+    );
+    // success, `.dxf` appended, German messages
+    let o = millpath(
+        dir.path(),
+        &[
+            "pathdxf2gcode",
+            "-f",
+            "150",
+            "/v500",
+            "/s5,5",
+            "1234.1P",
+            "/l",
+            "de",
+        ],
+    );
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(String::from_utf8_lossy(&o.stderr).contains("---- Schreiben von 1234.1P_Milling.gcode"));
+    let g = std::fs::read_to_string(dir.path().join("1234.1P_Milling.gcode")).unwrap();
+    assert!(g.contains("G00 Z5.500") && g.contains("(Fräslänge:"));
+    // a missing file: exit 1, nothing written
+    let o = millpath(
+        dir.path(),
+        &["pathdxf2gcode", "/f150", "/v500", "/s5", "nope.dxf"],
+    );
+    assert_eq!(o.status.code(), Some(1));
+}
+
+#[test]
+fn errors_leave_no_output_files() {
+    let dir = tempfile::tempdir().unwrap();
+    // a broken copy: the end marker is gone, so the path cannot be built
+    let broken = example().replacen(
+        "PHANTOM\n100\nAcDbCircle\n 10\n80.0",
+        "PHANTOM\n100\nAcDbCircle\n 10\n85.0",
+        1,
+    );
+    assert_ne!(broken, example());
+    std::fs::write(dir.path().join("1234.1P.dxf"), broken).unwrap();
+    let before = names(dir.path());
+    let o = millpath(
+        dir.path(),
+        &[
+            "compile",
+            "-f",
+            "150",
+            "-v",
+            "500",
+            "-s",
+            "5",
+            "1234.1P.dxf",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("error[") && err.contains("1234.1P.dxf:"),
+        "{err}"
+    );
+    assert_eq!(names(dir.path()), before);
+}
+
+#[test]
+fn compile_reads_millpath_toml_and_flags_override() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("1234.1P.dxf"), example()).unwrap();
+    // no settings at all: a clear usage error
+    let o = millpath(dir.path(), &["compile", "1234.1P.dxf"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("millpath.toml"));
+    std::fs::write(
+        dir.path().join("millpath.toml"),
+        "feed = 222\nsweep_speed = 1000\nsweep_height = 12\n",
+    )
+    .unwrap();
+    let o = millpath(dir.path(), &["compile", "1234.1P.dxf"]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let g = std::fs::read_to_string(dir.path().join("1234.1P_Milling.gcode")).unwrap();
+    assert!(g.contains("F222.000") && g.contains("G00 Z12.000"));
+    let o = millpath(
+        dir.path(),
+        &["compile", "--feed", "111", "--lang", "de", "1234.1P.dxf"],
+    );
+    assert_eq!(o.status.code(), Some(0));
+    let g = std::fs::read_to_string(dir.path().join("1234.1P_Milling.gcode")).unwrap();
+    assert!(g.contains("F111.000") && g.contains("(Fräslänge:"));
+    std::fs::write(dir.path().join("millpath.toml"), "feed = 'x'\n").unwrap();
+    let o = millpath(dir.path(), &["compile", "1234.1P.dxf"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("millpath.toml"));
+}
+
+#[test]
+fn check_formats_and_exit_status() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("sub")).unwrap();
+    std::fs::write(dir.path().join("sub/1234.1P.dxf"), example()).unwrap();
+    let o = millpath(dir.path(), &["check", "."]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(
+        names(&dir.path().join("sub")) == ["1234.1P.dxf"],
+        "check writes nothing"
+    );
+    std::fs::write(
+        dir.path().join("sub/1234.2P.dxf"),
+        example()
+            .replace("1234_1P", "1234_2P")
+            .replace("O2\\P", "O9\\P"),
+    )
+    .unwrap();
+    let o = millpath(dir.path(), &["check", "--format", "json", "sub"]);
+    assert_eq!(o.status.code(), Some(1));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["files"], 2);
+    let d = &v["diagnostics"][0];
+    assert_eq!(d["severity"], "error");
+    assert!(d["location"]["line"].as_u64().unwrap() > 0);
+    let o = millpath(dir.path(), &["check", "--format", "github", "sub"]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        out.lines()
+            .all(|l| l.starts_with("::error ") || l.starts_with("::warning ")),
+        "{out}"
+    );
+    assert!(out.contains("file=sub/1234.2P.dxf,line="));
+}
+
+#[test]
+fn adjust_z_end_to_end() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("p_Z.txt"),
+        "([1.000 1.000]/T=2.000) #51=2,1\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("p_Clean.gcode"),
+        "%\nG01 Z0.800(=0.800+1.000*[#51-2.000])\n%\n",
+    )
+    .unwrap();
+    let o = millpath(dir.path(), &["pathgcodeadjustz", "/m", "0,5", "p.dxf"]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let m = std::fs::read_to_string(dir.path().join("p_Milling.gcode")).unwrap();
+    assert_eq!(m, "%\nG01 Z0.900(==0.800+1.000*[#51-2.000])\n%\n");
+    // too far off: error, no new file
+    std::fs::remove_file(dir.path().join("p_Milling.gcode")).unwrap();
+    std::fs::write(
+        dir.path().join("p_Z.txt"),
+        "([1.000 1.000]/T=2.000) #51=3\n",
+    )
+    .unwrap();
+    let o = millpath(dir.path(), &["adjust-z", "--max", "0.5", "p_Clean.gcode"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("differs from 3 by more than /m=0.5"));
+    assert!(!dir.path().join("p_Milling.gcode").exists());
+    // a malformed expression is an error with its column, not a crash
+    std::fs::write(
+        dir.path().join("p_Z.txt"),
+        "([1.000 1.000]/T=2.000) #51=2\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("p_Clean.gcode"),
+        "G01 Z0.800(=0.800+1.000*[#51-2.000)\n",
+    )
+    .unwrap();
+    let o = millpath(dir.path(), &["pathgcodeadjustz", "/m0.5", "p"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        String::from_utf8_lossy(&o.stderr).contains("']' expected at column"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert_eq!(
+        millpath(dir.path(), &["pathgcodeadjustz", "p"])
+            .status
+            .code(),
+        Some(2)
+    );
+    // missing files are errors
+    assert_eq!(
+        millpath(dir.path(), &["pathgcodeadjustz", "/m1", "q"])
+            .status
+            .code(),
+        Some(1)
+    );
+}
