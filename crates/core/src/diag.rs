@@ -200,7 +200,7 @@ messages! {
     EndNotAtLast = "End marker not near end of last traversed segment, but at {0} - add sweep", "Ende-Markierung ist nicht am Ende des letztes erreichten Segments, sondern an Position {0}; Leerfahrt ergänzen";
     NoSegments = "No segments found", "Keine Segmente gefunden";
     // subpaths
-    TLessThanSub = "T={0} at path is less than T={1} at subpath{2}", "T={0} an Pfad ist kleiner als T={1} an Teilpfad {2}";
+    TLessThanSub = "T={0} at path is less than T={1} at subpath{2}", "T={0} an Pfad ist kleiner als T={1} an Teilpfad{2}";
     Forbidden = "Subpath {0} forbidden by restriction for {1}", "Teilpfad {0} nicht erlaubt in Pfad {1}";
     NestingTooDeep = "Nesting depth deeper than 9 levels at path {0}", "Mehr als 9 verschachtelte Teilpfade bei Einbettung von {0}";
     SizeMismatch = "Subpath size {0} is not equal to size {2} in referenced path {1}", "Teilpfad-Länge {0} ist nicht gleich Länge {2} des referenzierten Teilpfads {1}";

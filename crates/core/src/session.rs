@@ -880,14 +880,19 @@ impl<'a> Session<'a> {
         let text = seg.text.as_ref();
         let end_origin = with_pos(&seg.origin, seg.shape.end());
         let t_sub = ev.num(text, 'T').unwrap_or(params.t);
+        let target_text = ev.string(text, '>');
         if params.t < t_sub {
+            let at = target_text
+                .as_deref()
+                .map(|t| format!(" {t}"))
+                .unwrap_or_default();
             self.diags.error(
                 Msg::TLessThanSub,
                 raw.start_origin(),
-                args![fmt_num(params.t), fmt_num(t_sub), ""],
+                args![fmt_num(params.t), fmt_num(t_sub), at],
             );
         }
-        let Some(target_text) = ev.string(text, '>') else {
+        let Some(target_text) = target_text else {
             return Err(Diagnostic::error(
                 Msg::ValueMissing,
                 seg.origin.clone(),

@@ -762,3 +762,123 @@ fn mutated_drawings_never_panic() {
         }
     }
 }
+
+#[test]
+fn duplicate_paths_in_other_files_are_reported_and_the_first_kept() {
+    let mut other = Drawing::new();
+    let l = "2000_1P";
+    other
+        .start(l, (0.0, 0.0), "O2 T2 M20x2 I2 B0 :B0~1")
+        .end(l, (0.0, 20.0))
+        .line(l, "CONTINUOUS", (0.0, 0.0), (0.0, 20.0), "");
+    let files = [
+        ("1000.1P.dxf", project(">2000.1P :B0,5", 20.0)),
+        ("2000.dxf", part_file()),
+        ("2000.1.dxf", other.dxf()),
+    ];
+    let run = compile(&files, "1000.1P.dxf");
+    assert_eq!(run.errors(), [Msg::AlreadyDefined], "{:?}", run.messages());
+    assert!(
+        run.messages()[0].starts_with("Path 2000.1P has already been defined in 2000.1.dxf")
+            || run.messages()[0].starts_with("Path 2000.1P has already been defined in 2000.dxf")
+    );
+}
+
+#[test]
+fn search_directories_and_restrictions_from_settings() {
+    let files = [
+        ("proj/1000.1P.dxf", project(">2000.1P :B0,5", 20.0)),
+        ("lib/2000.dxf", part_file()),
+    ];
+    // not in the drawing's folder: not found until the library folder is searched
+    let run = compile(&files, "proj/1000.1P.dxf");
+    assert_eq!(run.errors(), [Msg::CouldNotFind]);
+    let with_dir = millpath_core::Settings {
+        search_dirs: vec!["lib".into()],
+        ..settings()
+    };
+    let run = compile_with(&files, "proj/1000.1P.dxf", with_dir.clone());
+    assert!(run.diags.is_empty(), "{:?}", run.messages());
+    assert_eq!(
+        run.outputs[0].path,
+        std::path::PathBuf::from("proj/1000.1P_Milling.gcode")
+    );
+    // /e 1000:Q$ forbids 2000.1P
+    let restricted = millpath_core::Settings {
+        restrictions: vec![("1000".into(), "Q$".into())],
+        ..with_dir.clone()
+    };
+    assert_eq!(
+        compile_with(&files, "proj/1000.1P.dxf", restricted).errors(),
+        [Msg::Forbidden]
+    );
+    // a search directory that does not exist aborts the file with a clear message
+    let missing = millpath_core::Settings {
+        search_dirs: vec!["nowhere".into()],
+        ..settings()
+    };
+    assert!(compile_with(&files, "proj/1000.1P.dxf", missing)
+        .errors()
+        .contains(&Msg::SearchDirMissing));
+}
+
+#[test]
+fn thicker_subpath_than_its_project_is_reported() {
+    let mut d = Drawing::new();
+    d.start(L, (0.0, 0.0), "O2 T1 M20x2 I2 B0")
+        .end(L, (30.0, 0.0))
+        .line(L, "DASHED", (0.0, 0.0), (10.0, 0.0), "")
+        .line(L, "DASHDOT", (10.0, 0.0), (30.0, 0.0), ">2000.1P :B0,5 T2");
+    let run = compile(
+        &[("1000.1P.dxf", d.dxf()), ("2000.dxf", part_file())],
+        "1000.1P.dxf",
+    );
+    assert!(
+        run.messages()
+            .contains(&"T=1 at path is less than T=2 at subpath 2000.1P".to_string()),
+        "{:?}",
+        run.messages()
+    );
+}
+
+#[test]
+fn check_mode_uses_check_values_and_default_s() {
+    // the library path alone: B=B only has a value with check values (B = 0 from 0~1)
+    let run = compile_with(
+        &[("2000.dxf", part_file())],
+        "2000.dxf",
+        millpath_core::Settings {
+            check: true,
+            ..settings()
+        },
+    );
+    assert!(run.diags.is_empty(), "{:?}", run.messages());
+    // without check mode the same path has no B on its line: B=B stays literal
+    let run = compile(&[("2000.dxf", part_file())], "2000.dxf");
+    assert!(
+        run.warnings().contains(&Msg::NotANumber),
+        "{:?}",
+        run.messages()
+    );
+}
+
+#[test]
+fn debug_output_lists_assignments() {
+    let mut fs = millpath_core::MemFileSystem::default();
+    fs.add("2000.dxf", part_file().into_bytes());
+    let settings = millpath_core::Settings {
+        debug_pattern: Some("B".into()),
+        ..settings()
+    };
+    let mut session = millpath_core::Session::new(settings, &fs).unwrap();
+    session.load_file(std::path::Path::new("2000.dxf"));
+    let info = session.info.join("\n");
+    assert!(
+        info.contains("Object\n   LINE LAYER=2000_1P CODENAME=LINE"),
+        "{info}"
+    );
+    assert!(
+        info.contains("has assigned text ''B=B' @ [100.000 110.000]"),
+        "{info}"
+    );
+}

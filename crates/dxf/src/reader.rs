@@ -429,6 +429,32 @@ mod tests {
     }
 
     #[test]
+    fn r12_files_without_handles_or_subclasses() {
+        let src = "  0\nSECTION\n  2\nHEADER\n  9\n$ACADVER\n  1\nAC1009\n  0\nENDSEC\n  0\nSECTION\n  2\nTABLES\n  0\nTABLE\n  2\nLAYER\n  0\nLAYER\n  2\n1000_1P\n 70\n0\n 62\n7\n  6\nCONTINUOUS\n  0\nENDTAB\n  0\nENDSEC\n  0\nSECTION\n  2\nBLOCKS\n  0\nBLOCK\n  8\n0\n  0\nLINE\n  8\n1000_1P\n 10\n5\n 20\n5\n 11\n6\n 21\n6\n  0\nENDBLK\n  0\nENDSEC\n  0\nSECTION\n  2\nENTITIES\n  0\nCIRCLE\n  8\n1000_1P\n  6\nPHANTOM\n 10\n1.0\n 20\n2.0\n 30\n0.0\n 40\n0.5\n  0\nARC\n  8\n1000_1P\n 10\n0\n 20\n0\n 40\n3\n 50\n0\n 51\n90\n  0\nENDSEC\n  0\nEOF\n";
+        let d = read_dxf(src.as_bytes()).unwrap();
+        assert_eq!(d.version, "AC1009");
+        // entities of blocks are not model space
+        assert_eq!(d.entities.len(), 2);
+        assert_eq!(d.entities[0].handle, "");
+        assert_eq!(
+            d.entities[0].kind,
+            EntityKind::Circle {
+                center: [1.0, 2.0, 0.0],
+                radius: 0.5
+            }
+        );
+        assert_eq!(
+            d.entities[1].kind,
+            EntityKind::Arc {
+                center: [0.0, 0.0, 0.0],
+                radius: 3.0,
+                start_angle: 0.0,
+                end_angle: 90.0
+            }
+        );
+    }
+
+    #[test]
     fn paper_space_entities_are_skipped() {
         let d =
             read_dxf(dxf("  0\nLINE\n  8\nP1\n 67\n1\n  0\nCIRCLE\n  8\nP1\n 40\n2\n").as_bytes())
