@@ -303,9 +303,10 @@ pub fn dxf_to_drawing(
         };
         if lt == "PHANTOM" && near(r, 0.5) {
             match &p.start {
-                Some(first) => {
-                    diags.error(Msg::TwoStartMarkers, o.origin.clone(), args![first.pos, c])
-                }
+                Some(first) => diags.push(
+                    Diagnostic::error(Msg::TwoStartMarkers, o.origin.clone(), args![first.pos, c])
+                        .with_related(first.origin.clone(), "first start marker"),
+                ),
                 None => {
                     p.start = Some(marker);
                     p.start_text = Some(
@@ -317,9 +318,10 @@ pub fn dxf_to_drawing(
             }
         } else if lt == "PHANTOM" && near(r, 1.0) {
             match &p.end {
-                Some(first) => {
-                    diags.error(Msg::TwoEndMarkers, o.origin.clone(), args![first.pos, c])
-                }
+                Some(first) => diags.push(
+                    Diagnostic::error(Msg::TwoEndMarkers, o.origin.clone(), args![first.pos, c])
+                        .with_related(first.origin.clone(), "first end marker"),
+                ),
                 None => p.end = Some(marker),
             }
         } else if lt == "PHANTOM" && near(r, 0.75) {

@@ -206,11 +206,13 @@ impl<'a> Session<'a> {
             names.push(p.name.clone());
             match self.raw.get(&p.name) {
                 Some(existing) if existing.file.path != p.file.path => {
-                    self.diags.error(
+                    let d = Diagnostic::error(
                         Msg::AlreadyDefined,
-                        Origin::File(file.clone()),
+                        p.start_origin(),
                         args![p.name, existing.file.path.display()],
-                    );
+                    )
+                    .with_related(existing.start_origin(), "first definition");
+                    self.diags.push(d);
                 }
                 Some(_) => {}
                 None => {
@@ -558,11 +560,13 @@ impl<'a> Session<'a> {
                     let size = emb.a.dist(emb.b);
                     let tsize = t.start.dist(t.end);
                     if !absnear(size, tsize, 1e-3) {
-                        self.diags.error(
+                        let d = Diagnostic::error(
                             Msg::SizeMismatch,
                             emb.origin.clone(),
                             args![f3(size), t.label(), f3(tsize)],
-                        );
+                        )
+                        .with_related(t.raw.start_origin(), "start of the referenced path");
+                        self.diags.push(d);
                     } else if Transform::between(t.start, t.end, emb.a, emb.b).is_none() {
                         self.diags
                             .error(Msg::CannotPlace, emb.origin.clone(), args![t.label()]);
@@ -970,7 +974,6 @@ impl<'a> Session<'a> {
             return Ok(None);
         };
         // material, bit and thickness must agree
-        let file_origin = Origin::File(raw.file.clone());
         let m_line = ev.string(text, 'M').or_else(|| params.m.clone());
         if m_line.is_none() || target.params.m.is_none() {
             self.diags
@@ -982,26 +985,32 @@ impl<'a> Session<'a> {
             target.params.m.clone().unwrap_or(missing),
         );
         if ml != mt {
-            self.diags.error(
+            let d = Diagnostic::error(
                 Msg::MMismatch,
-                file_origin.clone(),
+                seg.origin.clone(),
                 args![ml, target.label(), mt],
-            );
+            )
+            .with_related(target.raw.start_origin(), "referenced path");
+            self.diags.push(d);
         }
         let o_line = ev.num(text, 'O').unwrap_or(params.o);
         if !(near(o_line, target.params.o) || o_line.is_nan() || target.params.o.is_nan()) {
-            self.diags.error(
+            let d = Diagnostic::error(
                 Msg::OMismatch,
-                file_origin.clone(),
+                seg.origin.clone(),
                 args![fmt_num(o_line), target.label(), fmt_num(target.params.o)],
-            );
+            )
+            .with_related(target.raw.start_origin(), "referenced path");
+            self.diags.push(d);
         }
         if !(near(t_sub, target.params.t) || t_sub.is_nan() || target.params.t.is_nan()) {
-            self.diags.error(
+            let d = Diagnostic::error(
                 Msg::TMismatch,
-                file_origin,
+                seg.origin.clone(),
                 args![fmt_num(t_sub), target.label(), fmt_num(target.params.t)],
-            );
+            )
+            .with_related(target.raw.start_origin(), "referenced path");
+            self.diags.push(d);
         }
         self.check_assignment(&target, &assignment, &seg.origin);
         Ok(Some(target))
