@@ -539,9 +539,16 @@ fn graph_errors() {
         .line(L, "CENTER", (0.0, 0.0), (10.0, 0.0), "");
     let run = compile_one(&d);
     assert!(run.errors().contains(&Msg::TwoStartMarkers));
-    let two = run.diags.iter().find(|d| d.msg == Msg::TwoStartMarkers).unwrap();
+    let two = run
+        .diags
+        .iter()
+        .find(|d| d.msg == Msg::TwoStartMarkers)
+        .unwrap();
     assert_eq!(two.related.len(), 1, "points at the first marker too");
-    assert_eq!(two.related[0].origin.context(), "CIRCLE @ [0.000 0.000] # 1000.1P[1000.1P.dxf]");
+    assert_eq!(
+        two.related[0].origin.context(),
+        "CIRCLE @ [0.000 0.000] # 1000.1P[1000.1P.dxf]"
+    );
     assert!(run.errors().contains(&Msg::LineTypeNotSupported));
 
     let mut d = Drawing::new();

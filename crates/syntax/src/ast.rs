@@ -1,0 +1,188 @@
+//! The syntax tree: lossless for everything meaningful (comments and blank lines included),
+//! with byte spans for every part.
+
+use std::ops::Range;
+
+pub type Span = Range<usize>;
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Spanned<T> {
+    pub value: T,
+    pub span: Span,
+}
+
+impl<T> Spanned<T> {
+    pub fn new(value: T, span: Span) -> Self {
+        Spanned { value, span }
+    }
+}
+
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct File {
+    pub items: Vec<Item>,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum Item {
+    Blank,
+    Comment(Spanned<String>),
+    Path(PathBlock),
+    /// A line that could not be parsed (an error was reported).
+    Error(Span),
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct PathBlock {
+    pub name: Spanned<String>,
+    /// Comment after `{`.
+    pub comment: Option<Spanned<String>>,
+    pub items: Vec<PathItem>,
+    pub span: Span,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum PathItem {
+    Blank,
+    Comment(Spanned<String>),
+    Element(Element),
+    Error(Span),
+}
+
+/// How a circle's tool works: plain (CONTINUOUS), `mark` (DIVIDE), `bars` (BORDER).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Style {
+    Mill,
+    Mark,
+    Bars,
+}
+
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub enum Kind {
+    /// Markers (PHANTOM circles, DOT for the ignored probe).
+    Start,
+    End,
+    Turn,
+    Probe,
+    NoProbe,
+    /// Lines and arcs.
+    Mill,
+    Mark,
+    Bars,
+    Sub,
+    Sweep,
+    /// HIDDEN: a sweep that carries no parameters.
+    Move,
+    /// DOT: a skipped subpath embedding, travelled as a sweep.
+    Skip,
+    /// Circles: drill (Ø = O) and helix (Ø > O).
+    Drill(Style),
+    Helix(Style),
+    /// Any other line type, kept as it is.
+    Raw(String),
+}
+
+impl Kind {
+    /// The DXF line type the kind stands for.
+    pub fn linetype(&self) -> &str {
+        match self {
+            Kind::Start | Kind::End | Kind::Turn | Kind::Probe => "PHANTOM",
+            Kind::NoProbe | Kind::Skip => "DOT",
+            Kind::Mill | Kind::Drill(Style::Mill) | Kind::Helix(Style::Mill) => "CONTINUOUS",
+            Kind::Mark | Kind::Drill(Style::Mark) | Kind::Helix(Style::Mark) => "DIVIDE",
+            Kind::Bars | Kind::Drill(Style::Bars) | Kind::Helix(Style::Bars) => "BORDER",
+            Kind::Sub => "DASHDOT",
+            Kind::Sweep => "DASHED",
+            Kind::Move => "HIDDEN",
+            Kind::Raw(lt) => lt,
+        }
+    }
+
+    /// The marker diameter of marker kinds.
+    pub fn marker_diameter(&self) -> Option<f64> {
+        match self {
+            Kind::Start => Some(1.0),
+            Kind::End => Some(2.0),
+            Kind::Turn => Some(1.5),
+            Kind::Probe | Kind::NoProbe => Some(6.0),
+            _ => None,
+        }
+    }
+
+    /// The words that start an element of this kind.
+    pub fn words(&self) -> String {
+        match self {
+            Kind::Start => "start".into(),
+            Kind::End => "end".into(),
+            Kind::Turn => "turn".into(),
+            Kind::Probe => "probe".into(),
+            Kind::NoProbe => "noprobe".into(),
+            Kind::Mill => "mill".into(),
+            Kind::Mark => "mark".into(),
+            Kind::Bars => "bars".into(),
+            Kind::Sub => "sub".into(),
+            Kind::Sweep => "sweep".into(),
+            Kind::Move => "move".into(),
+            Kind::Skip => "skip".into(),
+            Kind::Drill(s) | Kind::Helix(s) => {
+                let base = if matches!(self, Kind::Drill(_)) {
+                    "drill"
+                } else {
+                    "helix"
+                };
+                match s {
+                    Style::Mill => base.into(),
+                    Style::Mark => format!("mark {base}"),
+                    Style::Bars => format!("bars {base}"),
+                }
+            }
+            Kind::Raw(lt) => format!("raw {}", crate::lexer::quote_if_needed(lt)),
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Point {
+    pub x: f64,
+    pub y: f64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Geometry {
+    /// `(x, y)`: markers.
+    Point(Point),
+    /// `(x1, y1) -> (x2, y2)`
+    Line(Point, Point),
+    /// `arc (cx, cy) r10 from 270 to 360`: counter-clockwise, angles in degrees as drawn.
+    Arc { c: Point, r: f64, a0: f64, a1: f64 },
+    /// `(cx, cy) d2`
+    Circle { c: Point, d: f64 },
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Element {
+    pub kind: Spanned<Kind>,
+    pub geometry: Spanned<Geometry>,
+    /// Parameter tokens exactly as in the drawing (`T2`, `B-0,3`, `>8998.2P`, `:B1`).
+    pub params: Vec<Spanned<String>>,
+    pub comment: Option<Spanned<String>>,
+    /// The whole line.
+    pub span: Span,
+}
+
+impl File {
+    pub fn paths(&self) -> impl Iterator<Item = &PathBlock> {
+        self.items.iter().filter_map(|i| match i {
+            Item::Path(p) => Some(p),
+            _ => None,
+        })
+    }
+}
+
+impl PathBlock {
+    pub fn elements(&self) -> impl Iterator<Item = &Element> {
+        self.items.iter().filter_map(|i| match i {
+            PathItem::Element(e) => Some(e),
+            _ => None,
+        })
+    }
+}

@@ -1,0 +1,362 @@
+//! The error-recovering parser (chumsky over logos tokens). Every syntax error becomes a
+//! [`SyntaxError`] with a span; a bad line is skipped and the rest of the file is parsed.
+
+use crate::ast::*;
+use crate::ast::{Span, Spanned};
+use crate::lexer::{lex, split_params, unquote, Token};
+use chumsky::input::{Input as _, MappedInput};
+use chumsky::prelude::*;
+
+/// A syntax error with its byte range.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SyntaxError {
+    pub span: Span,
+    pub message: String,
+}
+
+type Extra<'t, 's> = extra::Err<Rich<'t, Token<'s>, SimpleSpan>>;
+type In<'t, 's> = MappedInput<'t, Token<'s>, SimpleSpan, &'t [(Token<'s>, SimpleSpan)]>;
+
+fn range(s: SimpleSpan) -> Span {
+    s.start..s.end
+}
+
+/// Raw element pieces before the parameter tokens are cut from the source.
+#[derive(Debug, Clone)]
+struct RawElement {
+    kind: Spanned<Kind>,
+    geometry: Spanned<Geometry>,
+    /// Byte range of everything between the geometry and the comment / line end.
+    params: Span,
+    comment: Option<Spanned<String>>,
+    span: Span,
+}
+
+#[derive(Debug, Clone)]
+enum RawPathItem {
+    Blank,
+    Comment(Spanned<String>),
+    Element(RawElement),
+    Error(Span),
+}
+
+#[derive(Debug, Clone)]
+enum RawItem {
+    Blank,
+    Comment(Spanned<String>),
+    Path {
+        name: Spanned<String>,
+        comment: Option<Spanned<String>>,
+        items: Vec<RawPathItem>,
+        span: Span,
+    },
+    Error(Span),
+}
+
+fn kw<'t, 's: 't>(word: &'static str) -> impl Parser<'t, In<'t, 's>, (), Extra<'t, 's>> + Clone {
+    just(Token::Word(word)).ignored().labelled(word)
+}
+
+fn number<'t, 's: 't>() -> impl Parser<'t, In<'t, 's>, f64, Extra<'t, 's>> + Clone {
+    select! { Token::Word(w) => w }
+        .labelled("number")
+        .try_map(|w: &str, span| {
+            parse_num(w).ok_or_else(|| Rich::custom(span, format!("`{w}` is not a number")))
+        })
+}
+
+fn parse_num(w: &str) -> Option<f64> {
+    if w.is_empty()
+        || !w
+            .chars()
+            .all(|c| c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e' | 'E'))
+    {
+        return None;
+    }
+    w.parse::<f64>().ok().filter(|v| v.is_finite())
+}
+
+/// `r10` / `r 10`, `d2` / `d 2`.
+fn prefixed<'t, 's: 't>(
+    prefix: &'static str,
+) -> impl Parser<'t, In<'t, 's>, f64, Extra<'t, 's>> + Clone {
+    let attached = select! { Token::Word(w) if w.len() > 1 && w.starts_with(prefix) => w }.try_map(
+        move |w: &str, span| {
+            parse_num(&w[prefix.len()..]).ok_or_else(|| {
+                Rich::custom(span, format!("`{w}` is not {prefix} followed by a number"))
+            })
+        },
+    );
+    let separate = kw(prefix).ignore_then(number());
+    attached.or(separate).labelled(prefix)
+}
+
+fn point<'t, 's: 't>() -> impl Parser<'t, In<'t, 's>, Point, Extra<'t, 's>> + Clone {
+    number()
+        .then_ignore(just(Token::Comma))
+        .then(number())
+        .delimited_by(just(Token::LParen), just(Token::RParen))
+        .map(|(x, y)| Point { x, y })
+        .labelled("point `(x, y)`")
+}
+
+fn line_geometry<'t, 's: 't>() -> impl Parser<'t, In<'t, 's>, Geometry, Extra<'t, 's>> + Clone {
+    let line = point()
+        .then_ignore(just(Token::Arrow))
+        .then(point())
+        .map(|(a, b)| Geometry::Line(a, b));
+    let arc = kw("arc")
+        .ignore_then(point())
+        .then(prefixed("r"))
+        .then_ignore(kw("from"))
+        .then(number())
+        .then_ignore(kw("to"))
+        .then(number())
+        .map(|(((c, r), a0), a1)| Geometry::Arc { c, r, a0, a1 });
+    arc.or(line)
+}
+
+fn circle_geometry<'t, 's: 't>() -> impl Parser<'t, In<'t, 's>, Geometry, Extra<'t, 's>> + Clone {
+    point()
+        .then(prefixed("d"))
+        .map(|(c, d)| Geometry::Circle { c, d })
+}
+
+fn element<'t, 's: 't>() -> impl Parser<'t, In<'t, 's>, RawElement, Extra<'t, 's>> + Clone {
+    let marker = choice((
+        kw("start").to(Kind::Start),
+        kw("end").to(Kind::End),
+        kw("turn").to(Kind::Turn),
+        kw("probe").to(Kind::Probe),
+        kw("noprobe").to(Kind::NoProbe),
+    ))
+    .map_with(|k, e| Spanned::new(k, range(e.span())))
+    .then(
+        point()
+            .map(Geometry::Point)
+            .map_with(|g, e| Spanned::new(g, range(e.span()))),
+    );
+    let style = choice((kw("mark").to(Style::Mark), kw("bars").to(Style::Bars)))
+        .or_not()
+        .map(|s| s.unwrap_or(Style::Mill));
+    let circle = style
+        .then(choice((kw("drill").to(true), kw("helix").to(false))))
+        .map(|(s, drill)| {
+            if drill {
+                Kind::Drill(s)
+            } else {
+                Kind::Helix(s)
+            }
+        })
+        .map_with(|k, e| Spanned::new(k, range(e.span())))
+        .then(circle_geometry().map_with(|g, e| Spanned::new(g, range(e.span()))));
+    let segment = choice((
+        kw("mill").to(Kind::Mill),
+        kw("mark").to(Kind::Mark),
+        kw("bars").to(Kind::Bars),
+        kw("sub").to(Kind::Sub),
+        kw("sweep").to(Kind::Sweep),
+        kw("move").to(Kind::Move),
+        kw("skip").to(Kind::Skip),
+    ))
+    .map_with(|k, e| Spanned::new(k, range(e.span())))
+    .then(line_geometry().map_with(|g, e| Spanned::new(g, range(e.span()))));
+    let linetype = select! {
+        Token::Word(w) => w.to_string(),
+        Token::Str(s) => unquote(s),
+    }
+    .labelled("line type");
+    let raw = kw("raw")
+        .ignore_then(linetype)
+        .map_with(|lt, e| Spanned::new(Kind::Raw(lt), range(e.span())))
+        .then(
+            choice((
+                line_geometry(),
+                circle_geometry(),
+                point().map(Geometry::Point),
+            ))
+            .map_with(|g, e| Spanned::new(g, range(e.span()))),
+        );
+    let params = any()
+        .filter(|t: &Token| !matches!(t, Token::Newline | Token::Comment(_)))
+        .repeated()
+        .map_with(|_, e| range(e.span()));
+    let comment = select! { Token::Comment(c) => c.to_string() }
+        .map_with(|c, e| Spanned::new(c, range(e.span())));
+    choice((marker, circle, segment, raw))
+        .then(params)
+        .then(comment.or_not())
+        .then_ignore(just(Token::Newline).ignored().or(end()))
+        .map_with(|(((kind, geometry), params), comment), e| RawElement {
+            kind,
+            geometry,
+            params,
+            comment,
+            span: range(e.span()),
+        })
+}
+
+fn error_line<'t, 's: 't>(
+    stop: Token<'s>,
+) -> impl Parser<'t, In<'t, 's>, Span, Extra<'t, 's>> + Clone {
+    none_of([Token::Newline, stop])
+        .then(none_of([Token::Newline]).repeated())
+        .then_ignore(just(Token::Newline).ignored().or(end()))
+        .map_with(|_, e| range(e.span()))
+}
+
+fn file_parser<'t, 's: 't>() -> impl Parser<'t, In<'t, 's>, Vec<RawItem>, Extra<'t, 's>> {
+    let comment = select! { Token::Comment(c) => c.to_string() }
+        .map_with(|c, e| Spanned::new(c, range(e.span())));
+    let newline = just(Token::Newline);
+    let path_item = choice((
+        newline.to(RawPathItem::Blank),
+        comment
+            .then_ignore(newline.ignored().or(end()))
+            .map(RawPathItem::Comment),
+        element().map(RawPathItem::Element).recover_with(via_parser(
+            error_line(Token::RBrace).map(RawPathItem::Error),
+        )),
+    ));
+    let name = select! {
+        Token::Word(w) => w.to_string(),
+        Token::Str(s) => unquote(s),
+    }
+    .labelled("path name")
+    .map_with(|n, e| Spanned::new(n, range(e.span())));
+    let close = just(Token::RBrace)
+        .ignored()
+        .then(comment.or_not())
+        .then_ignore(newline.ignored().or(end()))
+        .or_not()
+        .validate(|c, e, emitter| {
+            if c.is_none() {
+                emitter.emit(Rich::custom(e.span(), "missing `}` at the end of the path"));
+            }
+        });
+    let path = kw("path")
+        .ignore_then(name)
+        .then_ignore(just(Token::LBrace))
+        .then(comment.or_not())
+        .then_ignore(newline)
+        .then(path_item.repeated().collect::<Vec<_>>())
+        .then_ignore(close)
+        .map_with(|((name, comment), items), e| RawItem::Path {
+            name,
+            comment,
+            items,
+            span: range(e.span()),
+        });
+    let item = choice((
+        newline.to(RawItem::Blank),
+        comment
+            .then_ignore(newline.ignored().or(end()))
+            .map(RawItem::Comment),
+        path.recover_with(via_parser(error_line(Token::Newline).map(RawItem::Error))),
+    ))
+    .recover_with(via_parser(error_line(Token::Newline).map(RawItem::Error)));
+    item.repeated().collect::<Vec<_>>().then_ignore(end())
+}
+
+/// Parses a file. The tree is always returned; errors are listed beside it.
+pub fn parse(src: &str) -> (File, Vec<SyntaxError>) {
+    let toks: Vec<(Token, SimpleSpan)> = lex(src)
+        .into_iter()
+        .map(|(t, r)| (t, SimpleSpan::from(r)))
+        .collect();
+    let mut errors: Vec<SyntaxError> = toks
+        .iter()
+        .filter(|(t, _)| *t == Token::Error)
+        .map(|(_, s)| SyntaxError {
+            span: range(*s),
+            message: format!("unexpected character `{}`", &src[range(*s)]),
+        })
+        .collect();
+    let eoi = SimpleSpan::from(src.len()..src.len());
+    let input = toks.as_slice().split_token_span(eoi);
+    let (out, errs) = file_parser().parse(input).into_output_errors();
+    for e in errs {
+        let span = range(*e.span());
+        if errors.iter().any(|x| x.span == span) {
+            continue;
+        }
+        errors.push(SyntaxError {
+            span,
+            message: describe(&e),
+        });
+    }
+    let items = out
+        .unwrap_or_default()
+        .into_iter()
+        .map(|i| finish_item(i, src))
+        .collect();
+    errors.sort_by_key(|e| e.span.start);
+    (File { items }, errors)
+}
+
+fn describe(e: &Rich<Token, SimpleSpan>) -> String {
+    use chumsky::error::RichReason;
+    match e.reason() {
+        RichReason::Custom(msg) => msg.to_string(),
+        RichReason::ExpectedFound { expected, found } => {
+            let mut exp: Vec<String> = expected
+                .iter()
+                .map(|x| x.to_string().trim_matches('\'').to_string())
+                .filter(|x| x != "something else")
+                .collect();
+            exp.sort();
+            exp.dedup();
+            let found = found
+                .as_ref()
+                .map_or("end of input".to_string(), |t| t.to_string());
+            if exp.is_empty() {
+                format!("unexpected {found}")
+            } else {
+                format!("expected {}, found {found}", exp.join(" or "))
+            }
+        }
+    }
+}
+
+fn finish_item(i: RawItem, src: &str) -> Item {
+    match i {
+        RawItem::Blank => Item::Blank,
+        RawItem::Comment(c) => Item::Comment(c),
+        RawItem::Error(s) => Item::Error(s),
+        RawItem::Path {
+            name,
+            comment,
+            items,
+            span,
+        } => Item::Path(PathBlock {
+            name,
+            comment,
+            items: items
+                .into_iter()
+                .map(|pi| match pi {
+                    RawPathItem::Blank => PathItem::Blank,
+                    RawPathItem::Comment(c) => PathItem::Comment(c),
+                    RawPathItem::Error(s) => PathItem::Error(s),
+                    RawPathItem::Element(e) => PathItem::Element(finish_element(e, src)),
+                })
+                .collect(),
+            span,
+        }),
+    }
+}
+
+fn finish_element(e: RawElement, src: &str) -> Element {
+    let base = e.params.start;
+    let text = src.get(e.params.clone()).unwrap_or("");
+    let params = split_params(text)
+        .into_iter()
+        .map(|(t, r)| Spanned::new(t, base + r.start..base + r.end))
+        .collect();
+    Element {
+        kind: e.kind,
+        geometry: e.geometry,
+        params,
+        comment: e.comment,
+        span: e.span,
+    }
+}
