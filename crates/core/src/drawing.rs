@@ -2,7 +2,10 @@
 //! each with its raw parameter text and its origin. From here on everything is shared.
 
 use crate::args;
-use crate::diag::{Diags, FileRef, Msg, Origin};
+use crate::diag::{Diagnostic, Diags, FileRef, Msg, Origin};
+use crate::geom::{f3, near};
+use crate::params::parse_number;
+use std::collections::HashMap;
 use crate::geom::{Geom, P2};
 use crate::params::ParamText;
 use regex::Regex;
@@ -94,6 +97,8 @@ impl Shape {
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct RawSegment {
+    /// Index of the drawn object it comes from.
+    pub object: usize,
     pub kind: SegKind,
     pub shape: Shape,
     pub text: Option<ParamText>,
@@ -235,4 +240,198 @@ pub fn resolve_start_texts(
         p.start_text = Some(resolved);
         p.at_ref = Some(target);
     }
+}
+
+/// One element as drawn: path, line type, shape and its parameter text. Both front-ends
+/// produce these; [`build_paths`] turns them into paths.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DrawnObject {
+    /// Normalised path name of the layer.
+    pub path: String,
+    pub linetype: String,
+    pub shape: Shape,
+    pub text: Option<ParamText>,
+    pub origin: Origin,
+}
+
+/// Circles, lines and arcs → paths: markers, probes, drills and helixes (by the path's O),
+/// segments by line type (reference-input.md §1.4–§1.6, §4.5). `Err` aborts the file.
+pub fn build_paths(
+    objs: &[DrawnObject],
+    file: &Arc<FileRef>,
+    path_pattern: &Regex,
+    pattern_text: &str,
+    diags: &mut Diags,
+) -> Result<Vec<RawPath>, Diagnostic> {
+    // 3. special circles create the paths
+    let mut paths: Vec<RawPath> = Vec::new();
+    let mut index: HashMap<String, usize> = HashMap::new();
+    let mut get_path = |paths: &mut Vec<RawPath>, name: &str| -> usize {
+        *index.entry(name.to_string()).or_insert_with(|| {
+            paths.push(RawPath::new(name.to_string(), file.clone()));
+            paths.len() - 1
+        })
+    };
+    let mut special = vec![false; objs.len()];
+    for (i, o) in objs.iter().enumerate() {
+        let Shape::Circle { c, r } = o.shape else {
+            continue;
+        };
+        let lt = o.linetype.as_str();
+        if !matches!(lt, "PHANTOM" | "DOT" | "DASHDOT") {
+            continue;
+        }
+        special[i] = true;
+        let pi = get_path(&mut paths, &o.path);
+        let p = &mut paths[pi];
+        let marker = Marker {
+            pos: c,
+            origin: o.origin.clone(),
+        };
+        if lt == "PHANTOM" && near(r, 0.5) {
+            match &p.start {
+                Some(first) => diags.push(
+                    Diagnostic::error(Msg::TwoStartMarkers, o.origin.clone(), args![first.pos, c])
+                        .with_related(first.origin.clone(), "first start marker"),
+                ),
+                None => {
+                    p.start = Some(marker);
+                    p.start_text = Some(
+                        o.text
+                            .clone()
+                            .unwrap_or_else(|| empty_text(o.origin.clone())),
+                    );
+                }
+            }
+        } else if lt == "PHANTOM" && near(r, 1.0) {
+            match &p.end {
+                Some(first) => diags.push(
+                    Diagnostic::error(Msg::TwoEndMarkers, o.origin.clone(), args![first.pos, c])
+                        .with_related(first.origin.clone(), "first end marker"),
+                ),
+                None => p.end = Some(marker),
+            }
+        } else if lt == "PHANTOM" && near(r, 0.75) {
+            p.turns.push(marker);
+        } else if (lt == "PHANTOM" || lt == "DASHDOT") && near(r, 3.0) {
+            p.probes.push(ProbeDef {
+                center: c,
+                text: o.text.clone(),
+                origin: o.origin.clone(),
+            });
+        } else if lt == "DOT" && near(r, 3.0) {
+            // ignored z-probe
+        } else {
+            diags.error(
+                Msg::NoSpecialMeaning,
+                o.origin.clone(),
+                args![f3(2.0 * r), lt],
+            );
+        }
+    }
+
+    // 4. start texts and @ references
+    resolve_start_texts(&mut paths, path_pattern, pattern_text, diags);
+
+    // 5. drills and helixes, then lines, then arcs
+    let find = |paths: &[RawPath], o: &DrawnObject| -> Result<usize, Diagnostic> {
+        paths.iter().position(|p| p.name == o.path).ok_or_else(|| {
+            Diagnostic::error(Msg::PathNotFoundForElement, o.origin.clone(), args![o.path])
+        })
+    };
+    for (i, o) in objs.iter().enumerate() {
+        let Shape::Circle { r, .. } = o.shape else {
+            continue;
+        };
+        if special[i] {
+            continue;
+        }
+        let pi = find(&paths, o)?;
+        let p = &mut paths[pi];
+        let start_text = p.start_text.as_ref().filter(|t| t.has_keys());
+        let Some(start_text) = start_text else {
+            diags.error(Msg::NoParametersForPath, p.start_origin(), args![p.name]);
+            continue;
+        };
+        let Some(o_value) = start_text.raw('O').and_then(parse_number) else {
+            diags.error(Msg::ValueMissing, o.origin.clone(), args!["O"]);
+            continue;
+        };
+        let lt = o.linetype.as_str();
+        let kind = if near(r, o_value / 2.0) {
+            if lt.starts_with("DIVIDE") {
+                SegKind::Drill(Style::Mark)
+            } else if lt.starts_with("CONTINUOUS") {
+                SegKind::Drill(Style::Mill)
+            } else {
+                diags.error(Msg::LineTypeNotSupported, o.origin.clone(), args![lt]);
+                continue;
+            }
+        } else if r > o_value / 2.0 {
+            if lt.starts_with("CONTINUOUS") {
+                SegKind::Helix(Style::Mill)
+            } else if lt.starts_with("DIVIDE") {
+                SegKind::Helix(Style::Mark)
+            } else if lt.starts_with("BORDER") {
+                SegKind::Helix(Style::Support)
+            } else {
+                diags.error(Msg::LineTypeNotSupported, o.origin.clone(), args![lt]);
+                continue;
+            }
+        } else {
+            diags.error(
+                Msg::DiameterSmallerThanO,
+                o.origin.clone(),
+                args![f3(2.0 * r), f3(o_value)],
+            );
+            continue;
+        };
+        p.segments.push(RawSegment {
+            object: i,
+            kind,
+            shape: o.shape.clone(),
+            text: o.text.clone(),
+            origin: o.origin.clone(),
+        });
+    }
+    for want_line in [true, false] {
+        for (i, o) in objs.iter().enumerate() {
+            let Shape::Path(g) = &o.shape else { continue };
+            if matches!(g, Geom::Line { .. }) != want_line {
+                continue;
+            }
+            let pi = find(&paths, o)?;
+            let lt = o.linetype.as_str();
+            let kind = if lt.starts_with("CONTINUOUS") {
+                SegKind::Mill(Style::Mill)
+            } else if lt.starts_with("DIVIDE") {
+                SegKind::Mill(Style::Mark)
+            } else if lt.starts_with("BORDER") {
+                SegKind::Mill(Style::Support)
+            } else if lt.starts_with("DASHDOT") {
+                SegKind::Subpath
+            } else if lt.starts_with("DASHED") {
+                SegKind::Sweep(SweepKind::Dashed)
+            } else if lt.starts_with("HIDDEN") {
+                SegKind::Sweep(SweepKind::Hidden)
+            } else if lt.starts_with("DOT") {
+                SegKind::Sweep(SweepKind::Dot)
+            } else {
+                diags.error(Msg::LineTypeNotSupported, o.origin.clone(), args![lt]);
+                continue;
+            };
+            paths[pi].segments.push(RawSegment {
+                object: i,
+                kind,
+                shape: o.shape.clone(),
+                text: o.text.clone(),
+                origin: o.origin.clone(),
+            });
+        }
+    }
+    Ok(paths)
+}
+
+fn empty_text(origin: Origin) -> ParamText {
+    ParamText { text: String::new(), params: Vec::new(), vars: Vec::new(), origin }
 }

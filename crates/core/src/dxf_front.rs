@@ -3,16 +3,12 @@
 
 use crate::args;
 use crate::diag::{Diagnostic, Diags, EntityOrigin, FileRef, Msg, Origin};
-use crate::drawing::{
-    resolve_start_texts, DrawingFile, Marker, ProbeDef, RawPath, RawSegment, SegKind, Shape, Style,
-    SweepKind,
-};
+use crate::drawing::{build_paths, DrawingFile, DrawnObject, Shape};
 use crate::geom::{f3, near, normalize_angle, Geom, P2};
 use crate::mtext::{mtext_plain, replace_percent_codes};
-use crate::params::{parse_number, ParamText};
+use crate::params::ParamText;
 use millpath_dxf::{Drawing, Entity, EntityKind, Point3};
 use regex::Regex;
-use std::collections::HashMap;
 use std::sync::Arc;
 
 /// What the front-end needs from the settings.
@@ -122,14 +118,14 @@ fn to2(p: Point3, origin: &Origin) -> Result<P2, Diagnostic> {
     Ok(P2::new(p[0], p[1]))
 }
 
-/// Converts a parsed DXF drawing into the drawing model. `Err` aborts the file (it then
-/// contributes no paths); other problems are recorded in `diags`.
-pub fn dxf_to_drawing(
+/// The elements of a DXF drawing's path layers with their assigned texts (stage one of the
+/// DXF front-end: entities, line types, text assignment). `Err` aborts the file.
+pub fn dxf_objects(
     d: &Drawing,
     file: &Arc<FileRef>,
     opts: &FrontOptions,
     diags: &mut Diags,
-) -> Result<DrawingFile, Diagnostic> {
+) -> Result<(Vec<DrawnObject>, Vec<String>), Diagnostic> {
     let ctx = Ctx { file };
     let table_lt = |name: &str| -> String {
         d.linetypes
@@ -276,185 +272,26 @@ pub fn dxf_to_drawing(
         debug.push(String::new());
     }
 
-    // 3. special circles create the paths
-    let mut paths: Vec<RawPath> = Vec::new();
-    let mut index: HashMap<String, usize> = HashMap::new();
-    let mut get_path = |paths: &mut Vec<RawPath>, name: &str| -> usize {
-        *index.entry(name.to_string()).or_insert_with(|| {
-            paths.push(RawPath::new(name.to_string(), file.clone()));
-            paths.len() - 1
-        })
-    };
-    let mut special = vec![false; objs.len()];
-    for (i, o) in objs.iter().enumerate() {
-        let Shape::Circle { c, r } = o.shape else {
-            continue;
-        };
-        let lt = o.linetype.as_str();
-        if !matches!(lt, "PHANTOM" | "DOT" | "DASHDOT") {
-            continue;
-        }
-        special[i] = true;
-        let pi = get_path(&mut paths, &o.path);
-        let p = &mut paths[pi];
-        let marker = Marker {
-            pos: c,
-            origin: o.origin.clone(),
-        };
-        if lt == "PHANTOM" && near(r, 0.5) {
-            match &p.start {
-                Some(first) => diags.push(
-                    Diagnostic::error(Msg::TwoStartMarkers, o.origin.clone(), args![first.pos, c])
-                        .with_related(first.origin.clone(), "first start marker"),
-                ),
-                None => {
-                    p.start = Some(marker);
-                    p.start_text = Some(
-                        o.text
-                            .clone()
-                            .unwrap_or_else(|| empty_text(o.origin.clone())),
-                    );
-                }
-            }
-        } else if lt == "PHANTOM" && near(r, 1.0) {
-            match &p.end {
-                Some(first) => diags.push(
-                    Diagnostic::error(Msg::TwoEndMarkers, o.origin.clone(), args![first.pos, c])
-                        .with_related(first.origin.clone(), "first end marker"),
-                ),
-                None => p.end = Some(marker),
-            }
-        } else if lt == "PHANTOM" && near(r, 0.75) {
-            p.turns.push(marker);
-        } else if (lt == "PHANTOM" || lt == "DASHDOT") && near(r, 3.0) {
-            p.probes.push(ProbeDef {
-                center: c,
-                text: o.text.clone(),
-                origin: o.origin.clone(),
-            });
-        } else if lt == "DOT" && near(r, 3.0) {
-            // ignored z-probe
-        } else {
-            diags.error(
-                Msg::NoSpecialMeaning,
-                o.origin.clone(),
-                args![f3(2.0 * r), lt],
-            );
-        }
-    }
-
-    // 4. start texts and @ references
-    resolve_start_texts(&mut paths, opts.path_pattern, opts.pattern_text, diags);
-
-    // 5. drills and helixes, then lines, then arcs
-    let find = |paths: &[RawPath], o: &Obj| -> Result<usize, Diagnostic> {
-        paths.iter().position(|p| p.name == o.path).ok_or_else(|| {
-            Diagnostic::error(Msg::PathNotFoundForElement, o.origin.clone(), args![o.path])
-        })
-    };
-    for (i, o) in objs.iter().enumerate() {
-        let Shape::Circle { r, .. } = o.shape else {
-            continue;
-        };
-        if special[i] {
-            continue;
-        }
-        let pi = find(&paths, o)?;
-        let p = &mut paths[pi];
-        let start_text = p.start_text.as_ref().filter(|t| t.has_keys());
-        let Some(start_text) = start_text else {
-            diags.error(Msg::NoParametersForPath, p.start_origin(), args![p.name]);
-            continue;
-        };
-        let Some(o_value) = start_text.raw('O').and_then(parse_number) else {
-            diags.error(Msg::ValueMissing, o.origin.clone(), args!["O"]);
-            continue;
-        };
-        let lt = o.linetype.as_str();
-        let kind = if near(r, o_value / 2.0) {
-            if lt.starts_with("DIVIDE") {
-                SegKind::Drill(Style::Mark)
-            } else if lt.starts_with("CONTINUOUS") {
-                SegKind::Drill(Style::Mill)
-            } else {
-                diags.error(Msg::LineTypeNotSupported, o.origin.clone(), args![lt]);
-                continue;
-            }
-        } else if r > o_value / 2.0 {
-            if lt.starts_with("CONTINUOUS") {
-                SegKind::Helix(Style::Mill)
-            } else if lt.starts_with("DIVIDE") {
-                SegKind::Helix(Style::Mark)
-            } else if lt.starts_with("BORDER") {
-                SegKind::Helix(Style::Support)
-            } else {
-                diags.error(Msg::LineTypeNotSupported, o.origin.clone(), args![lt]);
-                continue;
-            }
-        } else {
-            diags.error(
-                Msg::DiameterSmallerThanO,
-                o.origin.clone(),
-                args![f3(2.0 * r), f3(o_value)],
-            );
-            continue;
-        };
-        p.segments.push(RawSegment {
-            kind,
-            shape: o.shape.clone(),
-            text: o.text.clone(),
-            origin: o.origin.clone(),
-        });
-    }
-    for want_line in [true, false] {
-        for o in &objs {
-            let Shape::Path(g) = &o.shape else { continue };
-            if matches!(g, Geom::Line { .. }) != want_line {
-                continue;
-            }
-            let pi = find(&paths, o)?;
-            let lt = o.linetype.as_str();
-            let kind = if lt.starts_with("CONTINUOUS") {
-                SegKind::Mill(Style::Mill)
-            } else if lt.starts_with("DIVIDE") {
-                SegKind::Mill(Style::Mark)
-            } else if lt.starts_with("BORDER") {
-                SegKind::Mill(Style::Support)
-            } else if lt.starts_with("DASHDOT") {
-                SegKind::Subpath
-            } else if lt.starts_with("DASHED") {
-                SegKind::Sweep(SweepKind::Dashed)
-            } else if lt.starts_with("HIDDEN") {
-                SegKind::Sweep(SweepKind::Hidden)
-            } else if lt.starts_with("DOT") {
-                SegKind::Sweep(SweepKind::Dot)
-            } else {
-                diags.error(Msg::LineTypeNotSupported, o.origin.clone(), args![lt]);
-                continue;
-            };
-            paths[pi].segments.push(RawSegment {
-                kind,
-                shape: o.shape.clone(),
-                text: o.text.clone(),
-                origin: o.origin.clone(),
-            });
-        }
-    }
-    Ok(DrawingFile {
-        paths,
-        debug,
-        version: d.version.clone(),
-    })
+    let objects: Vec<DrawnObject> = objs
+        .into_iter()
+        .map(|o| DrawnObject { path: o.path, linetype: o.linetype, shape: o.shape, text: o.text, origin: o.origin })
+        .collect();
+    Ok((objects, debug))
 }
 
-fn empty_text(origin: Origin) -> ParamText {
-    ParamText {
-        text: String::new(),
-        params: Vec::new(),
-        vars: Vec::new(),
-        origin,
-    }
+/// Converts a parsed DXF drawing into the drawing model. `Err` aborts the file (it then
+/// contributes no paths); other problems are recorded in `diags`.
+pub fn dxf_to_drawing(
+    d: &Drawing,
+    file: &Arc<FileRef>,
+    opts: &FrontOptions,
+    diags: &mut Diags,
+) -> Result<DrawingFile, Diagnostic> {
+    let (objects, debug) = dxf_objects(d, file, opts, diags)?;
+    let paths = build_paths(&objects, file, opts.path_pattern, opts.pattern_text, diags)?;
+    Ok(DrawingFile { paths, debug, version: d.version.clone() })
 }
+
 
 fn describe(o: &Obj) -> String {
     let head = format!(
