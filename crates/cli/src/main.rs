@@ -108,6 +108,32 @@ enum Command {
         #[arg(required = true)]
         files: Vec<String>,
     },
+    /// Print a DXF drawing as MillPath text (usable as a git textconv driver)
+    Dxf2text {
+        file: PathBuf,
+        /// Write to this file instead of standard output
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        #[command(flatten)]
+        machine: MachineArgs,
+    },
+    /// Write MillPath text as a DXF drawing
+    Text2dxf {
+        file: PathBuf,
+        /// The DXF file to write (default: FILE with .dxf)
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        #[command(flatten)]
+        machine: MachineArgs,
+    },
+    /// Format MillPath files in place (directories: all *.mpath below)
+    Fmt {
+        /// Only check: exit 1 and list the files that are not formatted
+        #[arg(long)]
+        check: bool,
+        #[arg(required = true)]
+        paths: Vec<PathBuf>,
+    },
     /// Drop-in replacement for the PathDxf2GCode command line
     #[command(disable_help_flag = true)]
     Pathdxf2gcode {
@@ -142,6 +168,17 @@ fn main() -> ExitCode {
             let lang = lang.map_or(Lang::En, to_lang);
             run_adjustz(max, None, lang, &files, false)
         }
+        Command::Dxf2text {
+            file,
+            output,
+            machine,
+        } => run_dxf2text(&file, output.as_deref(), &machine),
+        Command::Text2dxf {
+            file,
+            output,
+            machine,
+        } => run_text2dxf(&file, output.as_deref(), &machine),
+        Command::Fmt { check, paths } => run_fmt(check, &paths),
         Command::Pathdxf2gcode { args } => run_dxf2gcode(&args),
         Command::Pathgcodeadjustz { args } => run_adjustz_compat(&args),
     };
@@ -554,4 +591,161 @@ fn run_adjustz(
         }
     }
     u8::from(diags.has_errors())
+}
+
+fn patterns_for(
+    m: &MachineArgs,
+    input: &Path,
+) -> Result<(millpath_core::names::Patterns, Lang), String> {
+    let s = settings_for(m, Some(input), false)?;
+    let p = millpath_core::names::Patterns::new(&s.path_pattern, &s.file_pattern)
+        .map_err(|(c, p, e)| format!("invalid /{c} pattern '{p}': {e}"))?;
+    Ok((p, s.lang))
+}
+
+/// Writes `content` to `output`, or to standard output.
+fn emit(output: Option<&Path>, content: &str, lang: Lang) -> u8 {
+    match output {
+        Some(p) => match write::write_atomic(p, content) {
+            Ok(()) => 0,
+            Err(e) => {
+                let d = Diagnostic::error(
+                    Msg::CannotWrite,
+                    Origin::Options,
+                    millpath_core::args![p.display(), e],
+                );
+                eprintln!("{}", report::human(&d, lang));
+                1
+            }
+        },
+        None => {
+            use std::io::Write;
+            let mut out = std::io::stdout().lock();
+            u8::from(out.write_all(content.as_bytes()).is_err())
+        }
+    }
+}
+
+fn run_dxf2text(file: &Path, output: Option<&Path>, m: &MachineArgs) -> u8 {
+    let (patterns, lang) = match patterns_for(m, file) {
+        Ok(x) => x,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return 2;
+        }
+    };
+    let fref = millpath_core::diag::FileRef::new(file.to_path_buf());
+    let bytes = match std::fs::read(file) {
+        Ok(b) => b,
+        Err(e) => {
+            let d = Diagnostic::error(
+                Msg::CannotRead,
+                Origin::Input,
+                millpath_core::args![file.display(), e],
+            );
+            eprintln!("{}", report::human(&d, lang));
+            return 1;
+        }
+    };
+    match millpath_core::convert::dxf_to_text(&bytes, &fref, &patterns) {
+        Ok((text, diags)) => {
+            // what the text cannot carry (texts that belong to no element, …) is reported
+            print_human(&diags, lang);
+            emit(output, &text, lang)
+        }
+        Err(d) => {
+            eprintln!("{}", report::human(&d, lang));
+            1
+        }
+    }
+}
+
+fn run_text2dxf(file: &Path, output: Option<&Path>, m: &MachineArgs) -> u8 {
+    let (patterns, lang) = match patterns_for(m, file) {
+        Ok(x) => x,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return 2;
+        }
+    };
+    let src = match std::fs::read_to_string(file) {
+        Ok(s) => s,
+        Err(e) => {
+            let d = Diagnostic::error(
+                Msg::CannotRead,
+                Origin::Input,
+                millpath_core::args![file.display(), e],
+            );
+            eprintln!("{}", report::human(&d, lang));
+            return 1;
+        }
+    };
+    let fref = millpath_core::diag::FileRef::new(file.to_path_buf());
+    match millpath_core::convert::text_to_dxf(&src, &fref, &patterns) {
+        Ok(dxf) => {
+            let out = output
+                .map(Path::to_path_buf)
+                .unwrap_or_else(|| file.with_extension("dxf"));
+            emit(Some(&out), &dxf, lang)
+        }
+        Err(diags) => {
+            print_human(&diags, lang);
+            1
+        }
+    }
+}
+
+fn collect_text_files(paths: &[PathBuf], out: &mut Vec<PathBuf>) {
+    for p in paths {
+        if p.is_dir() {
+            let mut entries: Vec<PathBuf> = std::fs::read_dir(p)
+                .map(|r| r.filter_map(|e| e.ok().map(|e| e.path())).collect())
+                .unwrap_or_default();
+            entries.sort();
+            let (dirs, files): (Vec<PathBuf>, Vec<PathBuf>) =
+                entries.into_iter().partition(|e| e.is_dir());
+            out.extend(
+                files
+                    .into_iter()
+                    .filter(|f| millpath_core::session::is_text_file(f)),
+            );
+            collect_text_files(&dirs, out);
+        } else {
+            out.push(p.clone());
+        }
+    }
+}
+
+fn run_fmt(check: bool, paths: &[PathBuf]) -> u8 {
+    let mut files = Vec::new();
+    collect_text_files(paths, &mut files);
+    let mut status = 0;
+    for f in files {
+        let src = match std::fs::read_to_string(&f) {
+            Ok(s) => s,
+            Err(e) => {
+                eprintln!("error: {}: {e}", f.display());
+                status = 1;
+                continue;
+            }
+        };
+        let fref = millpath_core::diag::FileRef::new(f.clone());
+        match millpath_core::convert::format_text(&src, &fref) {
+            Ok(formatted) if formatted == src => {}
+            Ok(formatted) => {
+                if check {
+                    println!("{}: not formatted", f.display());
+                    status = 1;
+                } else if let Err(e) = write::write_atomic(&f, &formatted) {
+                    eprintln!("error: {}: {e}", f.display());
+                    status = 1;
+                }
+            }
+            Err(diags) => {
+                print_human(&diags, Lang::En);
+                status = 1;
+            }
+        }
+    }
+    status
 }

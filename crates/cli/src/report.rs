@@ -53,8 +53,14 @@ fn location_fields(o: &Origin) -> serde_json::Value {
         }
         Origin::File(f) => json!({ "file": f.path.display().to_string() }),
         Origin::FileLine { file, line } => json!({ "file": file, "line": line }),
-        Origin::Span { file, start, end } => {
-            json!({ "file": file.path.display().to_string(), "start": start, "end": end })
+        Origin::Span {
+            file,
+            start,
+            end,
+            line,
+            col,
+        } => {
+            json!({ "file": file.path.display().to_string(), "line": line, "column": col, "start": start, "end": end })
         }
         Origin::Options | Origin::Input => json!({}),
     }
@@ -90,6 +96,7 @@ pub fn github(d: &Diagnostic, lang: Lang) -> String {
     }
     match &d.origin {
         Origin::Entity(e) => props.push(format!("line={}", e.line)),
+        Origin::Span { line, col, .. } => props.push(format!("line={line},col={col}")),
         Origin::FileLine { line, .. } => props.push(format!("line={line}")),
         _ => {}
     }

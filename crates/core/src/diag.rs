@@ -47,6 +47,9 @@ pub enum Origin {
         file: Arc<FileRef>,
         start: usize,
         end: usize,
+        /// 1-based line and column of `start`.
+        line: usize,
+        col: usize,
     },
     /// The command line or the settings.
     Options,
@@ -95,7 +98,9 @@ impl Origin {
             Origin::Path { name, file } => format!("{}[{}]", name, file.name),
             Origin::File(f) => f.path.display().to_string(),
             Origin::FileLine { file, line } => format!("{file}:{line}"),
-            Origin::Span { file, start, .. } => format!("{}@{}", file.path.display(), start),
+            Origin::Span {
+                file, line, col, ..
+            } => format!("{}:{line}:{col}", file.name),
             Origin::Options => "Options".into(),
             Origin::Input => "Input".into(),
         }
@@ -119,7 +124,9 @@ impl Origin {
             )),
             Origin::Path { file, .. } | Origin::File(file) => Some(file.path.display().to_string()),
             Origin::FileLine { file, line } => Some(format!("{file}:{line}")),
-            Origin::Span { file, .. } => Some(file.path.display().to_string()),
+            Origin::Span {
+                file, line, col, ..
+            } => Some(format!("{}:{line}:{col}", file.path.display())),
             _ => None,
         }
     }
@@ -247,6 +254,10 @@ messages! {
     ExprUnexpected = "Unexpected symbol '{0}' at column {1} in '{2}'", "Unerwartetes Zeichen '{0}' bei Spalte {1} in '{2}'";
     ExprBadNumber = "Malformed number '{0}' at column {1} in '{2}'", "Ungültige Zahl '{0}' bei Spalte {1} in '{2}'";
     MissingM = "Missing required /m value", "Fehlende /m-Option";
+    // text language
+    SyntaxError = "{0}", "Syntaxfehler: {0}";
+    KindMismatch = "Declared as {0}, but with O={1} this circle is a {2}", "Als {0} angegeben, aber mit O={1} ist dieser Kreis ein {2}";
+    PathNameNoMatch = "Path name {0} does not match the path-name pattern /{1}/", "Pfadname {0} passt nicht auf das Pfadmuster /{1}/";
 }
 
 impl Msg {

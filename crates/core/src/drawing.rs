@@ -4,11 +4,11 @@
 use crate::args;
 use crate::diag::{Diagnostic, Diags, FileRef, Msg, Origin};
 use crate::geom::{f3, near};
-use crate::params::parse_number;
-use std::collections::HashMap;
 use crate::geom::{Geom, P2};
+use crate::params::parse_number;
 use crate::params::ParamText;
 use regex::Regex;
+use std::collections::HashMap;
 use std::sync::Arc;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -433,5 +433,11 @@ pub fn build_paths(
 }
 
 fn empty_text(origin: Origin) -> ParamText {
-    ParamText { text: String::new(), params: Vec::new(), vars: Vec::new(), origin }
+    ParamText {
+        text: String::new(),
+        params: Vec::new(),
+        vars: Vec::new(),
+        tokens: Vec::new(),
+        origin,
+    }
 }

@@ -274,7 +274,13 @@ pub fn dxf_objects(
 
     let objects: Vec<DrawnObject> = objs
         .into_iter()
-        .map(|o| DrawnObject { path: o.path, linetype: o.linetype, shape: o.shape, text: o.text, origin: o.origin })
+        .map(|o| DrawnObject {
+            path: o.path,
+            linetype: o.linetype,
+            shape: o.shape,
+            text: o.text,
+            origin: o.origin,
+        })
         .collect();
     Ok((objects, debug))
 }
@@ -289,9 +295,12 @@ pub fn dxf_to_drawing(
 ) -> Result<DrawingFile, Diagnostic> {
     let (objects, debug) = dxf_objects(d, file, opts, diags)?;
     let paths = build_paths(&objects, file, opts.path_pattern, opts.pattern_text, diags)?;
-    Ok(DrawingFile { paths, debug, version: d.version.clone() })
+    Ok(DrawingFile {
+        paths,
+        debug,
+        version: d.version.clone(),
+    })
 }
-
 
 fn describe(o: &Obj) -> String {
     let head = format!(

@@ -3,6 +3,7 @@
 //! outputs are returned to the caller, which writes them.
 
 pub mod adjustz;
+pub mod convert;
 pub mod diag;
 pub mod drawing;
 pub mod dxf_front;
@@ -13,6 +14,7 @@ pub mod mtext;
 pub mod names;
 pub mod params;
 pub mod session;
+pub mod text_front;
 
 pub use diag::{Diagnostic, Diags, Lang, Msg, Origin, Severity};
 pub use session::{FileSystem, MemFileSystem, OsFileSystem, Session, Settings};

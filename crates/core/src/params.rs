@@ -14,6 +14,8 @@ pub struct ParamText {
     pub params: Vec<(char, String)>,
     /// Variable tokens `:<name><rest>`, in text order.
     pub vars: Vec<(char, String)>,
+    /// All tokens in text order (what the text language writes).
+    pub tokens: Vec<String>,
     /// Where the text is.
     pub origin: Origin,
 }
@@ -62,7 +64,8 @@ impl ParamText {
         let mut params: Vec<(char, String)> = Vec::new();
         let mut vars: Vec<(char, String)> = Vec::new();
         let mut dup = String::new();
-        for tok in tokenize(text) {
+        let tokens = tokenize(text);
+        for tok in &tokens {
             let mut cs = tok.chars();
             let key = cs.next().unwrap_or(' ');
             let value: String = cs.collect();
@@ -110,6 +113,7 @@ impl ParamText {
             text: text.to_string(),
             params,
             vars,
+            tokens,
             origin,
         })
     }

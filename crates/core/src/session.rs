@@ -17,6 +17,12 @@ use std::path::{Path, PathBuf};
 use std::rc::Rc;
 use std::sync::Arc;
 
+/// `*.mpath`: the text language.
+pub fn is_text_file(p: &Path) -> bool {
+    p.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("mpath"))
+}
+
 /// File access, so that editors can serve unsaved buffers and tests can use memory.
 pub trait FileSystem {
     fn read(&self, path: &Path) -> std::io::Result<Vec<u8>>;
@@ -229,6 +235,38 @@ impl<'a> Session<'a> {
         bytes: &[u8],
         file: &Arc<FileRef>,
     ) -> Result<crate::drawing::DrawingFile, Diagnostic> {
+        let verb = if self.lang() == Lang::De {
+            "Einlesen von"
+        } else {
+            "Reading"
+        };
+        if is_text_file(&file.path) {
+            self.info
+                .push(format!("---- {verb} {}", file.path.display()));
+            let src = String::from_utf8_lossy(bytes);
+            let objects = crate::text_front::text_objects(&src, file, &mut self.diags)?;
+            let paths = crate::drawing::build_paths(
+                &objects,
+                file,
+                &self.patterns.path_cs,
+                &self.settings.path_pattern,
+                &mut self.diags,
+            )?;
+            for p in &paths {
+                if !self.patterns.path_full.is_match(&p.name) {
+                    self.diags.error(
+                        Msg::PathNameNoMatch,
+                        p.origin(),
+                        args![p.name, self.settings.path_pattern],
+                    );
+                }
+            }
+            return Ok(crate::drawing::DrawingFile {
+                paths,
+                debug: Vec::new(),
+                version: String::new(),
+            });
+        }
         let dxf = millpath_dxf::read_dxf(bytes).map_err(|e| {
             Diagnostic::error(
                 Msg::CannotLoadDxf,
@@ -236,15 +274,9 @@ impl<'a> Session<'a> {
                 args![file.path.display(), e],
             )
         })?;
-        let verb = if self.lang() == Lang::De {
-            "Einlesen von"
-        } else {
-            "Reading"
-        };
-        let full = std::fs::canonicalize(&file.path).unwrap_or_else(|_| file.path.clone());
         self.info.push(format!(
             "---- {verb} {} (DXF-Version: {})",
-            full.display(),
+            file.path.display(),
             dxf.version
         ));
         let opts = FrontOptions {
@@ -286,8 +318,9 @@ impl<'a> Session<'a> {
             let mut files = self.fs.list_dir(&dir_or_cwd).unwrap_or_default();
             files.sort();
             for f in files {
-                let is_dxf = f.extension().is_some_and(|e| e.eq_ignore_ascii_case("dxf"));
-                if !is_dxf {
+                let is_drawing = f.extension().is_some_and(|e| e.eq_ignore_ascii_case("dxf"))
+                    || is_text_file(&f);
+                if !is_drawing {
                     continue;
                 }
                 let stem = f
@@ -377,7 +410,7 @@ impl<'a> Session<'a> {
             return Ok(None);
         };
         // 2. traversal
-        let trav = self.traverse(&raw, start.pos, end.pos);
+        let trav = traverse(&raw, start.pos, end.pos, &mut self.diags);
         let ev = Eval { vars };
         self.check_self_references(&raw, vars);
         // 4. path parameters
@@ -1058,124 +1091,124 @@ impl<'a> Session<'a> {
             }
         }
     }
+}
 
-    /// Traversal order of a path's segments (§5.2), with turn markers (seed manual §4.2.15).
-    fn traverse(&mut self, raw: &RawPath, start: P2, end: P2) -> Vec<Step> {
-        let segs = &raw.segments;
-        let mut taken = vec![false; segs.len()];
-        let mut out: Vec<Step> = Vec::new();
-        let mut trail: Vec<usize> = Vec::new();
-        let mut p = start;
-        let at = |s: &RawSegment, p: P2| -> bool {
-            match &s.shape {
-                Shape::Circle { c, .. } => c.near(p),
-                sh => sh.start().near(p) || sh.end().near(p),
-            }
-        };
-        let is_turn = |p: P2| raw.turns.iter().any(|m| m.pos.near(p));
-        loop {
-            let remaining = taken.iter().any(|t| !t);
-            let cands: Vec<usize> = (0..segs.len())
-                .filter(|&i| !taken[i] && at(&segs[i], p))
-                .collect();
-            if cands.is_empty() {
-                let must_return = if remaining { true } else { !p.near(end) };
-                if must_return && is_turn(p) && !trail.is_empty() {
-                    // walk back to the last point where untraversed segments start (or the end)
-                    while let Some(k) = trail.pop() {
-                        let step = out[k];
-                        if matches!(segs[step.index].shape, Shape::Circle { .. }) {
-                            continue;
-                        }
-                        out.push(Step {
-                            index: step.index,
-                            reversed: !step.reversed,
-                            turn_back: true,
-                        });
-                        let sh = &segs[step.index].shape;
-                        p = if step.reversed { sh.end() } else { sh.start() };
-                        let open = (0..segs.len()).any(|i| !taken[i] && at(&segs[i], p));
-                        if open || (!remaining && p.near(end)) {
-                            break;
-                        }
+/// Traversal order of a path's segments (§5.2), with turn markers (seed manual §4.2.15).
+pub fn traverse(raw: &RawPath, start: P2, end: P2, diags: &mut Diags) -> Vec<Step> {
+    let segs = &raw.segments;
+    let mut taken = vec![false; segs.len()];
+    let mut out: Vec<Step> = Vec::new();
+    let mut trail: Vec<usize> = Vec::new();
+    let mut p = start;
+    let at = |s: &RawSegment, p: P2| -> bool {
+        match &s.shape {
+            Shape::Circle { c, .. } => c.near(p),
+            sh => sh.start().near(p) || sh.end().near(p),
+        }
+    };
+    let is_turn = |p: P2| raw.turns.iter().any(|m| m.pos.near(p));
+    loop {
+        let remaining = taken.iter().any(|t| !t);
+        let cands: Vec<usize> = (0..segs.len())
+            .filter(|&i| !taken[i] && at(&segs[i], p))
+            .collect();
+        if cands.is_empty() {
+            let must_return = if remaining { true } else { !p.near(end) };
+            if must_return && is_turn(p) && !trail.is_empty() {
+                // walk back to the last point where untraversed segments start (or the end)
+                while let Some(k) = trail.pop() {
+                    let step = out[k];
+                    if matches!(segs[step.index].shape, Shape::Circle { .. }) {
+                        continue;
                     }
-                    continue;
+                    out.push(Step {
+                        index: step.index,
+                        reversed: !step.reversed,
+                        turn_back: true,
+                    });
+                    let sh = &segs[step.index].shape;
+                    p = if step.reversed { sh.end() } else { sh.start() };
+                    let open = (0..segs.len()).any(|i| !taken[i] && at(&segs[i], p));
+                    if open || (!remaining && p.near(end)) {
+                        break;
+                    }
                 }
-                if !remaining {
-                    break;
-                }
-                if p.near(end) {
-                    let first = (0..segs.len()).find(|&i| !taken[i]).unwrap_or(0);
-                    let count = taken.iter().filter(|t| !**t).count();
-                    let o = with_pos(&segs[first].origin, segs[first].shape.start());
-                    self.diags.error(Msg::NotReached, o, args![count]);
-                } else {
-                    let o = out.last().map_or_else(
-                        || raw.origin(),
-                        |s| {
-                            let sh = &segs[s.index].shape;
-                            with_pos(
-                                &segs[s.index].origin,
-                                if s.reversed { sh.end() } else { sh.start() },
-                            )
-                        },
-                    );
-                    self.diags.error(Msg::NoMoreSegments, o, args![p]);
-                }
+                continue;
+            }
+            if !remaining {
                 break;
             }
-            let best = *cands
-                .iter()
-                .min_by(|&&a, &&b| {
-                    let (sa, sb) = (&segs[a], &segs[b]);
-                    let ka = (
-                        sa.order(),
-                        sa.kind.preference(),
-                        sa.shape.start().dist(sa.shape.end()),
-                    );
-                    let kb = (
-                        sb.order(),
-                        sb.kind.preference(),
-                        sb.shape.start().dist(sb.shape.end()),
-                    );
-                    ka.partial_cmp(&kb).unwrap_or(std::cmp::Ordering::Equal)
-                })
-                .unwrap_or(&cands[0]);
-            taken[best] = true;
-            let s = &segs[best];
-            let reversed = matches!(s.shape, Shape::Path(_)) && s.shape.end().near(p);
-            out.push(Step {
-                index: best,
-                reversed,
-                turn_back: false,
-            });
-            trail.push(out.len() - 1);
-            if let Shape::Path(_) = s.shape {
-                p = if reversed {
-                    s.shape.start()
-                } else {
-                    s.shape.end()
-                };
-            }
-        }
-        if let Some(last) = out.last() {
-            let sh = &segs[last.index].shape;
-            let last_end = if last.reversed { sh.start() } else { sh.end() };
-            let last_end = if matches!(sh, Shape::Circle { .. }) {
-                sh.start()
+            if p.near(end) {
+                let first = (0..segs.len()).find(|&i| !taken[i]).unwrap_or(0);
+                let count = taken.iter().filter(|t| !**t).count();
+                let o = with_pos(&segs[first].origin, segs[first].shape.start());
+                diags.error(Msg::NotReached, o, args![count]);
             } else {
-                last_end
-            };
-            if !last_end.near(end) {
-                let o = raw
-                    .end
-                    .as_ref()
-                    .map_or_else(|| raw.origin(), |m| m.origin.clone());
-                self.diags.error(Msg::EndNotAtLast, o, args![end]);
+                let o = out.last().map_or_else(
+                    || raw.origin(),
+                    |s| {
+                        let sh = &segs[s.index].shape;
+                        with_pos(
+                            &segs[s.index].origin,
+                            if s.reversed { sh.end() } else { sh.start() },
+                        )
+                    },
+                );
+                diags.error(Msg::NoMoreSegments, o, args![p]);
             }
+            break;
         }
-        out
+        let best = *cands
+            .iter()
+            .min_by(|&&a, &&b| {
+                let (sa, sb) = (&segs[a], &segs[b]);
+                let ka = (
+                    sa.order(),
+                    sa.kind.preference(),
+                    sa.shape.start().dist(sa.shape.end()),
+                );
+                let kb = (
+                    sb.order(),
+                    sb.kind.preference(),
+                    sb.shape.start().dist(sb.shape.end()),
+                );
+                ka.partial_cmp(&kb).unwrap_or(std::cmp::Ordering::Equal)
+            })
+            .unwrap_or(&cands[0]);
+        taken[best] = true;
+        let s = &segs[best];
+        let reversed = matches!(s.shape, Shape::Path(_)) && s.shape.end().near(p);
+        out.push(Step {
+            index: best,
+            reversed,
+            turn_back: false,
+        });
+        trail.push(out.len() - 1);
+        if let Shape::Path(_) = s.shape {
+            p = if reversed {
+                s.shape.start()
+            } else {
+                s.shape.end()
+            };
+        }
     }
+    if let Some(last) = out.last() {
+        let sh = &segs[last.index].shape;
+        let last_end = if last.reversed { sh.start() } else { sh.end() };
+        let last_end = if matches!(sh, Shape::Circle { .. }) {
+            sh.start()
+        } else {
+            last_end
+        };
+        if !last_end.near(end) {
+            let o = raw
+                .end
+                .as_ref()
+                .map_or_else(|| raw.origin(), |m| m.origin.clone());
+            diags.error(Msg::EndNotAtLast, o, args![end]);
+        }
+    }
+    out
 }
 
 /// A turn-back copy of a segment: sweeps and embeddings return as sweeps, mill and mark
@@ -1187,11 +1220,13 @@ fn turn_back_kind(kind: SegKind) -> SegKind {
     }
 }
 
-#[derive(Debug, Clone, Copy)]
-struct Step {
-    index: usize,
-    reversed: bool,
-    turn_back: bool,
+/// One step of the traversal: a segment (index into the path's segments), maybe reversed;
+/// `turn_back` marks the automatic way back from a turn marker.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Step {
+    pub index: usize,
+    pub reversed: bool,
+    pub turn_back: bool,
 }
 
 /// Parameter values of one build, interpolated with its variables.

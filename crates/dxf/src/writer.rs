@@ -156,27 +156,341 @@ impl DxfWriter {
         self
     }
 
-    /// The complete file text.
+    /// The complete file text: an AutoCAD 2000 file with the tables, blocks and objects CAD
+    /// programs expect (ezdxf audits it without errors or fixes).
     pub fn finish(&self) -> String {
-        let mut s = String::new();
-        s.push_str("  0\nSECTION\n  2\nHEADER\n  9\n$ACADVER\n  1\nAC1015\n  9\n$DWGCODEPAGE\n  3\nANSI_1252\n  9\n$TEXTSIZE\n 40\n2.5\n  0\nENDSEC\n");
-        s.push_str("  0\nSECTION\n  2\nTABLES\n  0\nTABLE\n  2\nLTYPE\n 70\n");
-        let _ = writeln!(s, "{}", self.linetypes.len());
+        let mut o = Out::default();
+        let mut next = self.next_handle.max(0x100) + 0x1000;
+        let mut handle = || {
+            next += 1;
+            next
+        };
+        o.section("HEADER");
+        o.var("$ACADVER", 1, "AC1015");
+        o.var("$DWGCODEPAGE", 3, "ANSI_1252");
+        o.var("$INSUNITS", 70, "4");
+        o.var("$MEASUREMENT", 70, "1");
+        o.var("$TEXTSIZE", 40, "2.5");
+        // handles above every handle used in the file
+        o.var(
+            "$HANDSEED",
+            5,
+            &format!("{:X}", self.next_handle.max(0x100) + 0x2000),
+        );
+        o.endsec();
+        o.section("CLASSES");
+        o.endsec();
+        o.section("TABLES");
+        // VPORT
+        o.table("VPORT", 0x8, 1);
+        o.record("VPORT", 0x23, 0x8, "AcDbViewportTableRecord");
+        o.pairs(&[
+            (2, "*Active"),
+            (70, "0"),
+            (10, "0.0"),
+            (20, "0.0"),
+            (11, "1.0"),
+            (21, "1.0"),
+            (12, "100.0"),
+            (22, "100.0"),
+            (40, "300.0"),
+            (41, "1.5"),
+        ]);
+        o.endtab();
+        // LTYPE
+        // the table spelling is what readers compare (CONTINUOUS ≠ Continuous for the
+        // reference), so the drawing's own spelling replaces the standard one
+        let mut lts: Vec<&str> = vec!["ByBlock", "ByLayer"];
         for lt in &self.linetypes {
-            let _ = write!(
-                s,
-                "  0\nLTYPE\n  2\n{lt}\n 70\n0\n  3\n{lt}\n 72\n65\n 73\n0\n 40\n0.0\n"
-            );
+            if !lts.iter().any(|l| l.eq_ignore_ascii_case(lt)) {
+                lts.push(lt);
+            }
         }
-        s.push_str("  0\nENDTAB\n  0\nTABLE\n  2\nLAYER\n 70\n");
-        let _ = writeln!(s, "{}", self.layers.len());
-        for (name, lt) in &self.layers {
-            let _ = write!(s, "  0\nLAYER\n  2\n{name}\n 70\n0\n 62\n7\n  6\n{lt}\n");
+        let continuous = lts
+            .iter()
+            .find(|l| l.eq_ignore_ascii_case("continuous"))
+            .copied()
+            .unwrap_or("Continuous");
+        if continuous == "Continuous" {
+            lts.push("Continuous");
         }
-        s.push_str("  0\nENDTAB\n  0\nENDSEC\n  0\nSECTION\n  2\nENTITIES\n");
-        s.push_str(&self.entities);
-        s.push_str("  0\nENDSEC\n  0\nEOF\n");
-        s
+        o.table("LTYPE", 0x5, lts.len());
+        for lt in lts {
+            let h = handle();
+            o.record("LTYPE", h, 0x5, "AcDbLinetypeTableRecord");
+            let (desc, pattern) = linetype_pattern(lt);
+            o.pairs(&[(2, lt), (70, "0"), (3, desc), (72, "65")]);
+            o.pair(73, pattern.len());
+            o.pair(40, num(pattern.iter().map(|x: &f64| x.abs()).sum::<f64>()));
+            for d in pattern {
+                o.pair(49, num(d));
+                o.pair(74, 0);
+            }
+        }
+        o.endtab();
+        // LAYER
+        let mut layers: Vec<(&str, &str)> = vec![("0", continuous)];
+        for (n, lt) in &self.layers {
+            if n != "0" {
+                layers.push((n, lt));
+            }
+        }
+        o.table("LAYER", 0x2, layers.len());
+        for (n, lt) in layers {
+            let h = handle();
+            o.record("LAYER", h, 0x2, "AcDbLayerTableRecord");
+            o.pairs(&[(2, n), (70, "0"), (62, "7"), (6, lt), (370, "-3")]);
+        }
+        o.endtab();
+        o.table("STYLE", 0x3, 1);
+        o.record("STYLE", 0x29, 0x3, "AcDbTextStyleTableRecord");
+        o.pairs(&[
+            (2, "Standard"),
+            (70, "0"),
+            (40, "0.0"),
+            (41, "1.0"),
+            (50, "0.0"),
+            (71, "0"),
+            (42, "2.5"),
+            (3, "txt"),
+            (4, ""),
+        ]);
+        o.endtab();
+        o.table("VIEW", 0x6, 0);
+        o.endtab();
+        o.table("UCS", 0x7, 0);
+        o.endtab();
+        o.table("APPID", 0x9, 1);
+        o.record("APPID", 0x2A, 0x9, "AcDbRegAppTableRecord");
+        o.pairs(&[(2, "ACAD"), (70, "0")]);
+        o.endtab();
+        o.table("DIMSTYLE", 0xA, 1);
+        o.pair(100, "AcDbDimStyleTable");
+        o.pairs(&[
+            (0, "DIMSTYLE"),
+            (105, "2B"),
+            (330, "A"),
+            (100, "AcDbSymbolTableRecord"),
+            (100, "AcDbDimStyleTableRecord"),
+            (2, "Standard"),
+            (70, "0"),
+        ]);
+        o.endtab();
+        o.table("BLOCK_RECORD", 0xB, 2);
+        o.record(
+            "BLOCK_RECORD",
+            MODEL_SPACE_RECORD,
+            0xB,
+            "AcDbBlockTableRecord",
+        );
+        o.pairs(&[(2, "*Model_Space"), (340, "22")]);
+        o.record("BLOCK_RECORD", 0x1B, 0xB, "AcDbBlockTableRecord");
+        o.pairs(&[(2, "*Paper_Space"), (340, "1E")]);
+        o.endtab();
+        o.endsec();
+        o.section("BLOCKS");
+        for (name, rec, begin, end) in [
+            ("*Model_Space", MODEL_SPACE_RECORD, 0x18, 0x19),
+            ("*Paper_Space", 0x1B, 0x1C, 0x1D),
+        ] {
+            o.pair(0, "BLOCK");
+            o.pair(5, format!("{begin:X}"));
+            o.pair(330, format!("{rec:X}"));
+            o.pairs(&[
+                (100, "AcDbEntity"),
+                (8, "0"),
+                (100, "AcDbBlockBegin"),
+                (2, name),
+                (70, "0"),
+                (10, "0.0"),
+                (20, "0.0"),
+                (30, "0.0"),
+                (3, name),
+                (1, ""),
+            ]);
+            o.pair(0, "ENDBLK");
+            o.pair(5, format!("{end:X}"));
+            o.pair(330, format!("{rec:X}"));
+            o.pairs(&[(100, "AcDbEntity"), (8, "0"), (100, "AcDbBlockEnd")]);
+        }
+        o.endsec();
+        o.section("ENTITIES");
+        o.text.push_str(&self.entities);
+        o.endsec();
+        o.section("OBJECTS");
+        o.pairs(&[
+            (0, "DICTIONARY"),
+            (5, "C"),
+            (330, "0"),
+            (100, "AcDbDictionary"),
+            (281, "1"),
+            (3, "ACAD_GROUP"),
+            (350, "D"),
+            (3, "ACAD_LAYOUT"),
+            (350, "1A"),
+        ]);
+        o.pairs(&[
+            (0, "DICTIONARY"),
+            (5, "D"),
+            (330, "C"),
+            (100, "AcDbDictionary"),
+            (281, "1"),
+        ]);
+        o.pairs(&[
+            (0, "DICTIONARY"),
+            (5, "1A"),
+            (330, "C"),
+            (100, "AcDbDictionary"),
+            (281, "1"),
+            (3, "Layout1"),
+            (350, "1E"),
+            (3, "Model"),
+            (350, "22"),
+        ]);
+        for (h, name, rec, tab) in [
+            ("22", "Model", MODEL_SPACE_RECORD, 0),
+            ("1E", "Layout1", 0x1B, 1),
+        ] {
+            o.pairs(&[
+                (0, "LAYOUT"),
+                (5, h),
+                (330, "1A"),
+                (100, "AcDbPlotSettings"),
+                (1, ""),
+                (4, "A4"),
+                (6, ""),
+                (40, "0.0"),
+                (41, "0.0"),
+                (42, "0.0"),
+                (43, "0.0"),
+                (44, "297.0"),
+                (45, "210.0"),
+                (46, "0.0"),
+                (47, "0.0"),
+                (48, "0.0"),
+                (49, "0.0"),
+                (140, "0.0"),
+                (141, "0.0"),
+                (142, "1.0"),
+                (143, "1.0"),
+                (70, "688"),
+                (72, "1"),
+                (73, "0"),
+                (74, "5"),
+                (7, ""),
+                (75, "16"),
+                (147, "1.0"),
+                (148, "0.0"),
+                (149, "0.0"),
+                (100, "AcDbLayout"),
+                (1, name),
+                (70, "1"),
+            ]);
+            o.pair(71, tab);
+            o.pairs(&[
+                (10, "0.0"),
+                (20, "0.0"),
+                (11, "297.0"),
+                (21, "210.0"),
+                (12, "0.0"),
+                (22, "0.0"),
+                (32, "0.0"),
+                (14, "0.0"),
+                (24, "0.0"),
+                (34, "0.0"),
+                (15, "0.0"),
+                (25, "0.0"),
+                (35, "0.0"),
+                (146, "0.0"),
+                (13, "0.0"),
+                (23, "0.0"),
+                (33, "0.0"),
+                (16, "1.0"),
+                (26, "0.0"),
+                (36, "0.0"),
+                (17, "0.0"),
+                (27, "1.0"),
+                (37, "0.0"),
+                (76, "1"),
+            ]);
+            o.pair(330, format!("{rec:X}"));
+        }
+        o.endsec();
+        o.pair(0, "EOF");
+        o.text
+    }
+}
+
+/// Owner of model-space entities.
+const MODEL_SPACE_RECORD: u32 = 0x17;
+
+/// Descriptions and dash patterns (drawing units) of the line types path drawings use.
+fn linetype_pattern(lt: &str) -> (&'static str, Vec<f64>) {
+    match lt.to_ascii_uppercase().as_str() {
+        "DASHED" => ("Dashed __ __ __", vec![0.5, -0.25]),
+        "HIDDEN" => ("Hidden _ _ _", vec![0.25, -0.125]),
+        "DASHDOT" => ("Dash dot __ . __ .", vec![0.5, -0.25, 0.0, -0.25]),
+        "DOT" => ("Dot . . . .", vec![0.0, -0.25]),
+        "DIVIDE" => (
+            "Divide __ . . __ . .",
+            vec![0.5, -0.25, 0.0, -0.25, 0.0, -0.25],
+        ),
+        "BORDER" => (
+            "Border __ __ . __ __ .",
+            vec![0.5, -0.25, 0.5, -0.25, 0.0, -0.25],
+        ),
+        "CENTER" => ("Center ____ _ ____ _", vec![1.25, -0.25, 0.25, -0.25]),
+        "PHANTOM" => (
+            "Phantom ______  __  __",
+            vec![1.25, -0.25, 0.25, -0.25, 0.25, -0.25],
+        ),
+        _ => ("Solid line", vec![]),
+    }
+}
+
+/// Group-code output helper.
+#[derive(Default)]
+struct Out {
+    text: String,
+}
+
+impl Out {
+    fn pair(&mut self, code: i32, value: impl std::fmt::Display) {
+        let _ = write!(self.text, "{code:>3}\n{value}\n");
+    }
+    fn pairs(&mut self, p: &[(i32, &str)]) {
+        for (c, v) in p {
+            self.pair(*c, v);
+        }
+    }
+    fn section(&mut self, name: &str) {
+        self.pair(0, "SECTION");
+        self.pair(2, name);
+    }
+    fn endsec(&mut self) {
+        self.pair(0, "ENDSEC");
+    }
+    fn var(&mut self, name: &str, code: i32, value: &str) {
+        self.pair(9, name);
+        self.pair(code, value);
+    }
+    fn table(&mut self, name: &str, handle: u32, count: usize) {
+        self.pair(0, "TABLE");
+        self.pair(2, name);
+        self.pair(5, format!("{handle:X}"));
+        self.pair(330, 0);
+        self.pair(100, "AcDbSymbolTable");
+        self.pair(70, count);
+    }
+    fn endtab(&mut self) {
+        self.pair(0, "ENDTAB");
+    }
+    fn record(&mut self, kind: &str, handle: u32, owner: u32, subclass: &str) {
+        self.pair(0, kind);
+        self.pair(5, format!("{handle:X}"));
+        self.pair(330, format!("{owner:X}"));
+        self.pair(100, "AcDbSymbolTableRecord");
+        self.pair(100, subclass);
     }
 }
 

@@ -1,0 +1,378 @@
+//! Conversion both ways between drawn objects and the text language: `dxf2text` writes the
+//! canonical text, `text2dxf` writes an AutoCAD 2000 DXF whose texts the reference's
+//! assignment rule gives back to their own elements.
+
+use crate::diag::{Diags, FileRef};
+use crate::drawing::{build_paths, DrawnObject, RawPath, Shape};
+use crate::dxf_front::{dxf_objects, FrontOptions};
+use crate::geom::{near, Geom};
+use crate::names::Patterns;
+use crate::params::parse_number;
+use crate::session::traverse;
+use millpath_dxf::writer::DxfWriter;
+use millpath_syntax::ast::{Element, Geometry, Kind, Point, Spanned, Style};
+use millpath_syntax::format;
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
+fn pt(p: crate::geom::P2) -> Point {
+    Point { x: p.x, y: p.y }
+}
+
+/// The element kind of an object in the text language.
+fn kind_of(o: &DrawnObject, path_o: Option<f64>) -> Kind {
+    let lt = o.linetype.as_str();
+    match &o.shape {
+        Shape::Circle { r, .. } => {
+            let r = *r;
+            match lt {
+                "PHANTOM" if near(r, 0.5) => Kind::Start,
+                "PHANTOM" if near(r, 1.0) => Kind::End,
+                "PHANTOM" if near(r, 0.75) => Kind::Turn,
+                "PHANTOM" | "DASHDOT" if near(r, 3.0) => Kind::Probe,
+                "DOT" if near(r, 3.0) => Kind::NoProbe,
+                "CONTINUOUS" | "DIVIDE" | "BORDER" => {
+                    let style = match lt {
+                        "CONTINUOUS" => Style::Mill,
+                        "DIVIDE" => Style::Mark,
+                        _ => Style::Bars,
+                    };
+                    if path_o.is_some_and(|o| near(r, o / 2.0)) {
+                        Kind::Drill(style)
+                    } else {
+                        Kind::Helix(style)
+                    }
+                }
+                _ => Kind::Raw(lt.to_string()),
+            }
+        }
+        Shape::Path(_) => match lt {
+            "CONTINUOUS" => Kind::Mill,
+            "DIVIDE" => Kind::Mark,
+            "BORDER" => Kind::Bars,
+            "DASHDOT" => Kind::Sub,
+            "DASHED" => Kind::Sweep,
+            "HIDDEN" => Kind::Move,
+            "DOT" => Kind::Skip,
+            _ => Kind::Raw(lt.to_string()),
+        },
+    }
+}
+
+fn geometry_of(o: &DrawnObject, kind: &Kind) -> Geometry {
+    match &o.shape {
+        Shape::Circle { c, r } => {
+            if kind.marker_diameter().is_some() {
+                Geometry::Point(pt(*c))
+            } else {
+                Geometry::Circle {
+                    c: pt(*c),
+                    d: 2.0 * r,
+                }
+            }
+        }
+        Shape::Path(Geom::Line { a, b }) => Geometry::Line(pt(*a), pt(*b)),
+        Shape::Path(Geom::Arc { c, r, a0, a1, .. }) => Geometry::Arc {
+            c: pt(*c),
+            r: *r,
+            a0: *a0,
+            a1: *a1,
+        },
+    }
+}
+
+/// The order of a path's objects in the text: markers and other non-segments in drawing
+/// order, then the segments in traversal order (drawing order when the traversal fails).
+fn ordered(indices: &[usize], raw: Option<&RawPath>) -> Vec<usize> {
+    let Some(raw) = raw else {
+        return indices.to_vec();
+    };
+    let seg_objects: Vec<usize> = raw.segments.iter().map(|s| s.object).collect();
+    let mut out: Vec<usize> = indices
+        .iter()
+        .copied()
+        .filter(|i| !seg_objects.contains(i))
+        .collect();
+    let mut diags = Diags::default();
+    let trav = match (&raw.start, &raw.end) {
+        (Some(s), Some(e)) => traverse(raw, s.pos, e.pos, &mut diags),
+        _ => Vec::new(),
+    };
+    let complete =
+        !diags.has_errors() && trav.iter().filter(|s| !s.turn_back).count() == raw.segments.len();
+    if complete {
+        out.extend(
+            trav.iter()
+                .filter(|s| !s.turn_back)
+                .map(|s| raw.segments[s.index].object),
+        );
+    } else {
+        out.extend(indices.iter().copied().filter(|i| seg_objects.contains(i)));
+    }
+    out
+}
+
+/// The canonical text of a drawing: paths sorted by name.
+pub fn objects_to_text(objects: &[DrawnObject], paths: &[RawPath], header: Option<&str>) -> String {
+    let mut by_path: BTreeMap<&str, Vec<usize>> = BTreeMap::new();
+    for (i, o) in objects.iter().enumerate() {
+        by_path.entry(o.path.as_str()).or_default().push(i);
+    }
+    let mut out = String::new();
+    if let Some(h) = header {
+        for line in h.lines() {
+            out.push_str(&format!("# {line}\n"));
+        }
+        out.push('\n');
+    }
+    let mut first = true;
+    for (name, indices) in by_path {
+        let raw = paths.iter().find(|p| p.name == name);
+        let path_o = raw
+            .and_then(|r| r.start_text.as_ref())
+            .and_then(|t| t.raw('O'))
+            .and_then(parse_number);
+        if !first {
+            out.push('\n');
+        }
+        first = false;
+        out.push_str(&format!(
+            "path {} {{\n",
+            millpath_syntax::lexer::quote_if_needed(name)
+        ));
+        for i in ordered(&indices, raw) {
+            let o = &objects[i];
+            let kind = kind_of(o, path_o);
+            let geometry = geometry_of(o, &kind);
+            let params = o
+                .text
+                .as_ref()
+                .map(|t| {
+                    t.tokens
+                        .iter()
+                        .map(|tok| Spanned::new(tok.clone(), 0..0))
+                        .collect()
+                })
+                .unwrap_or_default();
+            let el = Element {
+                kind: Spanned::new(kind, 0..0),
+                geometry: Spanned::new(geometry, 0..0),
+                params,
+                comment: None,
+                span: 0..0,
+            };
+            out.push_str("  ");
+            out.push_str(&format::element(&el));
+            out.push('\n');
+        }
+        out.push_str("}\n");
+    }
+    out
+}
+
+/// Layer name of a path as CAD programs export it (`.` → `_`), with an optional
+/// parameter-text suffix.
+fn layer_name(path: &str, suffix: Option<&str>) -> String {
+    let base = path.replace('.', "_");
+    match suffix {
+        Some(s) => format!("{base}~{s}"),
+        None => base,
+    }
+}
+
+/// `A`, `B`, … `Z`, `AA`, `AB`, …
+fn suffix(mut n: usize) -> String {
+    let mut s = Vec::new();
+    loop {
+        s.push((b'A' + (n % 26) as u8) as char);
+        if n < 26 {
+            break;
+        }
+        n = n / 26 - 1;
+    }
+    s.iter().rev().collect()
+}
+
+/// MTEXT escapes for a parameter text.
+fn mtext_escape(s: &str) -> String {
+    s.replace('\\', "\\\\")
+        .replace('{', "\\{")
+        .replace('}', "\\}")
+}
+
+const TEXT_HEIGHT: f64 = 0.35;
+
+fn write_dxf(objects: &[DrawnObject], suffixes: &[Option<String>]) -> String {
+    let mut w = DxfWriter::new();
+    let mut paths: Vec<&str> = objects.iter().map(|o| o.path.as_str()).collect();
+    paths.sort();
+    paths.dedup();
+    for p in paths {
+        w.layer(&layer_name(p, None), "CONTINUOUS");
+    }
+    for (o, suf) in objects.iter().zip(suffixes) {
+        let layer = layer_name(&o.path, suf.as_deref());
+        let lt = Some(o.linetype.as_str());
+        match &o.shape {
+            Shape::Circle { c, r } => w.circle(&layer, lt, (c.x, c.y), *r),
+            Shape::Path(Geom::Line { a, b }) => w.line(&layer, lt, (a.x, a.y), (b.x, b.y)),
+            Shape::Path(Geom::Arc { c, r, a0, a1, .. }) => {
+                w.arc(&layer, lt, (c.x, c.y), *r, *a0, *a1)
+            }
+        };
+    }
+    // texts: circles first, then arcs, then lines, so that circles win as the rule wants
+    for pass in 0..3 {
+        for (o, suf) in objects.iter().zip(suffixes) {
+            let Some(t) = o.text.as_ref().filter(|t| !t.tokens.is_empty()) else {
+                continue;
+            };
+            let (rank, at) = match &o.shape {
+                Shape::Circle { c, .. } => (0, *c),
+                Shape::Path(g @ Geom::Arc { .. }) => (1, g.sub(0.0, g.length() / 2.0).end()),
+                Shape::Path(Geom::Line { a, b }) => (2, a.add(*b).scale(0.5)),
+            };
+            if rank != pass {
+                continue;
+            }
+            let text = mtext_escape(&t.tokens.join(" "));
+            w.mtext(
+                &layer_name(&o.path, suf.as_deref()),
+                (at.x, at.y),
+                TEXT_HEIGHT,
+                &[&text],
+            );
+        }
+    }
+    w.finish()
+}
+
+fn texts_match(a: &Option<crate::params::ParamText>, b: &Option<crate::params::ParamText>) -> bool {
+    let toks = |t: &Option<crate::params::ParamText>| {
+        t.as_ref().map(|t| t.tokens.clone()).unwrap_or_default()
+    };
+    toks(a) == toks(b)
+}
+
+/// Writes objects as a DXF file. Elements whose text would be assigned to another element
+/// are moved to their own parameter-text layer (`PATH~A`, …), checked by reading back.
+pub fn objects_to_dxf(objects: &[DrawnObject], patterns: &Patterns) -> String {
+    let mut suffixes: Vec<Option<String>> = vec![None; objects.len()];
+    let mut next = 0usize;
+    let file = FileRef::new("check.dxf".into());
+    for _ in 0..8 {
+        let text = write_dxf(objects, &suffixes);
+        let Ok(d) = millpath_dxf::read_dxf(text.as_bytes()) else {
+            return text;
+        };
+        let opts = FrontOptions {
+            layer_pattern: &patterns.path_full,
+            path_pattern: &patterns.path_cs,
+            pattern_text: &patterns.path_text,
+            debug: None,
+        };
+        let mut diags = Diags::default();
+        let Ok((back, _)) = dxf_objects(&d, &file, &opts, &mut diags) else {
+            return text;
+        };
+        let mut changed = false;
+        for (i, o) in objects.iter().enumerate() {
+            let ok = back.get(i).is_some_and(|b| texts_match(&b.text, &o.text));
+            if !ok && suffixes[i].is_none() {
+                suffixes[i] = Some(suffix(next));
+                next += 1;
+                changed = true;
+            }
+        }
+        if !changed {
+            return text;
+        }
+    }
+    write_dxf(objects, &suffixes)
+}
+
+/// Path building for conversions (errors are the compiler's business, not the converter's).
+pub fn paths_of(objects: &[DrawnObject], patterns: &Patterns) -> Vec<RawPath> {
+    let mut diags = Diags::default();
+    let file: Arc<FileRef> = FileRef::new("convert".into());
+    build_paths(
+        objects,
+        &file,
+        &patterns.path_cs,
+        &patterns.path_text,
+        &mut diags,
+    )
+    .unwrap_or_default()
+}
+
+
+/// `dxf2text`: a DXF file → canonical text. Problems of the drawing that lose information
+/// (texts that belong to no element, …) come back as diagnostics beside the text.
+pub fn dxf_to_text(
+    bytes: &[u8],
+    file: &Arc<FileRef>,
+    patterns: &Patterns,
+) -> Result<(String, Vec<crate::Diagnostic>), crate::Diagnostic> {
+    let d = millpath_dxf::read_dxf(bytes).map_err(|e| {
+        crate::Diagnostic::error(
+            crate::Msg::CannotLoadDxf,
+            crate::Origin::File(file.clone()),
+            crate::args![file.path.display(), e],
+        )
+    })?;
+    let opts = FrontOptions {
+        layer_pattern: &patterns.path_full,
+        path_pattern: &patterns.path_cs,
+        pattern_text: &patterns.path_text,
+        debug: None,
+    };
+    let mut diags = Diags::default();
+    let (objects, _) = dxf_objects(&d, file, &opts, &mut diags)?;
+    let paths = paths_of(&objects, patterns);
+    Ok((objects_to_text(&objects, &paths, None), diags.list))
+}
+
+/// `text2dxf`: text → DXF. Syntax errors refuse the conversion (nothing half-converted).
+pub fn text_to_dxf(
+    src: &str,
+    file: &Arc<FileRef>,
+    patterns: &Patterns,
+) -> Result<String, Vec<crate::Diagnostic>> {
+    let mut diags = Diags::default();
+    let objects = crate::text_front::text_objects(src, file, &mut diags).map_err(|d| vec![d])?;
+    if diags.has_errors() {
+        return Err(diags.list);
+    }
+    Ok(objects_to_dxf(&objects, patterns))
+}
+
+/// `fmt`: the canonical form of a text file; `Err` with the syntax errors when it does not parse.
+pub fn format_text(src: &str, file: &Arc<FileRef>) -> Result<String, Vec<crate::Diagnostic>> {
+    let (ast, errors) = millpath_syntax::parse(src);
+    if !errors.is_empty() {
+        return Err(errors
+            .into_iter()
+            .map(|e| {
+                crate::Diagnostic::error(
+                    crate::Msg::SyntaxError,
+                    crate::text_front::span_origin(src, file, &e.span),
+                    crate::args![e.message],
+                )
+            })
+            .collect());
+    }
+    Ok(millpath_syntax::format(&ast, src))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn suffixes() {
+        assert_eq!(suffix(0), "A");
+        assert_eq!(suffix(25), "Z");
+        assert_eq!(suffix(26), "AA");
+        assert_eq!(suffix(27), "AB");
+    }
+}

@@ -1,0 +1,163 @@
+//! The text front-end: a `.mpath` file → drawn objects, the same as the DXF front-end
+//! produces, so that everything after it is shared.
+
+use crate::args;
+use crate::diag::{Diagnostic, Diags, FileRef, Msg, Origin};
+use crate::drawing::{DrawnObject, Shape};
+use crate::geom::{normalize_angle, Geom, P2};
+use crate::params::ParamText;
+use millpath_syntax::{parse, Geometry, Span};
+use std::sync::Arc;
+
+/// 1-based line and column of a byte offset.
+pub fn line_col(src: &str, offset: usize) -> (usize, usize) {
+    let offset = offset.min(src.len());
+    let before = &src[..offset];
+    let line = before.matches('\n').count() + 1;
+    let col = before
+        .rfind('\n')
+        .map_or(before.chars().count(), |p| before[p + 1..].chars().count())
+        + 1;
+    (line, col)
+}
+
+pub fn span_origin(src: &str, file: &Arc<FileRef>, span: &Span) -> Origin {
+    let (line, col) = line_col(src, span.start);
+    Origin::Span {
+        file: file.clone(),
+        start: span.start,
+        end: span.end,
+        line,
+        col,
+    }
+}
+
+fn p2(p: millpath_syntax::Point) -> P2 {
+    P2::new(p.x, p.y)
+}
+
+/// Parses a text file into drawn objects. Syntax errors are reported and the rest is used;
+/// `Err` aborts the file like the DXF front-end does (e.g. a parameter given twice).
+pub fn text_objects(
+    src: &str,
+    file: &Arc<FileRef>,
+    diags: &mut Diags,
+) -> Result<Vec<DrawnObject>, Diagnostic> {
+    let (ast, errors) = parse(src);
+    for e in errors {
+        diags.error(
+            Msg::SyntaxError,
+            span_origin(src, file, &e.span),
+            args![e.message],
+        );
+    }
+    let mut out = Vec::new();
+    for path in ast.paths() {
+        for el in path.elements() {
+            let origin = span_origin(src, file, &el.span);
+            let linetype = el.kind.value.linetype().to_string();
+            let shape = match el.geometry.value {
+                Geometry::Point(p) => Shape::Circle {
+                    c: p2(p),
+                    r: el.kind.value.marker_diameter().unwrap_or(1.0) / 2.0,
+                },
+                Geometry::Circle { c, d } => Shape::Circle {
+                    c: p2(c),
+                    r: d / 2.0,
+                },
+                Geometry::Line(a, b) => Shape::Path(Geom::Line { a: p2(a), b: p2(b) }),
+                Geometry::Arc { c, r, a0, a1 } => Shape::Path(Geom::Arc {
+                    c: p2(c),
+                    r,
+                    a0: normalize_angle(a0),
+                    a1: normalize_angle(a1),
+                    ccw: true,
+                }),
+            };
+            if let Shape::Circle { r, .. } | Shape::Path(Geom::Arc { r, .. }) = shape {
+                if r <= 0.0 {
+                    return Err(Diagnostic::error(Msg::BadRadius, origin, args![r]));
+                }
+            }
+            let text = if el.params.is_empty() {
+                None
+            } else {
+                let span = el.params[0].span.start..el.params[el.params.len() - 1].span.end;
+                let joined: Vec<&str> = el.params.iter().map(|p| p.value.as_str()).collect();
+                Some(ParamText::parse(
+                    &joined.join(" "),
+                    span_origin(src, file, &span),
+                )?)
+            };
+            out.push(DrawnObject {
+                path: path.name.value.clone(),
+                linetype,
+                shape,
+                text,
+                origin,
+            });
+        }
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn objects_from_text() {
+        let src = "path 1000.1P {\n  start (0, 0)  O2 T1 :Bx,y\n  mill arc (0, 0) r5 from -90 to 90\n  drill (1, 2) d2\n  raw CENTER (0, 0) -> (1, 1)\n}\n";
+        let file = FileRef::new("a.mpath".into());
+        let mut d = Diags::default();
+        let objs = text_objects(src, &file, &mut d).unwrap();
+        assert!(d.list.is_empty());
+        assert_eq!(objs.len(), 4);
+        assert_eq!(objs[0].linetype, "PHANTOM");
+        assert_eq!(
+            objs[0].shape,
+            Shape::Circle {
+                c: P2::new(0.0, 0.0),
+                r: 0.5
+            }
+        );
+        assert_eq!(objs[0].text.as_ref().unwrap().tokens, ["O2", "T1", ":Bx,y"]);
+        assert_eq!(
+            objs[1].shape,
+            Shape::Path(Geom::Arc {
+                c: P2::new(0.0, 0.0),
+                r: 5.0,
+                a0: 270.0,
+                a1: 90.0,
+                ccw: true
+            })
+        );
+        assert_eq!(
+            objs[2].shape,
+            Shape::Circle {
+                c: P2::new(1.0, 2.0),
+                r: 1.0
+            }
+        );
+        assert_eq!(objs[3].linetype, "CENTER");
+        assert_eq!(objs[1].origin.context(), "a.mpath:3:3");
+    }
+
+    #[test]
+    fn syntax_errors_and_aborts() {
+        let file = FileRef::new("a.mpath".into());
+        let mut d = Diags::default();
+        let objs = text_objects(
+            "path X {\n  mill (0, 0) ->\n  end (1, 1)\n}\n",
+            &file,
+            &mut d,
+        )
+        .unwrap();
+        assert_eq!(objs.len(), 1);
+        assert_eq!(d.list[0].msg, Msg::SyntaxError);
+        assert_eq!(d.list[0].origin.context(), "a.mpath:2:17");
+        let e = text_objects("path X {\n  start (0, 0)  B1 B2\n}\n", &file, &mut d).unwrap_err();
+        assert_eq!(e.msg, Msg::DuplicateParameter);
+        assert_eq!(line_col("ab\ncd", 4), (2, 2));
+    }
+}
