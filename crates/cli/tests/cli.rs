@@ -253,3 +253,122 @@ fn adjust_z_end_to_end() {
         Some(1)
     );
 }
+
+fn examples() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
+}
+
+#[test]
+fn text_examples_are_formatted_and_compile_like_their_dxf_form() {
+    let o = millpath(&examples(), &["fmt", "--check", "."]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let (text, back) = (dir.path().join("text"), dir.path().join("back"));
+    std::fs::create_dir(&text).unwrap();
+    std::fs::create_dir(&back).unwrap();
+    for name in ["2001", "2010", "2020"] {
+        std::fs::copy(
+            examples().join(format!("text/{name}.mpath")),
+            text.join(format!("{name}.mpath")),
+        )
+        .unwrap();
+        let o = millpath(
+            &text,
+            &[
+                "text2dxf",
+                &format!("{name}.mpath"),
+                "-o",
+                back.join(format!("{name}.dxf")).to_str().unwrap(),
+            ],
+        );
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+    for name in ["2010", "2020"] {
+        let args = ["compile", "-f", "300", "-v", "1000", "-s", "10", "-z", "50"];
+        let a = millpath(&text, &[&args[..], &[&format!("{name}.mpath")]].concat());
+        let b = millpath(&back, &[&args[..], &[&format!("{name}.dxf")]].concat());
+        assert_eq!(
+            a.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&a.stderr)
+        );
+        assert_eq!(
+            b.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&b.stderr)
+        );
+    }
+    let read = |d: &Path, f: &str| {
+        std::fs::read_to_string(d.join(f))
+            .unwrap()
+            .replace(".mpath", ".dxf")
+    };
+    assert_eq!(
+        read(&text, "2010_Milling.gcode"),
+        read(&back, "2010_Milling.gcode")
+    );
+    assert!(read(&text, "2010_Milling.gcode").contains("START Subpath 2001.1P[2001.dxf]"));
+    for f in ["2020_Probing.gcode", "2020_Z.txt", "2020_Clean.gcode"] {
+        assert_eq!(read(&text, f), read(&back, f), "{f}");
+    }
+    // dxf2text of the written DXF gives the text back (comments aside)
+    let o = millpath(&back, &["dxf2text", "2020.dxf"]);
+    assert_eq!(
+        String::from_utf8_lossy(&o.stdout),
+        "path 2020.1P {\n  start (0, 0)  M10x3 O2 T3 I1,5 B-0,2\n  end (60, 0)\n  probe (10, 5)\n  probe (50, 5)  L1\n  mill (0, 0) -> (60, 0)\n}\n"
+    );
+}
+
+#[test]
+fn fmt_rewrites_and_refuses_broken_files() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("a.mpath"),
+        "path   X {\n   mill (0,0)->(1,1)   B1\n}\n",
+    )
+    .unwrap();
+    assert_eq!(
+        millpath(dir.path(), &["fmt", "--check", "a.mpath"])
+            .status
+            .code(),
+        Some(1)
+    );
+    assert_eq!(
+        millpath(dir.path(), &["fmt", "a.mpath"]).status.code(),
+        Some(0)
+    );
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("a.mpath")).unwrap(),
+        "path X {\n  mill (0, 0) -> (1, 1)  B1\n}\n"
+    );
+    std::fs::write(dir.path().join("b.mpath"), "path X {\n  mill (0,0)->\n}\n").unwrap();
+    let o = millpath(dir.path(), &["fmt", "b.mpath"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        String::from_utf8_lossy(&o.stderr).contains("b.mpath:2:"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("b.mpath")).unwrap(),
+        "path X {\n  mill (0,0)->\n}\n"
+    );
+    // text2dxf refuses a file with syntax errors and writes nothing
+    assert_eq!(
+        millpath(dir.path(), &["text2dxf", "b.mpath"]).status.code(),
+        Some(1)
+    );
+    assert!(!dir.path().join("b.dxf").exists());
+}

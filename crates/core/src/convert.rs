@@ -305,7 +305,6 @@ pub fn paths_of(objects: &[DrawnObject], patterns: &Patterns) -> Vec<RawPath> {
     .unwrap_or_default()
 }
 
-
 /// `dxf2text`: a DXF file → canonical text. Problems of the drawing that lose information
 /// (texts that belong to no element, …) come back as diagnostics beside the text.
 pub fn dxf_to_text(

@@ -892,3 +892,48 @@ fn debug_output_lists_assignments() {
         "{info}"
     );
 }
+
+#[test]
+fn mutated_text_files_never_panic() {
+    let base = "path 1000.1P {\n  start (0, 0)  O2 T2 I1,2 B-0,1 P6 U30 D1 :Bx,y\n  end (30, 0)\n  sweep (0, 0) -> (10, 0)  N1\n  bars helix (10, 0) d10\n  mill arc (20, 0) r10 from 0 to 180\n  bars (30, 0) -> (10, 0)  B=B\n  probe (5, 5)\n  turn (3, 3)\n  sub (10, 0) -> (30, 0)  >1000.1P\n}\n";
+    let mut seed: u64 = 0xD1B54A32D192ED03;
+    let mut next = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        seed
+    };
+    for _ in 0..300 {
+        let mut chars: Vec<char> = base.chars().collect();
+        for _ in 0..(1 + next() % 5) {
+            if chars.is_empty() {
+                break;
+            }
+            let i = (next() as usize) % chars.len();
+            match next() % 3 {
+                0 => {
+                    chars.remove(i);
+                }
+                1 => chars.insert(
+                    i,
+                    "0123456789-.,() \n{}#\">=:~"
+                        .chars()
+                        .nth((next() % 25) as usize)
+                        .unwrap(),
+                ),
+                _ => chars.truncate(i.max(1)),
+            }
+        }
+        let text: String = chars.into_iter().collect();
+        for check in [false, true] {
+            let _ = compile_with(
+                &[("1000.1P.mpath", text.clone())],
+                "1000.1P.mpath",
+                millpath_core::Settings {
+                    check,
+                    ..settings()
+                },
+            );
+        }
+    }
+}

@@ -17,8 +17,10 @@ pub struct SyntaxError {
 type Extra<'t, 's> = extra::Err<Rich<'t, Token<'s>, SimpleSpan>>;
 type In<'t, 's> = MappedInput<'t, Token<'s>, SimpleSpan, &'t [(Token<'s>, SimpleSpan)]>;
 
+/// Byte range of a span; empty matches can come back inverted, which is normalised here so
+/// that every span can be used to slice the source.
 fn range(s: SimpleSpan) -> Span {
-    s.start..s.end
+    s.start.min(s.end)..s.start.max(s.end)
 }
 
 /// Raw element pieces before the parameter tokens are cut from the source.
@@ -277,6 +279,7 @@ pub fn parse(src: &str) -> (File, Vec<SyntaxError>) {
     let (out, errs) = file_parser().parse(input).into_output_errors();
     for e in errs {
         let span = range(*e.span());
+        let span = span.start.min(src.len())..span.end.min(src.len());
         if errors.iter().any(|x| x.span == span) {
             continue;
         }
