@@ -338,7 +338,9 @@ pub fn text_to_dxf(
     patterns: &Patterns,
 ) -> Result<String, Vec<crate::Diagnostic>> {
     let mut diags = Diags::default();
-    let objects = crate::text_front::text_objects(src, file, &mut diags).map_err(|d| vec![d])?;
+    let objects = crate::text_front::text_objects(src, file, &mut diags)
+        .map_err(|d| vec![d])?
+        .objects;
     if diags.has_errors() {
         return Err(diags.list);
     }

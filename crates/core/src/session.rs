@@ -244,14 +244,16 @@ impl<'a> Session<'a> {
             self.info
                 .push(format!("---- {verb} {}", file.path.display()));
             let src = String::from_utf8_lossy(bytes);
-            let objects = crate::text_front::text_objects(&src, file, &mut self.diags)?;
+            let text = crate::text_front::text_objects(&src, file, &mut self.diags)?;
+            let objects = &text.objects;
             let paths = crate::drawing::build_paths(
-                &objects,
+                objects,
                 file,
                 &self.patterns.path_cs,
                 &self.settings.path_pattern,
                 &mut self.diags,
             )?;
+            text.check_declared_kinds(&paths, &mut self.diags);
             for p in &paths {
                 if !self.patterns.path_full.is_match(&p.name) {
                     self.diags.error(

@@ -6,7 +6,7 @@ use crate::diag::{Diagnostic, Diags, FileRef, Msg, Origin};
 use crate::drawing::{DrawnObject, Shape};
 use crate::geom::{normalize_angle, Geom, P2};
 use crate::params::ParamText;
-use millpath_syntax::{parse, Geometry, Span};
+use millpath_syntax::{parse, Geometry, Kind, Span};
 use std::sync::Arc;
 
 /// 1-based line and column of a byte offset.
@@ -42,7 +42,7 @@ pub fn text_objects(
     src: &str,
     file: &Arc<FileRef>,
     diags: &mut Diags,
-) -> Result<Vec<DrawnObject>, Diagnostic> {
+) -> Result<TextDrawing, Diagnostic> {
     let (ast, errors) = parse(src);
     for e in errors {
         diags.error(
@@ -52,6 +52,7 @@ pub fn text_objects(
         );
     }
     let mut out = Vec::new();
+    let mut declared = Vec::new();
     for path in ast.paths() {
         for el in path.elements() {
             let origin = span_origin(src, file, &el.span);
@@ -89,6 +90,9 @@ pub fn text_objects(
                     span_origin(src, file, &span),
                 )?)
             };
+            if let Kind::Drill(_) | Kind::Helix(_) = el.kind.value {
+                declared.push((out.len(), matches!(el.kind.value, Kind::Drill(_))));
+            }
             out.push(DrawnObject {
                 path: path.name.value.clone(),
                 linetype,
@@ -98,7 +102,52 @@ pub fn text_objects(
             });
         }
     }
-    Ok(out)
+    Ok(TextDrawing {
+        objects: out,
+        declared,
+    })
+}
+
+/// The drawn objects of a text file, and for circles written as `drill`/`helix` which of the
+/// two the author said (index into `objects`, `true` = drill).
+#[derive(Debug, Clone, Default)]
+pub struct TextDrawing {
+    pub objects: Vec<DrawnObject>,
+    pub declared: Vec<(usize, bool)>,
+}
+
+impl TextDrawing {
+    /// A warning where the declared kind is not what the path's O makes of the circle.
+    pub fn check_declared_kinds(&self, paths: &[crate::drawing::RawPath], diags: &mut Diags) {
+        for (i, drill) in &self.declared {
+            let o = &self.objects[*i];
+            let Shape::Circle { r, .. } = o.shape else {
+                continue;
+            };
+            let Some(path_o) = paths
+                .iter()
+                .find(|p| p.name == o.path)
+                .and_then(|p| p.start_text.as_ref())
+                .and_then(|t| t.raw('O'))
+                .and_then(crate::params::parse_number)
+            else {
+                continue;
+            };
+            let is_drill = crate::geom::near(r, path_o / 2.0);
+            if is_drill != *drill && r >= path_o / 2.0 {
+                let (said, is) = if *drill {
+                    ("drill", "helix")
+                } else {
+                    ("helix", "drill")
+                };
+                diags.push(Diagnostic::warning(
+                    Msg::KindMismatch,
+                    o.origin.clone(),
+                    args![said, crate::params::fmt_num(path_o), is],
+                ));
+            }
+        }
+    }
 }
 
 #[cfg(test)]
@@ -110,7 +159,7 @@ mod tests {
         let src = "path 1000.1P {\n  start (0, 0)  O2 T1 :Bx,y\n  mill arc (0, 0) r5 from -90 to 90\n  drill (1, 2) d2\n  raw CENTER (0, 0) -> (1, 1)\n}\n";
         let file = FileRef::new("a.mpath".into());
         let mut d = Diags::default();
-        let objs = text_objects(src, &file, &mut d).unwrap();
+        let objs = text_objects(src, &file, &mut d).unwrap().objects;
         assert!(d.list.is_empty());
         assert_eq!(objs.len(), 4);
         assert_eq!(objs[0].linetype, "PHANTOM");

@@ -937,3 +937,19 @@ fn mutated_text_files_never_panic() {
         }
     }
 }
+
+#[test]
+fn text_files_compile_and_declared_circle_kinds_are_checked() {
+    let text = "path 1000.1P {\n  start (0, 0)  O2 T2 I1,2 B-0,1\n  end (30, 0)\n  sweep (0, 0) -> (10, 0)\n  drill (10, 0) d4  # says drill, is a helix with O2\n  sweep (10, 0) -> (30, 0)\n}\n";
+    let run = compile(&[("1000.1P.mpath", text.into())], "1000.1P.mpath");
+    assert_eq!(run.errors(), []);
+    assert_eq!(run.warnings(), [Msg::KindMismatch]);
+    assert_eq!(
+        run.diags[0].message(Lang::En),
+        "Declared as drill, but with O=2 this circle is a helix"
+    );
+    assert_eq!(run.diags[0].origin.context(), "1000.1P.mpath:5:3");
+    assert!(run
+        .output("1000.1P_Milling.gcode")
+        .contains("MillHelix l=[10.000 0.000] r=2.000"));
+}
