@@ -202,7 +202,7 @@ mod tests {
             &mut d,
         )
         .unwrap();
-        assert_eq!(objs.len(), 1);
+        assert_eq!(objs.objects.len(), 1);
         assert_eq!(d.list[0].msg, Msg::SyntaxError);
         assert_eq!(d.list[0].origin.context(), "a.mpath:2:17");
         let e = text_objects("path X {\n  start (0, 0)  B1 B2\n}\n", &file, &mut d).unwrap_err();
