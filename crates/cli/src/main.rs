@@ -398,7 +398,8 @@ fn run_compile(m: &MachineArgs, files: &[String]) -> u8 {
     u8::from(all.iter().any(|d| d.severity == Severity::Error))
 }
 
-fn collect_inputs(paths: &[PathBuf], out: &mut Vec<PathBuf>) {
+/// Files given, and below directories given the files `accept` takes, sorted.
+fn collect_files(paths: &[PathBuf], accept: fn(&Path) -> bool, out: &mut Vec<PathBuf>) {
     for p in paths {
         if p.is_dir() {
             let mut entries: Vec<PathBuf> = std::fs::read_dir(p)
@@ -407,21 +408,22 @@ fn collect_inputs(paths: &[PathBuf], out: &mut Vec<PathBuf>) {
             entries.sort();
             let (dirs, files): (Vec<PathBuf>, Vec<PathBuf>) =
                 entries.into_iter().partition(|e| e.is_dir());
-            out.extend(
-                files
-                    .into_iter()
-                    .filter(|f| f.extension().is_some_and(|e| e.eq_ignore_ascii_case("dxf"))),
-            );
-            collect_inputs(&dirs, out);
+            out.extend(files.into_iter().filter(|f| accept(f)));
+            collect_files(&dirs, accept, out);
         } else {
             out.push(p.clone());
         }
     }
 }
 
+fn is_drawing(f: &Path) -> bool {
+    f.extension().is_some_and(|e| e.eq_ignore_ascii_case("dxf"))
+        || millpath_core::session::is_text_file(f)
+}
+
 fn run_check(m: &MachineArgs, format: Format, paths: &[PathBuf]) -> u8 {
     let mut inputs = Vec::new();
-    collect_inputs(paths, &mut inputs);
+    collect_files(paths, is_drawing, &mut inputs);
     let mut settings = match settings_for(m, inputs.first().map(PathBuf::as_path), false) {
         Ok(s) => s,
         Err(e) => {
@@ -695,30 +697,9 @@ fn run_text2dxf(file: &Path, output: Option<&Path>, m: &MachineArgs) -> u8 {
     }
 }
 
-fn collect_text_files(paths: &[PathBuf], out: &mut Vec<PathBuf>) {
-    for p in paths {
-        if p.is_dir() {
-            let mut entries: Vec<PathBuf> = std::fs::read_dir(p)
-                .map(|r| r.filter_map(|e| e.ok().map(|e| e.path())).collect())
-                .unwrap_or_default();
-            entries.sort();
-            let (dirs, files): (Vec<PathBuf>, Vec<PathBuf>) =
-                entries.into_iter().partition(|e| e.is_dir());
-            out.extend(
-                files
-                    .into_iter()
-                    .filter(|f| millpath_core::session::is_text_file(f)),
-            );
-            collect_text_files(&dirs, out);
-        } else {
-            out.push(p.clone());
-        }
-    }
-}
-
 fn run_fmt(check: bool, paths: &[PathBuf]) -> u8 {
     let mut files = Vec::new();
-    collect_text_files(paths, &mut files);
+    collect_files(paths, millpath_core::session::is_text_file, &mut files);
     let mut status = 0;
     for f in files {
         let src = match std::fs::read_to_string(&f) {

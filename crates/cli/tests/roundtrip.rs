@@ -188,14 +188,27 @@ fn dxf_text_and_written_back_dxf_compile_identically() {
     }
     assert!(compared >= 13, "{compared} output files compared");
     // every drawing on its own, with the same machine settings: same files, same exit status
-    let mut stems: Vec<String> = std::fs::read_dir(&dirs[0]).unwrap().map(|e| stem(&e.unwrap().path())).collect();
+    let mut stems: Vec<String> = std::fs::read_dir(&dirs[0])
+        .unwrap()
+        .map(|e| stem(&e.unwrap().path()))
+        .collect();
     stems.sort();
     let mut written = 0;
     for s in &stems {
-        let args = vec!["/f150".to_string(), "/v500".into(), "/s15".into(), "/z50".into(), format!("{s}.dxf")];
+        let args = vec![
+            "/f150".to_string(),
+            "/v500".into(),
+            "/s15".into(),
+            "/z50".into(),
+            format!("{s}.dxf"),
+        ];
         let a = run_case(&dirs[0], &args, ".dxf");
         assert_eq!(a, run_case(&dirs[1], &args, ".mpath"), "text form of {s}");
-        assert_eq!(a, run_case(&dirs[2], &args, ".dxf"), "written-back DXF of {s}");
+        assert_eq!(
+            a,
+            run_case(&dirs[2], &args, ".dxf"),
+            "written-back DXF of {s}"
+        );
         written += a.1.len();
     }
     assert!(written >= 25, "{written} files");
