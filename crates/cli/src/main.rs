@@ -628,27 +628,33 @@ fn emit(output: Option<&Path>, content: &str, lang: Lang) -> u8 {
     }
 }
 
+/// Settings, patterns and the input bytes of a conversion; `Err(exit status)` after reporting.
+fn conversion_input(
+    file: &Path,
+    m: &MachineArgs,
+) -> Result<(millpath_core::names::Patterns, Lang, Vec<u8>), u8> {
+    let (patterns, lang) = patterns_for(m, file).map_err(|e| {
+        eprintln!("error: {e}");
+        2
+    })?;
+    let bytes = std::fs::read(file).map_err(|e| {
+        let d = Diagnostic::error(
+            Msg::CannotRead,
+            Origin::Input,
+            millpath_core::args![file.display(), e],
+        );
+        eprintln!("{}", report::human(&d, lang));
+        1
+    })?;
+    Ok((patterns, lang, bytes))
+}
+
 fn run_dxf2text(file: &Path, output: Option<&Path>, m: &MachineArgs) -> u8 {
-    let (patterns, lang) = match patterns_for(m, file) {
+    let (patterns, lang, bytes) = match conversion_input(file, m) {
         Ok(x) => x,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return 2;
-        }
+        Err(code) => return code,
     };
     let fref = millpath_core::diag::FileRef::new(file.to_path_buf());
-    let bytes = match std::fs::read(file) {
-        Ok(b) => b,
-        Err(e) => {
-            let d = Diagnostic::error(
-                Msg::CannotRead,
-                Origin::Input,
-                millpath_core::args![file.display(), e],
-            );
-            eprintln!("{}", report::human(&d, lang));
-            return 1;
-        }
-    };
     match millpath_core::convert::dxf_to_text(&bytes, &fref, &patterns) {
         Ok((text, diags)) => {
             // what the text cannot carry (texts that belong to no element, …) is reported
@@ -663,25 +669,11 @@ fn run_dxf2text(file: &Path, output: Option<&Path>, m: &MachineArgs) -> u8 {
 }
 
 fn run_text2dxf(file: &Path, output: Option<&Path>, m: &MachineArgs) -> u8 {
-    let (patterns, lang) = match patterns_for(m, file) {
+    let (patterns, lang, bytes) = match conversion_input(file, m) {
         Ok(x) => x,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return 2;
-        }
+        Err(code) => return code,
     };
-    let src = match std::fs::read_to_string(file) {
-        Ok(s) => s,
-        Err(e) => {
-            let d = Diagnostic::error(
-                Msg::CannotRead,
-                Origin::Input,
-                millpath_core::args![file.display(), e],
-            );
-            eprintln!("{}", report::human(&d, lang));
-            return 1;
-        }
-    };
+    let src = String::from_utf8_lossy(&bytes);
     let fref = millpath_core::diag::FileRef::new(file.to_path_buf());
     match millpath_core::convert::text_to_dxf(&src, &fref, &patterns) {
         Ok(dxf) => {

@@ -112,6 +112,15 @@ fn ordered(indices: &[usize], raw: Option<&RawPath>) -> Vec<usize> {
     out
 }
 
+fn front_options(patterns: &Patterns) -> FrontOptions<'_> {
+    FrontOptions {
+        layer_pattern: &patterns.path_full,
+        path_pattern: &patterns.path_cs,
+        pattern_text: &patterns.path_text,
+        debug: None,
+    }
+}
+
 /// The canonical text of a drawing: paths sorted by name.
 pub fn objects_to_text(objects: &[DrawnObject], paths: &[RawPath], header: Option<&str>) -> String {
     let mut by_path: BTreeMap<&str, Vec<usize>> = BTreeMap::new();
@@ -265,12 +274,7 @@ pub fn objects_to_dxf(objects: &[DrawnObject], patterns: &Patterns) -> String {
         let Ok(d) = millpath_dxf::read_dxf(text.as_bytes()) else {
             return text;
         };
-        let opts = FrontOptions {
-            layer_pattern: &patterns.path_full,
-            path_pattern: &patterns.path_cs,
-            pattern_text: &patterns.path_text,
-            debug: None,
-        };
+        let opts = front_options(patterns);
         let mut diags = Diags::default();
         let Ok((back, _)) = dxf_objects(&d, &file, &opts, &mut diags) else {
             return text;
@@ -319,12 +323,7 @@ pub fn dxf_to_text(
             crate::args![file.path.display(), e],
         )
     })?;
-    let opts = FrontOptions {
-        layer_pattern: &patterns.path_full,
-        path_pattern: &patterns.path_cs,
-        pattern_text: &patterns.path_text,
-        debug: None,
-    };
+    let opts = front_options(patterns);
     let mut diags = Diags::default();
     let (objects, _) = dxf_objects(&d, file, &opts, &mut diags)?;
     let paths = paths_of(&objects, patterns);

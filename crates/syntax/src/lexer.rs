@@ -92,39 +92,32 @@ pub fn quote_if_needed(s: &str) -> String {
     if plain {
         s.to_string()
     } else {
-        let mut q = String::from("\"");
-        for c in s.chars() {
-            match c {
-                '"' | '\\' => {
-                    q.push('\\');
-                    q.push(c);
-                }
-                '\t' => q.push_str("\\t"),
-                _ => q.push(c),
-            }
-        }
-        q.push('"');
-        q
+        quote(s)
     }
+}
+
+/// `"…"` with `\"`, `\\` and `\t` escapes.
+fn quote(s: &str) -> String {
+    let mut q = String::from("\"");
+    for c in s.chars() {
+        match c {
+            '"' | '\\' => {
+                q.push('\\');
+                q.push(c);
+            }
+            '\t' => q.push_str("\\t"),
+            _ => q.push(c),
+        }
+    }
+    q.push('"');
+    q
 }
 
 /// Quotes a parameter token when it would otherwise read as a comment, a quoted token or
 /// several tokens.
 pub fn quote_param(s: &str) -> String {
     if s.is_empty() || s.starts_with(['#', '"']) || s.chars().any(char::is_whitespace) {
-        let mut q = String::from("\"");
-        for c in s.chars() {
-            match c {
-                '"' | '\\' => {
-                    q.push('\\');
-                    q.push(c);
-                }
-                '\t' => q.push_str("\\t"),
-                _ => q.push(c),
-            }
-        }
-        q.push('"');
-        q
+        quote(s)
     } else {
         s.to_string()
     }
