@@ -1,28 +1,7 @@
-//! `millpath.toml`: machine settings found by walking up from the input file.
+//! Finding and reading `millpath.toml` (walking up from the input file).
 
-use millpath_core::Settings;
-use serde::Deserialize;
+pub use millpath_core::config::{FileConfig, Have, FILE_NAME};
 use std::path::{Path, PathBuf};
-
-#[derive(Debug, Default, Deserialize, Clone, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct FileConfig {
-    pub feed: Option<f64>,
-    pub sweep_speed: Option<f64>,
-    pub sweep_height: Option<f64>,
-    pub probe_feed: Option<f64>,
-    /// Relative to the directory of the `millpath.toml`.
-    #[serde(default)]
-    pub search_dirs: Vec<PathBuf>,
-    pub path_pattern: Option<String>,
-    pub file_pattern: Option<String>,
-    /// `parent:child` regex pairs, like `/e`.
-    #[serde(default)]
-    pub restrictions: Vec<String>,
-    pub lang: Option<String>,
-}
-
-pub const FILE_NAME: &str = "millpath.toml";
 
 /// The nearest `millpath.toml` at or above the directory of `input`.
 pub fn find(input: &Path) -> Option<PathBuf> {
@@ -43,55 +22,8 @@ pub fn find(input: &Path) -> Option<PathBuf> {
 /// Reads and parses a settings file; the error text names the file and the line.
 pub fn load(path: &Path) -> Result<FileConfig, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let mut cfg: FileConfig =
-        toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
-    let base = path.parent().unwrap_or(Path::new("."));
-    cfg.search_dirs = cfg.search_dirs.iter().map(|d| base.join(d)).collect();
-    Ok(cfg)
-}
-
-impl FileConfig {
-    /// Applies the file's values to settings (command-line values are applied afterwards).
-    pub fn apply(&self, s: &mut Settings, have: &mut Have) {
-        if let Some(v) = self.feed {
-            s.feed = v;
-            have.feed = true;
-        }
-        if let Some(v) = self.sweep_speed {
-            s.sweep_speed = v;
-            have.sweep_speed = true;
-        }
-        if let Some(v) = self.sweep_height {
-            s.sweep_height = v;
-            have.sweep_height = true;
-        }
-        if self.probe_feed.is_some() {
-            s.probe_feed = self.probe_feed;
-        }
-        s.search_dirs.extend(self.search_dirs.iter().cloned());
-        if let Some(p) = &self.path_pattern {
-            s.path_pattern = p.clone();
-        }
-        if let Some(p) = &self.file_pattern {
-            s.file_pattern = p.clone();
-        }
-        for r in &self.restrictions {
-            if let Some((a, b)) = r.split_once(':') {
-                s.restrictions.push((a.to_string(), b.to_string()));
-            }
-        }
-        if let Some(l) = &self.lang {
-            s.lang = millpath_core::Lang::from_name(l);
-        }
-    }
-}
-
-/// Which required machine settings were given.
-#[derive(Debug, Default, Clone, Copy)]
-pub struct Have {
-    pub feed: bool,
-    pub sweep_speed: bool,
-    pub sweep_height: bool,
+    millpath_core::config::parse(&text, path.parent().unwrap_or(Path::new(".")))
+        .map_err(|e| format!("{}: {e}", path.display()))
 }
 
 #[cfg(test)]
@@ -109,7 +41,7 @@ mod tests {
         let cfg = load(&found).unwrap();
         assert_eq!(cfg.feed, Some(150.0));
         assert!(cfg.search_dirs[0].ends_with("parts"));
-        let mut s = Settings::default();
+        let mut s = millpath_core::Settings::default();
         let mut have = Have::default();
         cfg.apply(&mut s, &mut have);
         assert!(have.feed && have.sweep_speed && have.sweep_height);

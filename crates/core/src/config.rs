@@ -1,0 +1,78 @@
+//! `millpath.toml`: machine settings of a folder tree. Parsing and applying only; finding
+//! the file is the caller's (the CLI walks the file system, the language server its view).
+
+use crate::Settings;
+use serde::Deserialize;
+use std::path::{Path, PathBuf};
+
+pub const FILE_NAME: &str = "millpath.toml";
+
+#[derive(Debug, Default, Deserialize, Clone, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct FileConfig {
+    pub feed: Option<f64>,
+    pub sweep_speed: Option<f64>,
+    pub sweep_height: Option<f64>,
+    pub probe_feed: Option<f64>,
+    /// Relative to the directory of the `millpath.toml`.
+    #[serde(default)]
+    pub search_dirs: Vec<PathBuf>,
+    pub path_pattern: Option<String>,
+    pub file_pattern: Option<String>,
+    /// `parent:child` regex pairs, like `/e`.
+    #[serde(default)]
+    pub restrictions: Vec<String>,
+    pub lang: Option<String>,
+}
+
+/// Parses a settings file; relative search directories are taken relative to `base_dir`.
+/// The error text names the line.
+pub fn parse(text: &str, base_dir: &Path) -> Result<FileConfig, String> {
+    let mut cfg: FileConfig = toml::from_str(text).map_err(|e| e.to_string())?;
+    cfg.search_dirs = cfg.search_dirs.iter().map(|d| base_dir.join(d)).collect();
+    Ok(cfg)
+}
+
+impl FileConfig {
+    /// Applies the file's values to settings (command-line values are applied afterwards).
+    pub fn apply(&self, s: &mut Settings, have: &mut Have) {
+        if let Some(v) = self.feed {
+            s.feed = v;
+            have.feed = true;
+        }
+        if let Some(v) = self.sweep_speed {
+            s.sweep_speed = v;
+            have.sweep_speed = true;
+        }
+        if let Some(v) = self.sweep_height {
+            s.sweep_height = v;
+            have.sweep_height = true;
+        }
+        if self.probe_feed.is_some() {
+            s.probe_feed = self.probe_feed;
+        }
+        s.search_dirs.extend(self.search_dirs.iter().cloned());
+        if let Some(p) = &self.path_pattern {
+            s.path_pattern = p.clone();
+        }
+        if let Some(p) = &self.file_pattern {
+            s.file_pattern = p.clone();
+        }
+        for r in &self.restrictions {
+            if let Some((a, b)) = r.split_once(':') {
+                s.restrictions.push((a.to_string(), b.to_string()));
+            }
+        }
+        if let Some(l) = &self.lang {
+            s.lang = crate::Lang::from_name(l);
+        }
+    }
+}
+
+/// Which required machine settings were given.
+#[derive(Debug, Default, Clone, Copy)]
+pub struct Have {
+    pub feed: bool,
+    pub sweep_speed: bool,
+    pub sweep_height: bool,
+}
