@@ -12,10 +12,8 @@ use millpath_core::{compile_file, complete_input, Lang, OsFileSystem, Session, S
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-const VERSION: &str = env!("CARGO_PKG_VERSION");
-
 fn banner() -> String {
-    format!("millpath V.{VERSION}")
+    millpath_core::banner()
 }
 
 #[derive(Parser)]

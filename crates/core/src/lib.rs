@@ -23,6 +23,11 @@ pub use session::{FileSystem, MemFileSystem, OsFileSystem, Session, Settings};
 use gcode::{generate, Output, Stats};
 use std::path::{Path, PathBuf};
 
+/// The program banner written as line 2 of every G-code file.
+pub fn banner() -> String {
+    format!("millpath V.{}", env!("CARGO_PKG_VERSION"))
+}
+
 /// A file to be written.
 #[derive(Debug, Clone, PartialEq)]
 pub struct OutputFile {

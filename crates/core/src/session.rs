@@ -343,6 +343,15 @@ impl<'a> Session<'a> {
         Ok(matching)
     }
 
+    /// The raw path of a name, searching the folder of `near_file` and the search directories
+    /// when it is not known yet (editors: hover and go-to-definition of subpath names).
+    pub fn lookup(&mut self, name: &str, near_file: &Path) -> Option<Rc<RawPath>> {
+        if !self.raw.contains_key(name) {
+            let _ = self.search(name, near_file);
+        }
+        self.raw.get(name).cloned()
+    }
+
     /// Builds (or fetches) the model of a top-level path.
     pub fn build_top(&mut self, name: &str) -> Result<Option<Rc<Model>>, Abort> {
         let vars = if self.settings.check {

@@ -1,0 +1,326 @@
+//! Every editor feature in-process, on a small workspace of text files.
+
+use millpath_ide::features::*;
+use millpath_ide::{analyze, Pos, Workspace};
+use std::path::{Path, PathBuf};
+
+const PART: &str = "path 2001.1P {\n  start (0, 0)  M10x3 O2 T3 I1,5 B-0,2\n  end (30, 0)\n  sweep (0, 0) -> (5, 0)\n  mill (5, 0) -> (25, 0)\n  sweep (25, 0) -> (30, 0)\n}\n";
+const PROJECT: &str = "path 2010.1P {\n  start (0, 0)  M10x3 O2 T3 I1,5 B-0,2\n  end (50, 0)\n  sweep (0, 0) -> (10, 10)\n  sub (10, 10) -> (40, 10)  >2001.1P\n  sweep (40, 10) -> (10, 30)\n  sub (10, 30) -> (40, 30)  >2001.1P\n  sweep (40, 30) -> (50, 0)\n}\n";
+const NO_B: &str = "path 2030.1P {\n  start (0, 0)  M10x3 O2 T3 I1,5\n  end (20, 0)\n  mill (0, 0) -> (20, 0)\n}\n";
+
+fn setup() -> (tempfile::TempDir, Workspace) {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("millpath.toml"),
+        "feed = 300\nsweep_speed = 1000\nsweep_height = 10\n",
+    )
+    .unwrap();
+    std::fs::write(dir.path().join("2001.mpath"), PART).unwrap();
+    std::fs::write(dir.path().join("2010.mpath"), PROJECT).unwrap();
+    std::fs::write(dir.path().join("2030.mpath"), NO_B).unwrap();
+    let ws = Workspace {
+        roots: vec![dir.path().to_path_buf()],
+        ..Workspace::default()
+    };
+    (dir, ws)
+}
+
+fn at(src: &str, needle: &str) -> usize {
+    src.find(needle).unwrap_or_else(|| panic!("{needle}"))
+}
+
+fn p(dir: &Path, f: &str) -> PathBuf {
+    dir.join(f)
+}
+
+#[test]
+fn diagnostics_of_a_missing_b_value_with_range() {
+    let (dir, ws) = setup();
+    let a = analyze(&ws, &p(dir.path(), "2030.mpath"));
+    let d = a
+        .diagnostics
+        .iter()
+        .find(|d| d.message(millpath_core::Lang::En) == "B value missing")
+        .expect("B value missing");
+    match &d.origin {
+        millpath_core::Origin::Span {
+            start, end, line, ..
+        } => {
+            assert_eq!(*line, 4);
+            assert!(
+                NO_B[*start..*end].starts_with("mill (0, 0) -> (20, 0)"),
+                "{:?}",
+                &NO_B[*start..*end]
+            );
+        }
+        o => panic!("{o:?}"),
+    }
+    // unsaved buffers win over the disk
+    let mut ws2 = ws.clone();
+    ws2.overlays.insert(
+        p(dir.path(), "2030.mpath"),
+        NO_B.replace("I1,5", "I1,5 B-0,2"),
+    );
+    assert!(analyze(&ws2, &p(dir.path(), "2030.mpath"))
+        .diagnostics
+        .is_empty());
+}
+
+#[test]
+fn hover_shows_inherited_values_and_their_origin() {
+    let (dir, ws) = setup();
+    let a = analyze(&ws, &p(dir.path(), "2001.mpath"));
+    let h = hover(&a, &ws, at(PART, "mill (5")).unwrap();
+    assert!(
+        h.markdown.contains("| B | -0,2 | path start (line 2) |"),
+        "{}",
+        h.markdown
+    );
+    assert!(
+        h.markdown.contains("| F | 300 | millpath.toml"),
+        "{}",
+        h.markdown
+    );
+    assert!(
+        h.markdown.contains("| I | 1,5 | path start (line 2) |"),
+        "{}",
+        h.markdown
+    );
+    assert!(
+        h.markdown
+            .contains("passes: 1.500, 0.000, -0.200 · length 20.000 mm"),
+        "{}",
+        h.markdown
+    );
+    // a parameter letter
+    let h = hover(&a, &ws, at(PART, "I1,5")).unwrap();
+    assert!(
+        h.markdown.starts_with("**I** — infeed per pass"),
+        "{}",
+        h.markdown
+    );
+    // a subpath name
+    let a = analyze(&ws, &p(dir.path(), "2010.mpath"));
+    let h = hover(&a, &ws, at(PROJECT, ">2001.1P") + 2).unwrap();
+    assert!(
+        h.markdown.contains("T 3 · O 2 · M 10x3") && h.markdown.contains("size 30.000 mm"),
+        "{}",
+        h.markdown
+    );
+}
+
+#[test]
+fn preview_is_what_compile_writes() {
+    let (dir, ws) = setup();
+    let pv = preview(&ws, &p(dir.path(), "2010.mpath"), Some("2010.1P")).unwrap();
+    assert!(pv.errors.is_empty(), "{:?}", pv.errors);
+    let fs = millpath_core::OsFileSystem;
+    let mut settings = millpath_core::Settings {
+        feed: 300.0,
+        sweep_speed: 1000.0,
+        sweep_height: 10.0,
+        ..Default::default()
+    };
+    settings.lang = millpath_core::Lang::En;
+    let mut s = millpath_core::Session::new(settings, &fs).unwrap();
+    let outcome = millpath_core::compile_file(
+        &mut s,
+        &p(dir.path(), "2010.mpath"),
+        &millpath_core::banner(),
+    );
+    assert_eq!(outcome.outputs.len(), 1);
+    assert_eq!(pv.gcode, outcome.outputs[0].content);
+    assert_eq!(pv.stats.len(), 5);
+}
+
+#[test]
+fn inlay_hints_show_inherited_depths() {
+    let (dir, ws) = setup();
+    let a = analyze(&ws, &p(dir.path(), "2001.mpath"));
+    let hints = inlay_hints(&a);
+    assert_eq!(hints.len(), 1);
+    assert_eq!(hints[0].label, "⇐ B-0,2");
+    assert_eq!(
+        hints[0].offset,
+        at(PART, "mill (5, 0) -> (25, 0)") + "mill (5, 0) -> (25, 0)".len()
+    );
+}
+
+#[test]
+fn definition_and_references_of_subpath_names() {
+    let (dir, ws) = setup();
+    let a = analyze(&ws, &p(dir.path(), "2010.mpath"));
+    let defs = definition(&a, &ws, at(PROJECT, ">2001.1P") + 3);
+    assert_eq!(defs.len(), 1);
+    assert_eq!(defs[0].path, p(dir.path(), "2001.mpath"));
+    assert_eq!(defs[0].start, Pos { line: 1, col: 2 });
+    let part = analyze(&ws, &p(dir.path(), "2001.mpath"));
+    let refs = references(&part, &ws, at(PART, "2001.1P"));
+    assert_eq!(refs.len(), 2, "{refs:?}");
+    assert!(refs.iter().all(|r| r.path == p(dir.path(), "2010.mpath")));
+    assert_eq!(refs[0].start.line, 4);
+    // DXF files count as well
+    let mut w = millpath_dxf::writer::DxfWriter::new();
+    w.circle("2040_1P", Some("PHANTOM"), (0.0, 0.0), 0.5)
+        .line("2040_1P", Some("DASHDOT"), (0.0, 0.0), (30.0, 0.0))
+        .mtext("2040_1P", (15.0, 0.0), 0.3, &[">2001.1P"]);
+    std::fs::write(dir.path().join("2040.dxf"), w.finish()).unwrap();
+    assert_eq!(references(&part, &ws, at(PART, "2001.1P")).len(), 3);
+}
+
+#[test]
+fn symbols() {
+    let (dir, ws) = setup();
+    let a = analyze(&ws, &p(dir.path(), "2010.mpath"));
+    let syms = document_symbols(&a);
+    assert_eq!(syms.len(), 1);
+    assert_eq!(syms[0].name, "2010.1P");
+    assert_eq!(syms[0].children.len(), 7);
+    assert_eq!(syms[0].children[3].name, "sub (10, 10) -> (40, 10)");
+    let all = workspace_symbols(&ws, "20");
+    let names: Vec<&str> = all.iter().map(|s| s.0.as_str()).collect();
+    assert!(
+        names.contains(&"2001.1P") && names.contains(&"2010.1P") && names.contains(&"2030.1P"),
+        "{names:?}"
+    );
+    assert_eq!(workspace_symbols(&ws, "2001").len(), 1);
+}
+
+#[test]
+fn completion_of_letters_names_and_kinds() {
+    let (dir, mut ws) = setup();
+    let path = p(dir.path(), "2030.mpath");
+    let src = NO_B.replace("mill (0, 0) -> (20, 0)", "mill (0, 0) -> (20, 0)  ");
+    ws.overlays.insert(path.clone(), src.clone());
+    let a = analyze(&ws, &path);
+    let off = at(&src, "(20, 0)  ") + "(20, 0)  ".len();
+    let items = completion(&a, &ws, off);
+    let labels: Vec<&str> = items.iter().map(|c| c.label.as_str()).collect();
+    assert!(
+        labels.contains(&"B") && labels.contains(&"F") && labels.contains(&"N"),
+        "{labels:?}"
+    );
+    assert!(
+        !labels.contains(&"T") && !labels.contains(&"O"),
+        "T and O are not allowed on mill lines"
+    );
+    // subpath names after >
+    let src2 = PROJECT.replace(">2001.1P", ">20");
+    ws.overlays
+        .insert(p(dir.path(), "2010.mpath"), src2.clone());
+    let a = analyze(&ws, &p(dir.path(), "2010.mpath"));
+    let items = completion(&a, &ws, at(&src2, ">20") + 3);
+    assert!(items.iter().any(|c| c.label == "2001.1P"), "{items:?}");
+    // element kinds at the start of a line inside a path
+    let src3 = NO_B.replace("  end (20, 0)\n", "  end (20, 0)\n  \n");
+    ws.overlays.insert(path.clone(), src3.clone());
+    let a = analyze(&ws, &path);
+    let items = completion(&a, &ws, at(&src3, "  \n  mill") + 2);
+    assert!(items.iter().any(|c| c.label == "helix"), "{items:?}");
+}
+
+#[test]
+fn formatting() {
+    let (dir, mut ws) = setup();
+    let path = p(dir.path(), "2030.mpath");
+    ws.overlays.insert(
+        path.clone(),
+        "path 2030.1P {\n   mill (0,0)->(1,1)   B1\n}\n".into(),
+    );
+    let a = analyze(&ws, &path);
+    assert_eq!(
+        format(&a).unwrap(),
+        "path 2030.1P {\n  mill (0, 0) -> (1, 1)  B1\n}\n"
+    );
+    ws.overlays
+        .insert(path.clone(), "path X {\n  mill (0,\n}\n".into());
+    assert_eq!(format(&analyze(&ws, &path)), None);
+}
+
+#[test]
+fn code_actions_fix_missing_values_swapped_depths_and_dead_ends() {
+    let (dir, mut ws) = setup();
+    let path = p(dir.path(), "2030.mpath");
+    let a = analyze(&ws, &path);
+    let acts = code_actions(&a, 0, NO_B.len());
+    let add = acts
+        .iter()
+        .find(|x| x.title.starts_with("Add B0"))
+        .expect("add B");
+    let fixed = apply(NO_B, &add.edits);
+    assert!(
+        fixed.contains("start (0, 0)  M10x3 O2 T3 I1,5 B0\n"),
+        "{fixed}"
+    );
+    // D not above B
+    let swapped = NO_B.replace("I1,5", "I1,5 B1 D-1");
+    ws.overlays.insert(path.clone(), swapped.clone());
+    let a = analyze(&ws, &path);
+    let act = code_actions(&a, 0, swapped.len())
+        .into_iter()
+        .find(|x| x.title.contains("Swap"))
+        .expect("swap");
+    assert!(apply(&swapped, &act.edits).contains("B-1 D1"));
+    // a dead-end branch: a turn marker brings the tool back
+    let branch = "path 2030.1P {\n  start (0, 0)  M10x3 O2 T3 I1,5 B0\n  end (20, 0)\n  mill (0, 0) -> (10, 0)\n  mill (10, 0) -> (10, 5)  N1\n  sweep (10, 0) -> (20, 0)  N2\n}\n";
+    ws.overlays.insert(path.clone(), branch.into());
+    let a = analyze(&ws, &path);
+    let acts = code_actions(&a, 0, branch.len());
+    let turn = acts
+        .iter()
+        .find(|x| x.title.contains("turn marker"))
+        .expect("turn");
+    let fixed = apply(branch, &turn.edits);
+    assert!(fixed.contains("  turn (10, 5)\n"), "{fixed}");
+    ws.overlays.insert(path.clone(), fixed);
+    assert!(analyze(&ws, &path).diagnostics.is_empty());
+    // a path that ends away from its end marker: a sweep closes it
+    let open = "path 2030.1P {\n  start (0, 0)  M10x3 O2 T3 I1,5 B0\n  end (20, 0)\n  mill (0, 0) -> (10, 5)\n}\n";
+    ws.overlays.insert(path.clone(), open.into());
+    let a = analyze(&ws, &path);
+    let acts = code_actions(&a, 0, open.len());
+    let sweep = acts
+        .iter()
+        .find(|x| x.title.contains("sweep"))
+        .expect("sweep");
+    let fixed = apply(open, &sweep.edits);
+    assert!(fixed.contains("  sweep (10, 5) -> (20, 0)\n"), "{fixed}");
+    ws.overlays.insert(path.clone(), fixed);
+    assert!(analyze(&ws, &path).diagnostics.is_empty());
+}
+
+fn apply(src: &str, edits: &[TextEdit]) -> String {
+    let mut s = src.to_string();
+    let mut e = edits.to_vec();
+    e.sort_by_key(|x| std::cmp::Reverse(x.start));
+    for x in e {
+        s.replace_range(x.start..x.end, &x.text);
+    }
+    s
+}
+
+#[test]
+fn semantic_tokens_and_code_lenses() {
+    let (dir, ws) = setup();
+    let a = analyze(&ws, &p(dir.path(), "2001.mpath"));
+    let toks = semantic_tokens(&a);
+    assert!(toks.windows(2).all(|w| w[0].start <= w[1].start));
+    let kinds: Vec<(&str, u32)> = toks
+        .iter()
+        .map(|t| (&PART[t.start..t.end], t.kind))
+        .collect();
+    assert!(
+        kinds.contains(&("path", 0))
+            && kinds.contains(&("2001.1P", 5))
+            && kinds.contains(&("mill", 0))
+    );
+    assert!(kinds.contains(&("I", 2)) && kinds.contains(&("1,5", 3)) && kinds.contains(&("25", 1)));
+    let lenses = code_lenses(&a, &ws);
+    assert_eq!(lenses.len(), 1);
+    assert_eq!(lenses[0].path, "2001.1P");
+    assert!(
+        lenses[0].title.contains("Milling length: 60 mm"),
+        "{}",
+        lenses[0].title
+    );
+}
