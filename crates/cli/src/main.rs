@@ -132,6 +132,12 @@ enum Command {
         #[arg(required = true)]
         paths: Vec<PathBuf>,
     },
+    /// Language server over standard input and output (for editors)
+    Lsp {
+        /// Accepted for editor compatibility; stdio is the only transport
+        #[arg(long)]
+        stdio: bool,
+    },
     /// Drop-in replacement for the PathDxf2GCode command line
     #[command(disable_help_flag = true)]
     Pathdxf2gcode {
@@ -177,6 +183,10 @@ fn main() -> ExitCode {
             machine,
         } => run_text2dxf(&file, output.as_deref(), &machine),
         Command::Fmt { check, paths } => run_fmt(check, &paths),
+        Command::Lsp { .. } => {
+            millpath_lsp::run_stdio();
+            0
+        }
         Command::Pathdxf2gcode { args } => run_dxf2gcode(&args),
         Command::Pathgcodeadjustz { args } => run_adjustz_compat(&args),
     };
