@@ -51,6 +51,8 @@ struct Emitter<'a> {
     errors: Vec<Diagnostic>,
     /// Set after a skipped element: the position is no longer trustworthy.
     lost: bool,
+    /// Check only: no texts are made.
+    dry: bool,
 }
 
 /// Trace comment text: trimmed, `)` → `]`, `\` → `/`.
@@ -73,15 +75,22 @@ fn bt(b: bool) -> &'static str {
 type Skip = Diagnostic;
 
 impl<'a> Emitter<'a> {
-    fn comment(&mut self, indent: usize, text: &str) {
+    /// Texts are only made when they are written: a check needs the moves, not the words.
+    fn comment(&mut self, indent: usize, text: impl FnOnce() -> String) {
+        let text = if self.dry {
+            String::new()
+        } else {
+            as_comment(indent, &text())
+        };
         self.items.push(Item {
             kind: Kind::Comment,
-            text: as_comment(indent, text),
+            text,
             len: 0.0,
             feed: 0.0,
         });
     }
-    fn push(&mut self, kind: Kind, text: String, len: f64, feed: f64) {
+    fn push(&mut self, kind: Kind, text: impl FnOnce(&Self) -> String, len: f64, feed: f64) {
+        let text = if self.dry { String::new() } else { text(self) };
         self.items.push(Item {
             kind,
             text,
@@ -123,17 +132,17 @@ impl<'a> Emitter<'a> {
         if near(to, from) {
             return;
         }
-        self.comment(4, &format!("DrillOrPullZFromTo {} {}", f3(from), f3(to)));
+        self.comment(4, || format!("DrillOrPullZFromTo {} {}", f3(from), f3(to)));
         if to > th || to > from {
-            let t = format!("G00 Z{}", self.zexpr(to, xy));
+            let t = |e: &Emitter| format!("G00 Z{}", e.zexpr(to, xy));
             self.push(Kind::VSweep, t, (from - to).abs(), 0.0);
         } else {
             if from > th {
-                let t = format!("G00 Z{}", self.zexpr(th, xy));
+                let t = |e: &Emitter| format!("G00 Z{}", e.zexpr(th, xy));
                 self.push(Kind::VSweep, t, (from - th).abs(), 0.0);
             }
             if !near(to, th) {
-                let t = format!("G01 Z{}", self.zexpr(to, xy));
+                let t = |e: &Emitter| format!("G01 Z{}", e.zexpr(to, xy));
                 self.push(Kind::Drill, t, (th - to).abs(), feed);
             }
         }
@@ -144,7 +153,7 @@ impl<'a> Emitter<'a> {
         if !near(d, 0.0) {
             self.push(
                 Kind::HSweep,
-                format!("G00 X{} Y{}", f3(to.x), f3(to.y)),
+                |_: &Emitter| format!("G00 X{} Y{}", f3(to.x), f3(to.y)),
                 d,
                 0.0,
             );
@@ -153,14 +162,13 @@ impl<'a> Emitter<'a> {
 
     #[allow(clippy::too_many_arguments)]
     fn safe_sweep(&mut self, from: P3, to: P3, th: f64, s: f64, feed: f64, backtrack: bool) {
-        self.comment(
-            2,
-            &format!(
+        self.comment(2, || {
+            format!(
                 "SweepAndDrillSafelyFromTo {from} {to} s={} bt={}",
                 f3(s),
                 bt(backtrack)
-            ),
-        );
+            )
+        });
         if from.xy().near(to.xy()) {
             self.drill_or_pull(from.xy(), from.z, to.z, th, feed);
         } else {
@@ -176,28 +184,28 @@ impl<'a> Emitter<'a> {
         let (a, b) = (g.start(), g.end());
         match *g {
             Geom::Line { .. } => {
-                self.comment(
-                    2,
-                    &format!(
+                self.comment(2, || {
+                    format!(
                         "MillLine s={a} e={b} fr={} to={} bt={}",
                         f3(from_z),
                         f3(to_z),
                         bt(backtrack)
-                    ),
-                );
-                let t = format!(
-                    "G01 F{} X{} Y{} Z{}",
-                    f3(feed),
-                    f3(b.x),
-                    f3(b.y),
-                    self.zexpr(to_z, a)
-                );
+                    )
+                });
+                let t = |e: &Emitter| {
+                    format!(
+                        "G01 F{} X{} Y{} Z{}",
+                        f3(feed),
+                        f3(b.x),
+                        f3(b.y),
+                        e.zexpr(to_z, a)
+                    )
+                };
                 self.push(Kind::Mill, t, a.dist(b), feed);
             }
             Geom::Arc { c, r, a0, a1, ccw } => {
-                self.comment(
-                    2,
-                    &format!(
+                self.comment(2, || {
+                    format!(
                         "MillArc l={c} r={} a0={} a1={} fr={} to={} p0={a} p1={b} bt={}",
                         f3(r),
                         f3(a0),
@@ -205,18 +213,20 @@ impl<'a> Emitter<'a> {
                         f3(from_z),
                         f3(to_z),
                         bt(backtrack)
-                    ),
-                );
-                let t = format!(
-                    "{} F{} I{} J{} X{} Y{} Z{}",
-                    if ccw { "G03" } else { "G02" },
-                    f3(feed),
-                    f3(c.x - a.x),
-                    f3(c.y - a.y),
-                    f3(b.x),
-                    f3(b.y),
-                    self.zexpr(to_z, a)
-                );
+                    )
+                });
+                let t = |e: &Emitter| {
+                    format!(
+                        "{} F{} I{} J{} X{} Y{} Z{}",
+                        if ccw { "G03" } else { "G02" },
+                        f3(feed),
+                        f3(c.x - a.x),
+                        f3(c.y - a.y),
+                        f3(b.x),
+                        f3(b.y),
+                        e.zexpr(to_z, a)
+                    )
+                };
                 self.push(Kind::Mill, t, g.length(), feed);
             }
         }
@@ -244,7 +254,7 @@ impl<'a> Emitter<'a> {
         };
         for (k, piece) in ordered.iter().enumerate() {
             let step = STEPS[k % 4];
-            self.comment(2, &format!("Support.{step}"));
+            self.comment(2, || format!("Support.{step}"));
             let (fr, to) = match step {
                 "Bar" => (z.max(d), z.max(d)),
                 "Down" => (z.max(d), z.max(b)),
@@ -280,13 +290,13 @@ impl<'a> Emitter<'a> {
             return;
         };
         let label = format!("{} t={}", target.label(), t.describe());
-        self.comment(2, &format!("START Subpath {label}"));
+        self.comment(2, || format!("START Subpath {label}"));
         self.emit_model(Frame {
             model: target,
             t,
             h: fr.h + emb.h,
         });
-        self.comment(2, &format!("END Subpath {label}"));
+        self.comment(2, || format!("END Subpath {label}"));
     }
 
     fn sweep(&mut self, fr: Frame, s: &Sweep) -> Result<(), Skip> {
@@ -316,9 +326,9 @@ impl<'a> Emitter<'a> {
             ("B", d.b)
         };
         let depth = depth.ok_or_else(|| missing(key, &d.origin))?;
-        self.comment(2, &format!("Drill l={c}"));
+        self.comment(2, || format!("Drill l={c}"));
         if let Some(q) = &d.q {
-            self.comment(4, &format!("Q:{q}"));
+            self.comment(4, || format!("Q:{q}"));
         }
         self.drill_or_pull(c, self.pos.z, fr.h + depth, fr.h + p.t, d.f);
         self.pos.z = fr.h + depth;
@@ -340,12 +350,12 @@ impl<'a> Emitter<'a> {
         let r1 = hx.r - p.o / 2.0;
         self.drill_or_pull(self.pos.xy(), self.pos.z, th + p.o, th, hx.f);
         if let Some(q) = &hx.q {
-            self.comment(4, &format!("Q:{q}"));
+            self.comment(4, || format!("Q:{q}"));
         }
-        self.comment(2, &format!("MillHelix l={c} r={}", f3(hx.r)));
+        self.comment(2, || format!("MillHelix l={c} r={}", f3(hx.r)));
         self.push(
             Kind::HSweep,
-            format!("G00 X{} Y{}", f3(c.x), f3(c.y - r1)),
+            |_: &Emitter| format!("G00 X{} Y{}", f3(c.x), f3(c.y - r1)),
             r1,
             0.0,
         );
@@ -353,26 +363,30 @@ impl<'a> Emitter<'a> {
         let mut z = self.pos.z;
         let half = r1 * std::f64::consts::PI;
         while gt(done, bottom) {
-            self.comment(4, &format!("MillSemiCircle l={}", f3(d)));
+            self.comment(4, || format!("MillSemiCircle l={}", f3(d)));
             let b1 = (d - infeed / 2.0).max(bottom);
-            let t = format!(
-                "G02 F{} I0 J{} X{} Y{} Z{}",
-                f3(hx.f),
-                f3(r1),
-                f3(c.x),
-                f3(c.y + r1),
-                self.zexpr(b1, c)
-            );
+            let t = |e: &Emitter| {
+                format!(
+                    "G02 F{} I0 J{} X{} Y{} Z{}",
+                    f3(hx.f),
+                    f3(r1),
+                    f3(c.x),
+                    f3(c.y + r1),
+                    e.zexpr(b1, c)
+                )
+            };
             self.push(Kind::Mill, t, half, hx.f);
             let b0 = (b1 - infeed / 2.0).max(bottom);
-            let t = format!(
-                "G02 F{} I0 J{} X{} Y{} Z{}",
-                f3(hx.f),
-                f3(-r1),
-                f3(c.x),
-                f3(c.y - r1),
-                self.zexpr(b0, c)
-            );
+            let t = |e: &Emitter| {
+                format!(
+                    "G02 F{} I0 J{} X{} Y{} Z{}",
+                    f3(hx.f),
+                    f3(-r1),
+                    f3(c.x),
+                    f3(c.y - r1),
+                    e.zexpr(b0, c)
+                )
+            };
             self.push(Kind::Mill, t, half, hx.f);
             z = b0;
             done = d;
@@ -397,7 +411,7 @@ impl<'a> Emitter<'a> {
         if le(hx.r, p.o) {
             self.push(
                 Kind::HSweep,
-                format!("G00 X{} Y{}", f3(c.x), f3(c.y)),
+                |_: &Emitter| format!("G00 X{} Y{}", f3(c.x), f3(c.y)),
                 r1,
                 0.0,
             );
@@ -405,11 +419,11 @@ impl<'a> Emitter<'a> {
         } else {
             // deliberate difference: the pull-up height is raised by h as well
             let s = h + p.s;
-            let t = format!("G00 Z{}", self.zexpr(s, c));
+            let t = |e: &Emitter| format!("G00 Z{}", e.zexpr(s, c));
             self.push(Kind::VSweep, t, s - done, 0.0);
             self.push(
                 Kind::HSweep,
-                format!("G00 X{} Y{}", f3(c.x), f3(c.y)),
+                |_: &Emitter| format!("G00 X{} Y{}", f3(c.x), f3(c.y)),
                 r1,
                 0.0,
             );
@@ -557,7 +571,7 @@ impl<'a> Emitter<'a> {
         th: f64,
     ) {
         if let Some(q) = &seg.q {
-            self.comment(4, &format!("Q:{q}"));
+            self.comment(4, || format!("Q:{q}"));
         }
         // deliberate difference: the clamp uses the raised bottom (+h)
         let full_bottom = fr.h
@@ -738,14 +752,8 @@ fn prologue(banner: &str, file_name: &str, start: f64) -> Vec<String> {
 }
 
 /// Generates the G-code of a top-level model. `Err` holds the errors that make the output
-/// unusable (the caller writes nothing then).
-pub fn generate(
-    model: &Model,
-    file_name: &str,
-    banner: &str,
-    sweep_speed: f64,
-    lang: Lang,
-) -> Result<Generated, Vec<Diagnostic>> {
+/// The body moves of a model (dry: without texts), its probes and start height.
+fn emit(model: &Model, dry: bool) -> Result<(Vec<Item>, Vec<NamedProbe>, f64), Vec<Diagnostic>> {
     if model.elements.is_empty() {
         return Err(vec![Diagnostic::error(
             Msg::NoSegments,
@@ -764,8 +772,7 @@ pub fn generate(
             name: format!("#{}", 51 + i),
         })
         .collect();
-    let s = model.params.s;
-    let sx = s * START_OFFSET;
+    let sx = model.params.s * START_OFFSET;
     let mut em = Emitter {
         items: Vec::new(),
         pos: P3 {
@@ -776,8 +783,9 @@ pub fn generate(
         probes: &probes,
         errors: Vec::new(),
         lost: false,
+        dry,
     };
-    em.comment(2, &format!("Model {}", model.label()));
+    em.comment(2, || format!("Model {}", model.label()));
     em.emit_model(Frame {
         model,
         t: top,
@@ -786,7 +794,7 @@ pub fn generate(
     let last_z = em.pos.z;
     em.push(
         Kind::VSweep,
-        format!("G00 Z{}", f3(sx)),
+        |_: &Emitter| format!("G00 Z{}", f3(sx)),
         (last_z - sx).abs(),
         0.0,
     );
@@ -795,6 +803,27 @@ pub fn generate(
     }
     let mut items = em.items;
     optimize(&mut items);
+    Ok((items, probes, sx))
+}
+
+/// What a check needs: the emission errors and the statistics, without any text.
+pub fn check(model: &Model, sweep_speed: f64) -> Result<Stats, Vec<Diagnostic>> {
+    let (items, _, _) = emit(model, true)?;
+    Ok(Stats::of(&items, sweep_speed))
+}
+
+/// Generates the G-code of a top-level model. `Err` holds the errors that make the output
+/// unusable (the caller writes nothing then).
+pub fn generate(
+    model: &Model,
+    file_name: &str,
+    banner: &str,
+    sweep_speed: f64,
+    lang: Lang,
+) -> Result<Generated, Vec<Diagnostic>> {
+    let (items, probes, sx) = emit(model, false)?;
+    let s = model.params.s;
+
     let stats = Stats::of(&items, sweep_speed);
     let mut lines = prologue(banner, file_name, sx);
     lines.extend(items.into_iter().map(|i| i.text));

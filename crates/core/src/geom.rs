@@ -34,8 +34,41 @@ pub fn lt(a: f64, b: f64) -> bool {
 }
 
 /// Fixed-point text with three decimals; `-0.000` keeps its sign like the reference.
+/// Rounds the exact binary value half to even, exactly like `format!("{x:.3}")` (and .NET),
+/// but with integer arithmetic: the standard formatter's exact path is the hot spot of
+/// G-code generation.
 pub fn f3(x: f64) -> String {
-    format!("{x:.3}")
+    if !x.is_finite() || x.abs() >= 1e15 {
+        return format!("{x:.3}");
+    }
+    let bits = x.abs().to_bits();
+    let exp_bits = ((bits >> 52) & 0x7ff) as i32;
+    let frac = bits & ((1u64 << 52) - 1);
+    let (mant, exp) = if exp_bits == 0 {
+        (frac, -1074)
+    } else {
+        (frac | (1u64 << 52), exp_bits - 1075)
+    };
+    let num = mant as u128 * 1000;
+    let q: u128 = if exp >= 0 {
+        num << exp
+    } else {
+        let sh = (-exp) as u32;
+        if sh >= 127 {
+            0
+        } else {
+            let q = num >> sh;
+            let rem = num - (q << sh);
+            let half = 1u128 << (sh - 1);
+            if rem > half || (rem == half && q & 1 == 1) {
+                q + 1
+            } else {
+                q
+            }
+        }
+    };
+    let sign = if x.is_sign_negative() { "-" } else { "" };
+    format!("{sign}{}.{:03}", q / 1000, q % 1000)
 }
 
 /// Normalises an angle in degrees into [0, 360).
@@ -321,6 +354,44 @@ mod tests {
         assert!(P2::new(0.0, 0.0).near(P2::new(3e-5, 0.0)));
         assert!(!P2::new(0.0, 0.0).near(P2::new(4e-5, 0.0)));
         assert!(!near(f64::NAN, 1.0) && !ge(f64::NAN, 1.0) && !gt(f64::NAN, 1.0));
+    }
+
+    #[test]
+    fn fast_f3_equals_the_standard_formatter() {
+        let mut seed: u64 = 0x9E3779B97F4A7C15;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        for _ in 0..200_000 {
+            let r = next();
+            let x = match r % 4 {
+                0 => f64::from_bits(next()),
+                1 => (next() % 2_000_000) as f64 / 1000.0 - 1000.0 + (next() % 3) as f64 * 0.0005,
+                2 => ((next() % 100_000) as f64 - 50_000.0) / 16.0,
+                _ => (next() as i64 as f64) * 1e-12,
+            };
+            assert_eq!(f3(x), format!("{x:.3}"), "{x:e}");
+        }
+        for x in [
+            0.0625,
+            0.1875,
+            -0.0625,
+            1.0005,
+            2.0005,
+            0.0005,
+            -0.0005,
+            1e-300,
+            -1e-300,
+            5e-324,
+            999_999_999_999.999_5,
+            0.0,
+            -0.0,
+        ] {
+            assert_eq!(f3(x), format!("{x:.3}"), "{x:e}");
+        }
     }
 
     #[test]

@@ -85,14 +85,8 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
             match session.build_top(&name) {
                 Err(abort) => session.diags.push(abort),
                 Ok(None) => {}
-                Ok(Some(model)) => match generate(
-                    &model,
-                    &file_name,
-                    banner,
-                    session.settings.sweep_speed,
-                    session.lang(),
-                ) {
-                    Ok(g) => outcome.stats.push((name.clone(), g.stats)),
+                Ok(Some(model)) => match gcode::check(&model, session.settings.sweep_speed) {
+                    Ok(stats) => outcome.stats.push((name.clone(), stats)),
                     Err(errs) => errs.into_iter().for_each(|e| session.diags.push(e)),
                 },
             }

@@ -207,8 +207,18 @@ impl<'a> Session<'a> {
                 return Vec::new();
             }
         };
+        self.register(path, drawing.paths)
+    }
+
+    /// Registers the paths of a file read elsewhere (an editor's parsed buffer), as if
+    /// `load_file` had read it; returns their names in drawing order.
+    pub fn add_paths(&mut self, path: &Path, paths: Vec<RawPath>) -> Vec<String> {
+        self.register(path, paths)
+    }
+
+    fn register(&mut self, path: &Path, paths: Vec<RawPath>) -> Vec<String> {
         let mut names = Vec::new();
-        for p in drawing.paths {
+        for p in paths {
             names.push(p.name.clone());
             match self.raw.get(&p.name) {
                 Some(existing) if existing.file.path != p.file.path => {
@@ -1118,11 +1128,40 @@ pub fn traverse(raw: &RawPath, start: P2, end: P2, diags: &mut Diags) -> Vec<Ste
         }
     };
     let is_turn = |p: P2| raw.turns.iter().any(|m| m.pos.near(p));
+    // end points on a grid much coarser than the point tolerance: a point's candidates are
+    // in its cell or a neighbour cell (keeps the walk linear on large paths)
+    const CELL: f64 = 1e-3;
+    let cell = |p: P2| ((p.x / CELL).floor() as i64, (p.y / CELL).floor() as i64);
+    let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
+    for (i, s) in segs.iter().enumerate() {
+        let (a, b) = (s.shape.start(), s.shape.end());
+        grid.entry(cell(a)).or_default().push(i);
+        if cell(b) != cell(a) {
+            grid.entry(cell(b)).or_default().push(i);
+        }
+    }
+    let candidates = |taken: &[bool], p: P2| -> Vec<usize> {
+        let (cx, cy) = cell(p);
+        let mut v: Vec<usize> = Vec::new();
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                if let Some(list) = grid.get(&(cx + dx, cy + dy)) {
+                    v.extend(
+                        list.iter()
+                            .copied()
+                            .filter(|&i| !taken[i] && at(&segs[i], p)),
+                    );
+                }
+            }
+        }
+        v.sort_unstable();
+        v.dedup();
+        v
+    };
+    let mut untaken = segs.len();
     loop {
-        let remaining = taken.iter().any(|t| !t);
-        let cands: Vec<usize> = (0..segs.len())
-            .filter(|&i| !taken[i] && at(&segs[i], p))
-            .collect();
+        let remaining = untaken > 0;
+        let cands = candidates(&taken, p);
         if cands.is_empty() {
             let must_return = if remaining { true } else { !p.near(end) };
             if must_return && is_turn(p) && !trail.is_empty() {
@@ -1139,7 +1178,7 @@ pub fn traverse(raw: &RawPath, start: P2, end: P2, diags: &mut Diags) -> Vec<Ste
                     });
                     let sh = &segs[step.index].shape;
                     p = if step.reversed { sh.end() } else { sh.start() };
-                    let open = (0..segs.len()).any(|i| !taken[i] && at(&segs[i], p));
+                    let open = !candidates(&taken, p).is_empty();
                     if open || (!remaining && p.near(end)) {
                         break;
                     }
@@ -1187,6 +1226,7 @@ pub fn traverse(raw: &RawPath, start: P2, end: P2, diags: &mut Diags) -> Vec<Ste
             })
             .unwrap_or(&cands[0]);
         taken[best] = true;
+        untaken -= 1;
         let s = &segs[best];
         let reversed = matches!(s.shape, Shape::Path(_)) && s.shape.end().near(p);
         out.push(Step {

@@ -21,6 +21,41 @@ pub fn line_col(src: &str, offset: usize) -> (usize, usize) {
     (line, col)
 }
 
+/// Line starts of a text, for many offset → line:column look-ups.
+pub struct Lines<'a> {
+    src: &'a str,
+    starts: Vec<usize>,
+}
+
+impl<'a> Lines<'a> {
+    pub fn new(src: &'a str) -> Lines<'a> {
+        let mut starts = vec![0];
+        starts.extend(src.match_indices('\n').map(|(i, _)| i + 1));
+        Lines { src, starts }
+    }
+    /// 1-based line and column (in characters) of a byte offset.
+    pub fn line_col(&self, offset: usize) -> (usize, usize) {
+        let offset = offset.min(self.src.len());
+        let line = self.starts.partition_point(|&s| s <= offset);
+        let start = self.starts[line - 1];
+        let mut end = offset;
+        while !self.src.is_char_boundary(end) {
+            end -= 1;
+        }
+        (line, self.src[start..end].chars().count() + 1)
+    }
+    pub fn origin(&self, file: &Arc<FileRef>, span: &Span) -> Origin {
+        let (line, col) = self.line_col(span.start);
+        Origin::Span {
+            file: file.clone(),
+            start: span.start,
+            end: span.end,
+            line,
+            col,
+        }
+    }
+}
+
 pub fn span_origin(src: &str, file: &Arc<FileRef>, span: &Span) -> Origin {
     let (line, col) = line_col(src, span.start);
     Origin::Span {
@@ -44,10 +79,22 @@ pub fn text_objects(
     diags: &mut Diags,
 ) -> Result<TextDrawing, Diagnostic> {
     let (ast, errors) = parse(src);
+    objects_of(&ast, errors, src, file, diags)
+}
+
+/// Drawn objects of an already parsed text (editors parse once and use the tree twice).
+pub fn objects_of(
+    ast: &millpath_syntax::File,
+    errors: Vec<millpath_syntax::SyntaxError>,
+    src: &str,
+    file: &Arc<FileRef>,
+    diags: &mut Diags,
+) -> Result<TextDrawing, Diagnostic> {
+    let lines = Lines::new(src);
     for e in errors {
         diags.error(
             Msg::SyntaxError,
-            span_origin(src, file, &e.span),
+            lines.origin(file, &e.span),
             args![e.message],
         );
     }
@@ -55,7 +102,7 @@ pub fn text_objects(
     let mut declared = Vec::new();
     for path in ast.paths() {
         for el in path.elements() {
-            let origin = span_origin(src, file, &el.span);
+            let origin = lines.origin(file, &el.span);
             let linetype = el.kind.value.linetype().to_string();
             let shape = match el.geometry.value {
                 Geometry::Point(p) => Shape::Circle {
@@ -87,7 +134,7 @@ pub fn text_objects(
                 let joined: Vec<&str> = el.params.iter().map(|p| p.value.as_str()).collect();
                 Some(ParamText::parse(
                     &joined.join(" "),
-                    span_origin(src, file, &span),
+                    lines.origin(file, &span),
                 )?)
             };
             if let Kind::Drill(_) | Kind::Helix(_) = el.kind.value {
@@ -208,5 +255,9 @@ mod tests {
         let e = text_objects("path X {\n  start (0, 0)  B1 B2\n}\n", &file, &mut d).unwrap_err();
         assert_eq!(e.msg, Msg::DuplicateParameter);
         assert_eq!(line_col("ab\ncd", 4), (2, 2));
+        let l = Lines::new("ab\nüd\n");
+        assert_eq!(l.line_col(5), (2, 2));
+        assert_eq!(l.line_col(0), (1, 1));
+        assert_eq!(l.line_col(7), (3, 1));
     }
 }

@@ -9,7 +9,7 @@ use millpath_core::config::{self, FileConfig, Have};
 use millpath_core::diag::{Diagnostic, FileRef, Origin};
 use millpath_core::drawing::{build_paths, DrawnObject, RawPath};
 use millpath_core::session::{is_text_file, FileSystem};
-use millpath_core::text_front::text_objects;
+use millpath_core::text_front::objects_of;
 use millpath_core::{compile_file, Diags, Session, Settings};
 use millpath_syntax::{parse, File};
 use std::collections::HashMap;
@@ -168,25 +168,42 @@ pub struct Analysis {
 pub fn analyze(ws: &Workspace, path: &Path) -> Analysis {
     let src = ws.text(path).unwrap_or_default();
     let settings = ws.settings_for(path);
-    let (ast, _) = parse(&src);
+    let (ast, syntax_errors) = parse(&src);
     let file = FileRef::new(path.to_path_buf());
     let mut local = Diags::default();
-    let objects = text_objects(&src, &file, &mut local)
-        .map(|t| t.objects)
-        .unwrap_or_default();
     let s = &settings.settings;
-    let names = millpath_core::names::Patterns::new(&s.path_pattern, &s.file_pattern);
-    let paths = match &names {
-        Ok(p) => build_paths(&objects, &file, &p.path_cs, &s.path_pattern, &mut local)
-            .unwrap_or_default(),
+    let mut abort = None;
+    let text = match objects_of(&ast, syntax_errors, &src, &file, &mut local) {
+        Ok(t) => t,
+        Err(d) => {
+            abort = Some(d);
+            Default::default()
+        }
+    };
+    let paths = match millpath_core::names::Patterns::new(&s.path_pattern, &s.file_pattern) {
+        Ok(p) => build_paths(
+            &text.objects,
+            &file,
+            &p.path_cs,
+            &s.path_pattern,
+            &mut local,
+        )
+        .unwrap_or_else(|d| {
+            abort = Some(d);
+            Vec::new()
+        }),
         Err(_) => Vec::new(),
     };
-    let mut diagnostics = Vec::new();
+    text.check_declared_kinds(&paths, &mut local);
+    let mut diagnostics = local.list;
+    diagnostics.extend(abort);
+    // the compiler's check over every path, with this buffer as parsed above
     let fs = ws.fs();
     let mut check = settings.settings.clone();
     check.check = true;
     match Session::new(check, &fs) {
         Ok(mut session) => {
+            session.add_paths(path, paths.clone());
             compile_file(&mut session, path, &millpath_core::banner());
             diagnostics.extend(session.diags.list.into_iter().filter(|d| in_file(d, path)));
         }
@@ -206,7 +223,7 @@ pub fn analyze(ws: &Workspace, path: &Path) -> Analysis {
         index,
         ast,
         diagnostics,
-        objects,
+        objects: text.objects,
         paths,
         settings,
     }
