@@ -22,7 +22,7 @@ pub fn big_file(n: usize, infeed: &str) -> String {
         lines.push(format!("  {kind} ({x}, {y0}) -> ({}, {y1})\n", x + 1.0));
         x += 1.0;
     }
-    let y_end = if segments % 2 == 0 { 0.0 } else { 5.0 };
+    let y_end = if segments.is_multiple_of(2) { 0.0 } else { 5.0 };
     s.push_str(&format!("  end ({x}, {y_end})\n"));
     for l in lines {
         s.push_str(&l);
