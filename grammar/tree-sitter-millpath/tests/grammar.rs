@@ -201,3 +201,16 @@ fn the_test_file_covers_every_kind() {
         );
     }
 }
+
+#[test]
+fn neovim_uses_the_same_highlight_queries() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let ours = std::fs::read_to_string(root.join("queries/highlights.scm")).unwrap();
+    let nvim =
+        std::fs::read_to_string(root.join("../../editors/neovim/queries/millpath/highlights.scm"))
+            .unwrap();
+    assert_eq!(ours, nvim, "copy grammar/tree-sitter-millpath/queries/highlights.scm to editors/neovim/queries/millpath/");
+    // and the queries compile against the grammar
+    tree_sitter::Query::new(&tree_sitter_millpath::LANGUAGE.into(), &ours)
+        .expect("highlight query");
+}

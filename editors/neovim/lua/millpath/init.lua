@@ -1,0 +1,179 @@
+-- millpath for Neovim: filetype, language server (`millpath lsp`), G-code preview, DXF to text.
+local M = {}
+
+M.config = {
+  -- the server command
+  cmd = { 'millpath', 'lsp' },
+  -- machine settings sent as initialization options; they override millpath.toml
+  -- (feed, sweep_speed, sweep_height, probe_feed, search_dirs, lang, ...)
+  settings = {},
+  -- a compiled tree-sitter parser for highlighting (see the README); nil: none
+  parser_path = nil,
+}
+
+local function root_dir(fname)
+  local found = vim.fs and vim.fs.find and vim.fs.find({ 'millpath.toml', '.git' }, { upward = true, path = vim.fs.dirname(fname) })[1]
+  if found then
+    return vim.fs.dirname(found)
+  end
+  return vim.fn.fnamemodify(fname, ':p:h')
+end
+
+local function client_for(bufnr)
+  local get = vim.lsp.get_clients or vim.lsp.get_active_clients
+  for _, c in ipairs(get({ bufnr = bufnr })) do
+    if c.name == 'millpath' then
+      return c
+    end
+  end
+end
+
+--- Sets up the language server for *.mpath buffers (Neovim 0.11: vim.lsp.config/enable;
+--- 0.10: vim.lsp.start; older: vim.lsp.start_client).
+function M.setup(opts)
+  M.config = vim.tbl_deep_extend('force', M.config, opts or {})
+  local cfg = M.config
+  if cfg.parser_path and vim.treesitter and vim.treesitter.language and vim.treesitter.language.add then
+    pcall(vim.treesitter.language.add, 'millpath', { path = cfg.parser_path })
+  end
+  if vim.lsp.config and vim.lsp.enable then
+    vim.lsp.config('millpath', {
+      cmd = cfg.cmd,
+      filetypes = { 'millpath' },
+      root_markers = { 'millpath.toml', '.git' },
+      init_options = cfg.settings,
+    })
+    vim.lsp.enable('millpath')
+    return
+  end
+  vim.api.nvim_create_autocmd('FileType', {
+    pattern = 'millpath',
+    callback = function(ev)
+      local name = vim.api.nvim_buf_get_name(ev.buf)
+      local conf = { name = 'millpath', cmd = cfg.cmd, root_dir = root_dir(name), init_options = cfg.settings }
+      if vim.lsp.start then
+        vim.lsp.start(conf, { bufnr = ev.buf })
+      else
+        local id = vim.lsp.start_client(conf)
+        if id then
+          vim.lsp.buf_attach_client(ev.buf, id)
+        end
+      end
+    end,
+  })
+end
+
+--- The name of the path block around the cursor (or the first one).
+local function path_at_cursor(bufnr)
+  local row = vim.api.nvim_win_get_cursor(0)[1]
+  local lines = vim.api.nvim_buf_get_lines(bufnr, 0, -1, false)
+  local name
+  for i = row, 1, -1 do
+    name = lines[i] and lines[i]:match('^%s*path%s+(%S+)%s*{')
+    if name then
+      return name
+    end
+  end
+  for _, l in ipairs(lines) do
+    name = l:match('^%s*path%s+(%S+)%s*{')
+    if name then
+      return name
+    end
+  end
+end
+
+local function show(buf, result, err)
+  local text
+  if err then
+    text = '(millpath: ' .. (err.message or vim.inspect(err)) .. ')'
+  else
+    text = result.gcode
+  end
+  local lines = vim.split(text, '\n', { plain = true })
+  if lines[#lines] == '' then
+    table.remove(lines)
+  end
+  vim.bo[buf].modifiable = true
+  vim.api.nvim_buf_set_lines(buf, 0, -1, false, lines)
+  vim.bo[buf].modifiable = false
+end
+
+--- Opens (or refreshes) the G-code preview of the path under the cursor in a split that
+--- follows every edit of the source buffer.
+function M.preview(name)
+  local src = vim.api.nvim_get_current_buf()
+  local client = client_for(src)
+  if not client then
+    vim.notify('millpath: the language server is not running for this buffer', vim.log.levels.WARN)
+    return
+  end
+  name = name or path_at_cursor(src)
+  local buf = vim.b[src].millpath_preview
+  if not buf or not vim.api.nvim_buf_is_valid(buf) then
+    buf = vim.api.nvim_create_buf(false, true)
+    vim.bo[buf].filetype = 'gcode'
+    vim.bo[buf].bufhidden = 'wipe'
+    vim.api.nvim_buf_set_name(buf, 'millpath://preview/' .. (name or '') .. '/' .. buf)
+    vim.b[src].millpath_preview = buf
+    local win = vim.api.nvim_get_current_win()
+    vim.cmd('vsplit')
+    vim.api.nvim_win_set_buf(0, buf)
+    vim.api.nvim_set_current_win(win)
+  end
+  local function refresh()
+    local params = { textDocument = { uri = vim.uri_from_bufnr(src) }, path = name }
+    local function handler(err, result)
+      if vim.api.nvim_buf_is_valid(buf) then
+        show(buf, result, err)
+      end
+    end
+    if client.request and vim.fn.has('nvim-0.11') == 1 then
+      client:request('millpath/gcodePreview', params, handler, src)
+    else
+      client.request('millpath/gcodePreview', params, handler, src)
+    end
+  end
+  refresh()
+  if not vim.b[src].millpath_preview_follow then
+    vim.b[src].millpath_preview_follow = true
+    local pending = false
+    -- on_lines sees every change (typing, API edits, undo); refresh once per burst, after the
+    -- server has the new text
+    vim.api.nvim_buf_attach(src, false, {
+      on_lines = function()
+        if not vim.api.nvim_buf_is_valid(buf) then
+          return true
+        end
+        if not pending then
+          pending = true
+          vim.defer_fn(function()
+            pending = false
+            refresh()
+          end, 80)
+        end
+      end,
+    })
+  end
+  return buf
+end
+
+--- Opens a DXF drawing as MillPath text in a new buffer.
+function M.dxf_to_text(file)
+  file = file or vim.api.nvim_buf_get_name(0)
+  local exe = M.config.cmd[1]
+  local out = vim.fn.system({ exe, 'dxf2text', file })
+  if vim.v.shell_error ~= 0 then
+    vim.notify('millpath dxf2text: ' .. out, vim.log.levels.ERROR)
+    return
+  end
+  vim.cmd('enew')
+  local lines = vim.split(out, '\n', { plain = true })
+  if lines[#lines] == '' then
+    table.remove(lines)
+  end
+  vim.api.nvim_buf_set_lines(0, 0, -1, false, lines)
+  vim.bo.filetype = 'millpath'
+  vim.api.nvim_buf_set_name(0, vim.fn.fnamemodify(file, ':r') .. '.mpath')
+end
+
+return M

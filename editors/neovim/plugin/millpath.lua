@@ -1,0 +1,13 @@
+-- Commands of the millpath plugin; the language server starts with require('millpath').setup().
+if vim.g.loaded_millpath then
+  return
+end
+vim.g.loaded_millpath = true
+
+vim.api.nvim_create_user_command('MillpathPreview', function(args)
+  require('millpath').preview(args.args ~= '' and args.args or nil)
+end, { nargs = '?', desc = 'G-code of the path under the cursor, in a split that follows edits' })
+
+vim.api.nvim_create_user_command('MillpathDxfToText', function(args)
+  require('millpath').dxf_to_text(args.args ~= '' and args.args or nil)
+end, { nargs = '?', complete = 'file', desc = 'Open a DXF drawing as MillPath text' })

