@@ -27,6 +27,49 @@ pub struct Item {
     pub text: String,
     pub len: f64,
     pub feed: f64,
+    /// Where a move goes (axes it does not name stay); for the toolpath view.
+    pub target: Target,
+    /// Index into the emitter's element origins.
+    pub source: Option<u32>,
+}
+
+/// The end of a move: the axes it sets, and for arcs the centre and direction.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Target {
+    pub x: Option<f64>,
+    pub y: Option<f64>,
+    pub z: Option<f64>,
+    pub arc: Option<(P2, bool)>,
+}
+
+impl Target {
+    fn z(z: f64) -> Target {
+        Target {
+            z: Some(z),
+            ..Default::default()
+        }
+    }
+    fn xy(x: f64, y: f64) -> Target {
+        Target {
+            x: Some(x),
+            y: Some(y),
+            ..Default::default()
+        }
+    }
+    fn xyz(p: P2, z: f64) -> Target {
+        Target {
+            x: Some(p.x),
+            y: Some(p.y),
+            z: Some(z),
+            arc: None,
+        }
+    }
+    fn arc(p: P2, z: f64, c: P2, ccw: bool) -> Target {
+        Target {
+            arc: Some((c, ccw)),
+            ..Target::xyz(p, z)
+        }
+    }
 }
 
 /// A probe with its name, for Z expressions.
@@ -53,6 +96,9 @@ struct Emitter<'a> {
     lost: bool,
     /// Check only: no texts are made.
     dry: bool,
+    /// Origins of the elements emitted so far, and the current one.
+    sources: Vec<Origin>,
+    source: Option<u32>,
 }
 
 /// Trace comment text: trimmed, `)` → `]`, `\` → `/`.
@@ -82,21 +128,33 @@ impl<'a> Emitter<'a> {
         } else {
             as_comment(indent, &text())
         };
+        let source = self.source;
         self.items.push(Item {
             kind: Kind::Comment,
             text,
             len: 0.0,
             feed: 0.0,
+            target: Target::default(),
+            source,
         });
     }
     fn push(&mut self, kind: Kind, text: impl FnOnce(&Self) -> String, len: f64, feed: f64) {
         let text = if self.dry { String::new() } else { text(self) };
+        let source = self.source;
         self.items.push(Item {
             kind,
             text,
             len,
             feed,
+            target: Target::default(),
+            source,
         });
+    }
+    /// Sets where the last move goes.
+    fn to(&mut self, t: Target) {
+        if let Some(it) = self.items.last_mut() {
+            it.target = t;
+        }
     }
 
     /// `F3(z)`, or with probes `F3(z)(=F3(z)+w*[#n-TH]…)` weighted by the 4 nearest probes.
@@ -136,14 +194,17 @@ impl<'a> Emitter<'a> {
         if to > th || to > from {
             let t = |e: &Emitter| format!("G00 Z{}", e.zexpr(to, xy));
             self.push(Kind::VSweep, t, (from - to).abs(), 0.0);
+            self.to(Target::z(to));
         } else {
             if from > th {
                 let t = |e: &Emitter| format!("G00 Z{}", e.zexpr(th, xy));
                 self.push(Kind::VSweep, t, (from - th).abs(), 0.0);
+                self.to(Target::z(th));
             }
             if !near(to, th) {
                 let t = |e: &Emitter| format!("G01 Z{}", e.zexpr(to, xy));
                 self.push(Kind::Drill, t, (th - to).abs(), feed);
+                self.to(Target::z(to));
             }
         }
     }
@@ -157,6 +218,7 @@ impl<'a> Emitter<'a> {
                 d,
                 0.0,
             );
+            self.to(Target::xy(to.x, to.y));
         }
     }
 
@@ -202,6 +264,7 @@ impl<'a> Emitter<'a> {
                     )
                 };
                 self.push(Kind::Mill, t, a.dist(b), feed);
+                self.to(Target::xyz(b, to_z));
             }
             Geom::Arc { c, r, a0, a1, ccw } => {
                 self.comment(2, || {
@@ -228,6 +291,7 @@ impl<'a> Emitter<'a> {
                     )
                 };
                 self.push(Kind::Mill, t, g.length(), feed);
+                self.to(Target::arc(b, to_z, c, ccw));
             }
         }
         self.pos = b.with_z(to_z);
@@ -267,6 +331,8 @@ impl<'a> Emitter<'a> {
 
     fn emit_model(&mut self, fr: Frame) {
         for e in &fr.model.elements {
+            self.sources.push(element_origin(e).clone());
+            self.source = Some(self.sources.len() as u32 - 1);
             let r = match e {
                 Element::Chain(c) => self.chain(fr, c),
                 Element::Drill(d) => self.drill(fr, d),
@@ -359,6 +425,7 @@ impl<'a> Emitter<'a> {
             r1,
             0.0,
         );
+        self.to(Target::xy(c.x, c.y - r1));
         let (mut d, mut done) = (th, th);
         let mut z = self.pos.z;
         let half = r1 * std::f64::consts::PI;
@@ -376,6 +443,7 @@ impl<'a> Emitter<'a> {
                 )
             };
             self.push(Kind::Mill, t, half, hx.f);
+            self.to(Target::arc(P2::new(c.x, c.y + r1), b1, c, false));
             let b0 = (b1 - infeed / 2.0).max(bottom);
             let t = |e: &Emitter| {
                 format!(
@@ -388,6 +456,7 @@ impl<'a> Emitter<'a> {
                 )
             };
             self.push(Kind::Mill, t, half, hx.f);
+            self.to(Target::arc(P2::new(c.x, c.y - r1), b0, c, false));
             z = b0;
             done = d;
             d -= infeed;
@@ -415,18 +484,21 @@ impl<'a> Emitter<'a> {
                 r1,
                 0.0,
             );
+            self.to(Target::xy(c.x, c.y));
             self.pos = c.with_z(self.pos.z);
         } else {
             // deliberate difference: the pull-up height is raised by h as well
             let s = h + p.s;
             let t = |e: &Emitter| format!("G00 Z{}", e.zexpr(s, c));
             self.push(Kind::VSweep, t, s - done, 0.0);
+            self.to(Target::z(s));
             self.push(
                 Kind::HSweep,
                 |_: &Emitter| format!("G00 X{} Y{}", f3(c.x), f3(c.y)),
                 r1,
                 0.0,
             );
+            self.to(Target::xy(c.x, c.y));
             self.pos = c.with_z(s);
         }
         Ok(())
@@ -595,6 +667,16 @@ impl<'a> Emitter<'a> {
     }
 }
 
+fn element_origin(e: &Element) -> &Origin {
+    match e {
+        Element::Chain(c) => &c.origin,
+        Element::Drill(d) => &d.origin,
+        Element::Helix(h) => &h.origin,
+        Element::Sweep(s) => &s.origin,
+        Element::Subpath(s) => &s.origin,
+    }
+}
+
 fn missing(key: &str, origin: &Origin) -> Diagnostic {
     Diagnostic::error(Msg::ValueMissing, origin.clone(), args![key])
 }
@@ -753,7 +835,7 @@ fn prologue(banner: &str, file_name: &str, start: f64) -> Vec<String> {
 
 /// Generates the G-code of a top-level model. `Err` holds the errors that make the output
 /// The body moves of a model (dry: without texts), its probes and start height.
-fn emit(model: &Model, dry: bool) -> Result<(Vec<Item>, Vec<NamedProbe>, f64), Vec<Diagnostic>> {
+fn emit(model: &Model, dry: bool) -> Result<Emitted, Vec<Diagnostic>> {
     if model.elements.is_empty() {
         return Err(vec![Diagnostic::error(
             Msg::NoSegments,
@@ -784,6 +866,8 @@ fn emit(model: &Model, dry: bool) -> Result<(Vec<Item>, Vec<NamedProbe>, f64), V
         errors: Vec::new(),
         lost: false,
         dry,
+        sources: Vec::new(),
+        source: None,
     };
     em.comment(2, || format!("Model {}", model.label()));
     em.emit_model(Frame {
@@ -803,13 +887,84 @@ fn emit(model: &Model, dry: bool) -> Result<(Vec<Item>, Vec<NamedProbe>, f64), V
     }
     let mut items = em.items;
     optimize(&mut items);
-    Ok((items, probes, sx))
+    Ok(Emitted {
+        items,
+        sources: em.sources,
+        probes,
+        sx,
+    })
+}
+
+struct Emitted {
+    items: Vec<Item>,
+    sources: Vec<Origin>,
+    probes: Vec<NamedProbe>,
+    sx: f64,
+}
+
+/// One move of the toolpath view.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Move {
+    /// `rapid`, `mill` or `drill`.
+    pub kind: &'static str,
+    pub from: P3,
+    pub to: P3,
+    /// Centre and direction (counter-clockwise?) of arcs.
+    pub arc: Option<(P2, bool)>,
+    /// The element the move comes from.
+    pub source: Option<Origin>,
+}
+
+/// The moves of a path as the machine makes them (after the optimizer), and its probes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Toolpath {
+    pub moves: Vec<Move>,
+    pub probes: Vec<(String, P2)>,
+}
+
+/// The toolpath of a top-level model.
+pub fn toolpath(model: &Model) -> Result<Toolpath, Vec<Diagnostic>> {
+    let e = emit(model, true)?;
+    let mut pos = P3 {
+        x: 0.0,
+        y: 0.0,
+        z: e.sx,
+    };
+    let mut moves = Vec::new();
+    for it in &e.items {
+        let kind = match it.kind {
+            Kind::HSweep | Kind::VSweep => "rapid",
+            Kind::Mill => "mill",
+            Kind::Drill => "drill",
+            Kind::Comment => continue,
+        };
+        let t = it.target;
+        let to = P3 {
+            x: t.x.unwrap_or(pos.x),
+            y: t.y.unwrap_or(pos.y),
+            z: t.z.unwrap_or(pos.z),
+        };
+        let source = it.source.and_then(|i| e.sources.get(i as usize).cloned());
+        moves.push(Move {
+            kind,
+            from: pos,
+            to,
+            arc: t.arc,
+            source,
+        });
+        pos = to;
+    }
+    let probes = e
+        .probes
+        .iter()
+        .map(|p| (p.name.clone(), p.placed.pos))
+        .collect();
+    Ok(Toolpath { moves, probes })
 }
 
 /// What a check needs: the emission errors and the statistics, without any text.
 pub fn check(model: &Model, sweep_speed: f64) -> Result<Stats, Vec<Diagnostic>> {
-    let (items, _, _) = emit(model, true)?;
-    Ok(Stats::of(&items, sweep_speed))
+    Ok(Stats::of(&emit(model, true)?.items, sweep_speed))
 }
 
 /// Generates the G-code of a top-level model. `Err` holds the errors that make the output
@@ -821,7 +976,9 @@ pub fn generate(
     sweep_speed: f64,
     lang: Lang,
 ) -> Result<Generated, Vec<Diagnostic>> {
-    let (items, probes, sx) = emit(model, false)?;
+    let Emitted {
+        items, probes, sx, ..
+    } = emit(model, false)?;
     let s = model.params.s;
 
     let stats = Stats::of(&items, sweep_speed);

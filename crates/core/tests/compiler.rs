@@ -2,7 +2,7 @@
 
 mod support;
 
-use millpath_core::diag::{Lang, Msg};
+use millpath_core::diag::{Lang, Msg, Origin};
 use support::*;
 
 /// The walk-through of reference-output.md §19: one line, T2 I1.2 B−0.3, S5.
@@ -952,4 +952,41 @@ fn text_files_compile_and_declared_circle_kinds_are_checked() {
     assert!(run
         .output("1000.1P_Milling.gcode")
         .contains("MillHelix l=[10.000 0.000] r=2.000"));
+}
+
+#[test]
+fn toolpath_moves_follow_the_gcode() {
+    let mut d = Drawing::new();
+    d.start(L, (10.0, 20.0), "O2 T2 I1,2 B-0,3")
+        .end(L, (67.687, 20.0))
+        .line(L, "CONTINUOUS", (10.0, 20.0), (67.687, 20.0), "")
+        .circle(L, "PHANTOM", (20.0, 30.0), 3.0, "");
+    let mut fs = millpath_core::MemFileSystem::default();
+    fs.add("1000.1P.dxf", d.dxf().into_bytes());
+    let mut s = millpath_core::Session::new(
+        millpath_core::Settings {
+            sweep_height: 5.0,
+            ..settings()
+        },
+        &fs,
+    )
+    .unwrap();
+    s.load_file(std::path::Path::new("1000.1P.dxf"));
+    let model = s.build_top("1000.1P").unwrap().unwrap();
+    let tp = millpath_core::gcode::toolpath(&model).unwrap();
+    let kinds: Vec<&str> = tp.moves.iter().map(|m| m.kind).collect();
+    assert_eq!(
+        kinds,
+        ["rapid", "drill", "mill", "drill", "mill", "rapid", "rapid", "rapid"]
+    );
+    let first_mill = &tp.moves[2];
+    assert_eq!((first_mill.from.x, first_mill.from.z), (0.0, 0.8));
+    assert!((first_mill.to.x - 57.687).abs() < 1e-9 && first_mill.to.z == 0.8);
+    match &first_mill.source {
+        Some(Origin::Entity(e)) => assert_eq!(e.code_name, "LINE"),
+        o => panic!("{o:?}"),
+    }
+    assert_eq!(tp.probes.len(), 1);
+    assert_eq!(tp.probes[0].0, "#51");
+    assert!((tp.probes[0].1.x - 10.0).abs() < 1e-9);
 }
