@@ -1076,6 +1076,8 @@ mod tests {
             text: t.into(),
             len: 1.0,
             feed: 1.0,
+            target: Target::default(),
+            source: None,
         };
         let mut v = vec![
             mk(Kind::HSweep, "G00 X1 Y1"),
