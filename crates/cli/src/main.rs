@@ -132,6 +132,19 @@ enum Command {
         #[arg(required = true)]
         paths: Vec<PathBuf>,
     },
+    /// Draw the toolpath of a path: a standalone HTML page (clickable) or an SVG
+    Render {
+        file: PathBuf,
+        /// The path to draw (default: the first path of the file)
+        #[arg(long)]
+        path: Option<String>,
+        /// Write the HTML page here (default when no --svg: FILE_toolpath.html)
+        #[arg(long)]
+        html: Option<PathBuf>,
+        /// Write an SVG drawing here
+        #[arg(long)]
+        svg: Option<PathBuf>,
+    },
     /// Language server over standard input and output (for editors)
     Lsp {
         /// Accepted for editor compatibility; stdio is the only transport
@@ -183,6 +196,7 @@ fn main() -> ExitCode {
             machine,
         } => run_text2dxf(&file, output.as_deref(), &machine),
         Command::Fmt { check, paths } => run_fmt(check, &paths),
+        Command::Render { file, path, html, svg } => run_render(&file, path.as_deref(), html, svg),
         Command::Lsp { .. } => {
             millpath_lsp::run_stdio();
             0
@@ -727,6 +741,31 @@ fn run_fmt(check: bool, paths: &[PathBuf]) -> u8 {
                 status = 1;
             }
         }
+    }
+    status
+}
+
+fn run_render(file: &Path, path: Option<&str>, html: Option<PathBuf>, svg: Option<PathBuf>) -> u8 {
+    let file = complete_input(&file.to_string_lossy());
+    let abs = std::fs::canonicalize(&file).unwrap_or_else(|_| file.clone());
+    let ws = millpath_ide::Workspace::default();
+    let data = match millpath_ide::features::toolpath(&ws, &abs, path) {
+        Ok(d) => d,
+        Err(e) => {
+            eprintln!("error: {}: {e}", file.display());
+            return 1;
+        }
+    };
+    let lang = ws.settings_for(&abs).settings.lang;
+    let html = html.or_else(|| svg.is_none().then(|| PathBuf::from(format!("{}_toolpath.html", file.with_extension("").display()))));
+    let mut status = 0;
+    if let Some(out) = html {
+        eprintln!("---- Writing {}", out.display());
+        status |= emit(Some(&out), &millpath_ide::features::toolpath_html(&data), lang);
+    }
+    if let Some(out) = svg {
+        eprintln!("---- Writing {}", out.display());
+        status |= emit(Some(&out), &millpath_ide::features::toolpath_svg(&data), lang);
     }
     status
 }

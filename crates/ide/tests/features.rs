@@ -324,3 +324,22 @@ fn semantic_tokens_and_code_lenses() {
         lenses[0].title
     );
 }
+
+#[test]
+fn toolpath_for_the_view() {
+    let (dir, ws) = setup();
+    let tp = toolpath(&ws, &p(dir.path(), "2010.mpath"), None).unwrap();
+    assert_eq!(tp["path"], "2010.1P");
+    let moves = tp["moves"].as_array().unwrap();
+    let mills: Vec<&serde_json::Value> = moves.iter().filter(|m| m["kind"] == "mill").collect();
+    // two embedded slots, three passes each
+    assert_eq!(mills.len(), 6);
+    // the slots' moves come from the part's mill line, in the part's file
+    let src = &mills[0]["source"];
+    assert!(src["file"].as_str().unwrap().ends_with("2001.mpath"), "{src}");
+    assert_eq!(src["line"], 4);
+    assert_eq!(src["text"], "mill (5, 0) -> (25, 0)");
+    assert!(moves.iter().any(|m| m["kind"] == "rapid"));
+    assert_eq!(tp["bounds"]["minZ"], -0.2);
+    assert!(toolpath(&ws, &p(dir.path(), "2010.mpath"), Some("9.9Q")).is_err());
+}

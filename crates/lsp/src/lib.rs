@@ -280,6 +280,18 @@ impl Backend {
     }
 }
 
+impl Backend {
+    async fn toolpath(&self, params: PreviewParams) -> Result<Value> {
+        let path = to_path(&params.text_document.uri).ok_or_else(|| Error::invalid_params("not a file URI"))?;
+        let ws = self.snapshot();
+        guarded(|| features::toolpath(&ws, &path, params.path.as_deref()))?.map_err(|e| {
+            let mut err = Error::invalid_request();
+            err.message = e.into();
+            err
+        })
+    }
+}
+
 impl LanguageServer for Backend {
     async fn initialize(&self, params: InitializeParams) -> Result<InitializeResult> {
         let (client, debounce) = client_settings(params.initialization_options.as_ref());
@@ -634,7 +646,7 @@ impl LanguageServer for Backend {
     }
 }
 
-/// The service, with the custom `millpath/gcodePreview` request.
+/// The service, with the custom requests `millpath/gcodePreview` and `millpath/toolpath`.
 pub fn service() -> (LspService<Backend>, tower_lsp_server::ClientSocket) {
     LspService::build(|client| Backend {
         client,
@@ -645,6 +657,7 @@ pub fn service() -> (LspService<Backend>, tower_lsp_server::ClientSocket) {
         })),
     })
     .custom_method("millpath/gcodePreview", Backend::gcode_preview)
+    .custom_method("millpath/toolpath", Backend::toolpath)
     .finish()
 }
 
