@@ -79,6 +79,14 @@ local ok, err = pcall(function()
     return table.concat(vim.api.nvim_buf_get_lines(pbuf, 0, -1, false), '\n') .. '\n' ~= preview
   end, 50)
   check('preview follows edits', table.concat(vim.api.nvim_buf_get_lines(pbuf, 0, -1, false), '\n') .. '\n' ~= preview, 'unchanged')
+  -- the toolpath page with the server's data (the browser opener is replaced here)
+  vim.ui = vim.ui or {}
+  local opened
+  vim.ui.open = function(p) opened = p end
+  require('millpath').toolpath()
+  vim.wait(10000, function() return opened ~= nil end, 50)
+  local page = opened and table.concat(vim.fn.readfile(opened), '\n') or ''
+  check(':MillpathToolpath writes the page with the moves', page:find('"kind":"mill"', 1, true) ~= nil, opened)
 end)
 if not ok then
   check('no Lua error', false, err)

@@ -196,7 +196,12 @@ fn main() -> ExitCode {
             machine,
         } => run_text2dxf(&file, output.as_deref(), &machine),
         Command::Fmt { check, paths } => run_fmt(check, &paths),
-        Command::Render { file, path, html, svg } => run_render(&file, path.as_deref(), html, svg),
+        Command::Render {
+            file,
+            path,
+            html,
+            svg,
+        } => run_render(&file, path.as_deref(), html, svg),
         Command::Lsp { .. } => {
             millpath_lsp::run_stdio();
             0
@@ -757,15 +762,30 @@ fn run_render(file: &Path, path: Option<&str>, html: Option<PathBuf>, svg: Optio
         }
     };
     let lang = ws.settings_for(&abs).settings.lang;
-    let html = html.or_else(|| svg.is_none().then(|| PathBuf::from(format!("{}_toolpath.html", file.with_extension("").display()))));
+    let html = html.or_else(|| {
+        svg.is_none().then(|| {
+            PathBuf::from(format!(
+                "{}_toolpath.html",
+                file.with_extension("").display()
+            ))
+        })
+    });
     let mut status = 0;
     if let Some(out) = html {
         eprintln!("---- Writing {}", out.display());
-        status |= emit(Some(&out), &millpath_ide::features::toolpath_html(&data), lang);
+        status |= emit(
+            Some(&out),
+            &millpath_ide::features::toolpath_html(&data),
+            lang,
+        );
     }
     if let Some(out) = svg {
         eprintln!("---- Writing {}", out.display());
-        status |= emit(Some(&out), &millpath_ide::features::toolpath_svg(&data), lang);
+        status |= emit(
+            Some(&out),
+            &millpath_ide::features::toolpath_svg(&data),
+            lang,
+        );
     }
     status
 }

@@ -1294,12 +1294,21 @@ pub fn reanalyze(ws: &Workspace, path: &Path) -> Analysis {
 
 /// The toolpath of a path as JSON for the toolpath view: moves with kind, start, end, depth,
 /// arc and source element; probes; bounds.
-pub fn toolpath(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<serde_json::Value, String> {
+pub fn toolpath(
+    ws: &Workspace,
+    path: &Path,
+    name: Option<&str>,
+) -> Result<serde_json::Value, String> {
     use serde_json::json;
     let ds = ws.settings_for(path);
     let lang = ds.settings.lang;
     let fs = ws.fs();
-    let mut session = Session::new(ds.settings, &fs).map_err(|e| e.iter().map(|d| d.message(lang)).collect::<Vec<_>>().join("; "))?;
+    let mut session = Session::new(ds.settings, &fs).map_err(|e| {
+        e.iter()
+            .map(|d| d.message(lang))
+            .collect::<Vec<_>>()
+            .join("; ")
+    })?;
     let names = session.load_file(path);
     let name = match name {
         Some(n) => n.to_string(),
@@ -1307,24 +1316,44 @@ pub fn toolpath(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<serde
     };
     let model = match session.build_top(&name) {
         Ok(Some(m)) => m,
-        Ok(None) => return Err(format!("path {name} cannot be built: {}", messages(&session, lang).join("; "))),
+        Ok(None) => {
+            return Err(format!(
+                "path {name} cannot be built: {}",
+                messages(&session, lang).join("; ")
+            ))
+        }
         Err(abort) => return Err(abort.message(lang)),
     };
-    let tp = millpath_core::gcode::toolpath(&model).map_err(|e| e.iter().map(|d| d.message(lang)).collect::<Vec<_>>().join("; "))?;
-    let mut texts: std::collections::HashMap<PathBuf, crate::LineIndex> = std::collections::HashMap::new();
+    let tp = millpath_core::gcode::toolpath(&model).map_err(|e| {
+        e.iter()
+            .map(|d| d.message(lang))
+            .collect::<Vec<_>>()
+            .join("; ")
+    })?;
+    let mut texts: std::collections::HashMap<PathBuf, crate::LineIndex> =
+        std::collections::HashMap::new();
     let mut source_json = |o: &Origin| -> serde_json::Value {
         match o {
-            Origin::Span { file, start, line, .. } => {
-                let idx = texts.entry(file.path.clone()).or_insert_with(|| crate::LineIndex::new(&ws.text(&file.path).unwrap_or_default()));
+            Origin::Span {
+                file, start, line, ..
+            } => {
+                let idx = texts.entry(file.path.clone()).or_insert_with(|| {
+                    crate::LineIndex::new(&ws.text(&file.path).unwrap_or_default())
+                });
                 let p = idx.pos(*start);
-                let text = ws.text(&file.path).and_then(|t| t.lines().nth(p.line as usize).map(|l| l.trim().to_string())).unwrap_or_default();
+                let text = ws
+                    .text(&file.path)
+                    .and_then(|t| t.lines().nth(p.line as usize).map(|l| l.trim().to_string()))
+                    .unwrap_or_default();
                 json!({ "file": file.path.display().to_string(), "line": line - 1, "character": p.col, "label": format!("{}:{line}", file.name), "text": text })
             }
             Origin::Entity(e) => json!({
                 "file": e.file.path.display().to_string(), "line": e.line.saturating_sub(1), "character": 0,
                 "label": format!("{}:{}", e.file.name, e.line), "text": format!("{} on layer {} at {}", e.code_name, e.layer, e.pos),
             }),
-            o => json!({ "file": o.file().map(|f| f.path.display().to_string()), "line": 0, "character": 0, "label": o.context(), "text": "" }),
+            o => {
+                json!({ "file": o.file().map(|f| f.path.display().to_string()), "line": 0, "character": 0, "label": o.context(), "text": "" })
+            }
         }
     };
     let (mut minx, mut miny, mut maxx, mut maxy) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
@@ -1360,7 +1389,11 @@ pub fn toolpath(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<serde
             })
         })
         .collect();
-    let probes: Vec<serde_json::Value> = tp.probes.iter().map(|(n, p)| json!({ "name": n, "x": p.x, "y": p.y })).collect();
+    let probes: Vec<serde_json::Value> = tp
+        .probes
+        .iter()
+        .map(|(n, p)| json!({ "name": n, "x": p.x, "y": p.y }))
+        .collect();
     if !minz.is_finite() {
         minz = 0.0;
         maxz = 0.0;
@@ -1380,7 +1413,11 @@ pub fn toolpath_html(data: &serde_json::Value) -> String {
     const PAGE: &str = include_str!("../../../editors/toolpath/toolpath.html");
     const SLOT: &str = r#"<script id="toolpath-data" type="application/json">null</script>"#;
     let json = data.to_string().replace("</", "<\\/");
-    PAGE.replacen(SLOT, &format!(r#"<script id="toolpath-data" type="application/json">{json}</script>"#), 1)
+    PAGE.replacen(
+        SLOT,
+        &format!(r#"<script id="toolpath-data" type="application/json">{json}</script>"#),
+        1,
+    )
 }
 
 /// The toolpath as a standalone SVG (top view; cuts coloured by depth, rapid moves dashed,
@@ -1389,11 +1426,22 @@ pub fn toolpath_svg(data: &serde_json::Value) -> String {
     use std::fmt::Write;
     let b = &data["bounds"];
     let f = |v: &serde_json::Value| v.as_f64().unwrap_or(0.0);
-    let (minx, miny, maxx, maxy, minz, maxz) = (f(&b["minX"]), f(&b["minY"]), f(&b["maxX"]), f(&b["maxY"]), f(&b["minZ"]), f(&b["maxZ"]));
+    let (minx, miny, maxx, maxy, minz, maxz) = (
+        f(&b["minX"]),
+        f(&b["minY"]),
+        f(&b["maxX"]),
+        f(&b["maxY"]),
+        f(&b["minZ"]),
+        f(&b["maxZ"]),
+    );
     let (w, h) = ((maxx - minx).max(1.0), (maxy - miny).max(1.0));
     let pad = w.max(h) * 0.05 + 2.0;
     let colour = |z: f64| {
-        let t = if maxz > minz { ((maxz - z) / (maxz - minz)).clamp(0.0, 1.0) } else { 1.0 };
+        let t = if maxz > minz {
+            ((maxz - z) / (maxz - minz)).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
         format!("hsl({:.0},80%,45%)", 220.0 - 220.0 * t)
     };
     let mut s = String::new();
@@ -1407,20 +1455,35 @@ pub fn toolpath_svg(data: &serde_json::Value) -> String {
         w + 2.0 * pad,
         h + 2.0 * pad
     );
-    let _ = writeln!(s, r#"<g transform="scale(1,-1)" fill="none" stroke-linecap="round">"#);
+    let _ = writeln!(
+        s,
+        r#"<g transform="scale(1,-1)" fill="none" stroke-linecap="round">"#
+    );
     let stroke = (w.max(h) / 400.0).max(0.05);
     for m in data["moves"].as_array().into_iter().flatten() {
         let kind = m["kind"].as_str().unwrap_or("");
         let (fx, fy) = (f(&m["from"][0]), f(&m["from"][1]));
         let (tx, ty) = (f(&m["to"][0]), f(&m["to"][1]));
         let style = if kind == "rapid" {
-            format!(r##"stroke="#888" stroke-width="{}" stroke-dasharray="{} {}""##, stroke / 2.0, stroke * 3.0, stroke * 3.0)
+            format!(
+                r##"stroke="#888" stroke-width="{}" stroke-dasharray="{} {}""##,
+                stroke / 2.0,
+                stroke * 3.0,
+                stroke * 3.0
+            )
         } else {
-            format!(r#"stroke="{}" stroke-width="{stroke}""#, colour(f(&m["depth"])))
+            format!(
+                r#"stroke="{}" stroke-width="{stroke}""#,
+                colour(f(&m["depth"]))
+            )
         };
         if (tx - fx).hypot(ty - fy) < 1e-9 {
             if kind != "rapid" {
-                let _ = writeln!(s, r#"<circle cx="{tx}" cy="{ty}" r="{}" {style}/>"#, stroke * 1.5);
+                let _ = writeln!(
+                    s,
+                    r#"<circle cx="{tx}" cy="{ty}" r="{}" {style}/>"#,
+                    stroke * 1.5
+                );
             }
         } else if m["arc"].is_object() {
             let (cx, cy) = (f(&m["arc"]["cx"]), f(&m["arc"]["cy"]));
@@ -1432,13 +1495,25 @@ pub fn toolpath_svg(data: &serde_json::Value) -> String {
                 sweep += std::f64::consts::TAU;
             }
             let large = u8::from(sweep > std::f64::consts::PI);
-            let _ = writeln!(s, r#"<path d="M{fx} {fy} A{r} {r} 0 {large} {} {tx} {ty}" {style}/>"#, u8::from(ccw));
+            let _ = writeln!(
+                s,
+                r#"<path d="M{fx} {fy} A{r} {r} 0 {large} {} {tx} {ty}" {style}/>"#,
+                u8::from(ccw)
+            );
         } else {
-            let _ = writeln!(s, r#"<line x1="{fx}" y1="{fy}" x2="{tx}" y2="{ty}" {style}/>"#);
+            let _ = writeln!(
+                s,
+                r#"<line x1="{fx}" y1="{fy}" x2="{tx}" y2="{ty}" {style}/>"#
+            );
         }
     }
     for p in data["probes"].as_array().into_iter().flatten() {
-        let _ = writeln!(s, r##"<circle cx="{}" cy="{}" r="3" stroke="#0a7d3a" stroke-width="{stroke}"/>"##, f(&p["x"]), f(&p["y"]));
+        let _ = writeln!(
+            s,
+            r##"<circle cx="{}" cy="{}" r="3" stroke="#0a7d3a" stroke-width="{stroke}"/>"##,
+            f(&p["x"]),
+            f(&p["y"])
+        );
     }
     s.push_str("</g>\n</svg>\n");
     s

@@ -336,7 +336,10 @@ fn toolpath_for_the_view() {
     assert_eq!(mills.len(), 6);
     // the slots' moves come from the part's mill line, in the part's file
     let src = &mills[0]["source"];
-    assert!(src["file"].as_str().unwrap().ends_with("2001.mpath"), "{src}");
+    assert!(
+        src["file"].as_str().unwrap().ends_with("2001.mpath"),
+        "{src}"
+    );
     assert_eq!(src["line"], 4);
     assert_eq!(src["text"], "mill (5, 0) -> (25, 0)");
     assert!(moves.iter().any(|m| m["kind"] == "rapid"));

@@ -282,7 +282,8 @@ impl Backend {
 
 impl Backend {
     async fn toolpath(&self, params: PreviewParams) -> Result<Value> {
-        let path = to_path(&params.text_document.uri).ok_or_else(|| Error::invalid_params("not a file URI"))?;
+        let path = to_path(&params.text_document.uri)
+            .ok_or_else(|| Error::invalid_params("not a file URI"))?;
         let ws = self.snapshot();
         guarded(|| features::toolpath(&ws, &path, params.path.as_deref()))?.map_err(|e| {
             let mut err = Error::invalid_request();

@@ -11,3 +11,7 @@ end, { nargs = '?', desc = 'G-code of the path under the cursor, in a split that
 vim.api.nvim_create_user_command('MillpathDxfToText', function(args)
   require('millpath').dxf_to_text(args.args ~= '' and args.args or nil)
 end, { nargs = '?', complete = 'file', desc = 'Open a DXF drawing as MillPath text' })
+
+vim.api.nvim_create_user_command('MillpathToolpath', function(args)
+  require('millpath').toolpath(args.args ~= '' and args.args or nil)
+end, { nargs = '?', desc = 'Toolpath of the path under the cursor, in the browser' })

@@ -157,6 +157,54 @@ function M.preview(name)
   return buf
 end
 
+local function plugin_root()
+  local src = debug.getinfo(1, 'S').source:gsub('^@', '')
+  return vim.fn.fnamemodify(src, ':p:h:h:h')
+end
+
+--- Opens the toolpath view of the path under the cursor in the browser (the page of
+--- editors/toolpath with the data of the language server's millpath/toolpath request).
+function M.toolpath(name)
+  local src = vim.api.nvim_get_current_buf()
+  local client = client_for(src)
+  if not client then
+    vim.notify('millpath: the language server is not running for this buffer', vim.log.levels.WARN)
+    return
+  end
+  name = name or path_at_cursor(src)
+  local page = plugin_root() .. '/../toolpath/toolpath.html'
+  local ok, template = pcall(vim.fn.readfile, page)
+  if not ok then
+    vim.notify('millpath: toolpath page not found at ' .. page, vim.log.levels.ERROR)
+    return
+  end
+  local params = { textDocument = { uri = vim.uri_from_bufnr(src) }, path = name }
+  local function handler(err, result)
+    if err then
+      vim.notify('millpath: ' .. (err.message or vim.inspect(err)), vim.log.levels.ERROR)
+      return
+    end
+    local json = vim.json.encode(result):gsub('</', '<\\/')
+    local html = table.concat(template, '\n'):gsub(
+      '<script id="toolpath%-data" type="application/json">null</script>',
+      function() return '<script id="toolpath-data" type="application/json">' .. json .. '</script>' end
+    )
+    local out = vim.fn.tempname() .. '.html'
+    vim.fn.writefile(vim.split(html, '\n', { plain = true }), out)
+    M.last_toolpath = out
+    if vim.ui and vim.ui.open then
+      vim.ui.open(out)
+    else
+      vim.fn.jobstart({ 'xdg-open', out }, { detach = true })
+    end
+  end
+  if vim.fn.has('nvim-0.11') == 1 then
+    client:request('millpath/toolpath', params, handler, src)
+  else
+    client.request('millpath/toolpath', params, handler, src)
+  end
+end
+
 --- Opens a DXF drawing as MillPath text in a new buffer.
 function M.dxf_to_text(file)
   file = file or vim.api.nvim_buf_get_name(0)

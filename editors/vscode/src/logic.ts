@@ -1,0 +1,94 @@
+// The extension's logic that does not need VS Code: settings → initialization options, the
+// server command, preview URIs, the path under the cursor, status-bar text. Unit-tested with
+// node's test runner.
+
+export interface MachineSettings {
+  feed?: number | null;
+  sweepSpeed?: number | null;
+  sweepHeight?: number | null;
+  probeFeed?: number | null;
+  language?: string;
+}
+
+/** Initialization options for `millpath lsp`: the keys of millpath.toml; unset values are left
+ *  out so that millpath.toml applies. */
+export function initializationOptions(s: MachineSettings): Record<string, unknown> {
+  const out: Record<string, unknown> = {};
+  const put = (key: string, v: number | null | undefined) => {
+    if (typeof v === 'number' && Number.isFinite(v)) out[key] = v;
+  };
+  put('feed', s.feed);
+  put('sweep_speed', s.sweepSpeed);
+  put('sweep_height', s.sweepHeight);
+  put('probe_feed', s.probeFeed);
+  if (s.language === 'en' || s.language === 'de') out.lang = s.language;
+  return out;
+}
+
+/** The server binary: the setting, else the bundled one when it exists, else `millpath`. */
+export function serverCommand(setting: string, bundled: string | undefined, exists: (p: string) => boolean): string {
+  if (setting && setting.trim()) return setting.trim();
+  if (bundled && exists(bundled)) return bundled;
+  return 'millpath';
+}
+
+export const PREVIEW_SCHEME = 'millpath-preview';
+
+/** `millpath-preview:/<name>.gcode?<encoded source uri>#<path>` — one virtual document per
+ *  source and path. */
+export function previewUri(sourceUri: string, path: string | undefined): string {
+  const name = (path || 'preview').replace(/[^A-Za-z0-9._-]/g, '_');
+  return `${PREVIEW_SCHEME}:/${name}.gcode?${encodeURIComponent(sourceUri)}#${encodeURIComponent(path ?? '')}`;
+}
+
+export function parsePreviewUri(uri: string): { source: string; path: string | undefined } | undefined {
+  const m = /^millpath-preview:\/[^?]*\?([^#]*)#?(.*)$/.exec(uri);
+  if (!m) return undefined;
+  const path = decodeURIComponent(m[2]);
+  return { source: decodeURIComponent(m[1]), path: path || undefined };
+}
+
+/** The name of the `path NAME {` block around a line (0-based), or the first one. */
+export function pathAtLine(text: string, line: number): string | undefined {
+  const lines = text.split(/\r?\n/);
+  const header = /^\s*path\s+("(?:[^"\\]|\\.)*"|\S+)\s*\{/;
+  for (let i = Math.min(line, lines.length - 1); i >= 0; i--) {
+    const m = header.exec(lines[i]);
+    if (m) return unquote(m[1]);
+  }
+  for (const l of lines) {
+    const m = header.exec(l);
+    if (m) return unquote(m[1]);
+  }
+  return undefined;
+}
+
+function unquote(s: string): string {
+  return s.startsWith('"') ? s.slice(1, -1).replace(/\\(.)/g, '$1') : s;
+}
+
+/** Status-bar text from the five statistics lines: `path · 115 mm · 2 min · 8 commands`. */
+export function statusText(path: string, stats: string[]): string {
+  const num = (line: string | undefined, re: RegExp) => (line ? re.exec(line)?.[1] : undefined);
+  const total = stats[3];
+  const mm = num(total, /(\d+)\s*mm/);
+  const min = num(total, /ca\.\s*(\d+)\s*min/);
+  const count = num(stats[4], /(\d+)\s*$/);
+  const parts = [path];
+  if (mm) parts.push(`${mm} mm`);
+  if (min) parts.push(`≈${min} min`);
+  if (count) parts.push(`${count} commands`);
+  return parts.join(' · ');
+}
+
+/** A source location sent by the toolpath page, as editor coordinates. */
+export interface SourceRef {
+  file: string;
+  line: number;
+  character: number;
+}
+
+export function isSourceRef(v: unknown): v is SourceRef {
+  const s = v as SourceRef;
+  return !!s && typeof s.file === 'string' && typeof s.line === 'number' && typeof s.character === 'number';
+}

@@ -1,0 +1,51 @@
+// Unit tests of the extension's logic (no VS Code needed).
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { createRequire } from 'node:module';
+const require = createRequire(import.meta.url);
+const logic = require('../dist/logic.js');
+
+test('initialization options carry only the settings that are set', () => {
+  assert.deepEqual(logic.initializationOptions({ feed: 150, sweepSpeed: null, sweepHeight: 12.5, probeFeed: undefined, language: 'de' }), {
+    feed: 150,
+    sweep_height: 12.5,
+    lang: 'de',
+  });
+  assert.deepEqual(logic.initializationOptions({ feed: Number.NaN, language: 'fr' }), {});
+});
+
+test('server command: setting, bundled binary, PATH', () => {
+  assert.equal(logic.serverCommand(' /opt/millpath ', '/ext/server/millpath', () => true), '/opt/millpath');
+  assert.equal(logic.serverCommand('', '/ext/server/millpath', () => true), '/ext/server/millpath');
+  assert.equal(logic.serverCommand('', '/ext/server/millpath', () => false), 'millpath');
+});
+
+test('preview URIs round-trip source and path', () => {
+  const src = 'file:///home/me/parts/2010 a.mpath';
+  const u = logic.previewUri(src, '2010.1P');
+  assert.ok(u.startsWith('millpath-preview:/2010.1P.gcode?'));
+  assert.deepEqual(logic.parsePreviewUri(u), { source: src, path: '2010.1P' });
+  assert.deepEqual(logic.parsePreviewUri(logic.previewUri(src, undefined)), { source: src, path: undefined });
+  assert.equal(logic.parsePreviewUri('file:///x'), undefined);
+});
+
+test('the path around the cursor', () => {
+  const text = '# x\npath 2001.1P {\n  start (0, 0)\n}\n\npath "odd name" {\n  end (1, 1)\n}\n';
+  assert.equal(logic.pathAtLine(text, 2), '2001.1P');
+  assert.equal(logic.pathAtLine(text, 6), 'odd name');
+  assert.equal(logic.pathAtLine(text, 0), '2001.1P');
+  assert.equal(logic.pathAtLine('nothing', 0), undefined);
+});
+
+test('status text from statistics lines (English and German)', () => {
+  const en = ['Milling length:   115 mm   ca.  2 min', 'Drill length:     4 mm   ca.  1 min', 'Sweeps:         66 mm   ca.  1 min', 'Sum:           185 mm   ca.  2 min', 'Command count: 8'];
+  assert.equal(logic.statusText('8999.1P', en), '8999.1P · 185 mm · ≈2 min · 8 commands');
+  const de = ['Fräslänge:     115 mm   ca.  2 min', 'Bohrungen:       4 mm   ca.  1 min', 'Leerfahrten:    66 mm   ca.  1 min', 'Summe:         185 mm   ca.  2 min', 'Befehlszahl: 8'];
+  assert.equal(logic.statusText('8999.1P', de), '8999.1P · 185 mm · ≈2 min · 8 commands');
+});
+
+test('source references from the toolpath page are checked', () => {
+  assert.ok(logic.isSourceRef({ file: '/a.mpath', line: 3, character: 2 }));
+  assert.ok(!logic.isSourceRef({ file: '/a.mpath', line: '3' }));
+  assert.ok(!logic.isSourceRef(null));
+});

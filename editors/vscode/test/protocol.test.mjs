@@ -1,0 +1,68 @@
+// Drives `millpath lsp` exactly as the extension does (its initialization options, the
+// preview and toolpath requests) with vscode-jsonrpc.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { spawn, execFileSync } from 'node:child_process';
+import { mkdtempSync, writeFileSync, readFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join, dirname } from 'node:path';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+import { createRequire } from 'node:module';
+const require = createRequire(import.meta.url);
+const rpc = require('vscode-jsonrpc/node');
+const logic = require('../dist/logic.js');
+
+const repo = join(dirname(fileURLToPath(import.meta.url)), '../../..');
+const bin = process.env.MILLPATH_BIN || join(repo, 'target/release/millpath');
+
+test('initialize with the extension options, preview and toolpath', async () => {
+  const dir = mkdtempSync(join(tmpdir(), 'millpath-vscode-'));
+  const text = readFileSync(join(repo, 'examples/text/2020.mpath'), 'utf8');
+  const file = join(dir, '2020.mpath');
+  writeFileSync(file, text);
+  const proc = spawn(bin, ['lsp'], { stdio: ['pipe', 'pipe', 'ignore'] });
+  const conn = rpc.createMessageConnection(new rpc.StreamMessageReader(proc.stdout), new rpc.StreamMessageWriter(proc.stdin));
+  const diagnostics = new Promise((resolve) => conn.onNotification('textDocument/publishDiagnostics', resolve));
+  conn.listen();
+  const settings = { feed: 300, sweepSpeed: 1000, sweepHeight: 10, probeFeed: 50, language: 'en' };
+  const init = await conn.sendRequest('initialize', {
+    processId: process.pid,
+    rootUri: pathToFileURL(dir).href,
+    capabilities: {},
+    initializationOptions: logic.initializationOptions(settings),
+    workspaceFolders: [{ uri: pathToFileURL(dir).href, name: 'ws' }],
+  });
+  assert.equal(init.serverInfo.name, 'millpath');
+  assert.ok(init.capabilities.hoverProvider);
+  await conn.sendNotification('initialized', {});
+  const uri = pathToFileURL(file).href;
+  await conn.sendNotification('textDocument/didOpen', { textDocument: { uri, languageId: 'millpath', version: 1, text } });
+  const d = await diagnostics;
+  assert.deepEqual(d.diagnostics, []);
+
+  const path = logic.pathAtLine(text, 3);
+  assert.equal(path, '2020.1P');
+  const pv = await conn.sendRequest('millpath/gcodePreview', { textDocument: { uri }, path });
+  // the settings from the extension were used: feed 300, probe feed 50
+  assert.match(pv.gcode, /G01 F300\.000/);
+  assert.match(pv.probing, /G38\.3 Z0 F50\.000/);
+  assert.equal(pv.stats.length, 5);
+  assert.match(logic.statusText(pv.path, pv.stats), /^2020\.1P · \d+ mm/);
+  // and it is what `millpath compile` writes with the same settings
+  execFileSync(bin, ['compile', '-f', '300', '-v', '1000', '-s', '10', '-z', '50', '--lang', 'en', file], { stdio: 'ignore' });
+  assert.equal(pv.gcode, readFileSync(join(dir, '2020_Clean.gcode'), 'utf8'));
+
+  const tp = await conn.sendRequest('millpath/toolpath', { textDocument: { uri }, path });
+  assert.equal(tp.path, '2020.1P');
+  assert.ok(tp.moves.length > 5);
+  const mill = tp.moves.find((m) => m.kind === 'mill');
+  assert.equal(mill.source.line, 5);
+  assert.equal(mill.source.text, 'mill (0, 0) -> (60, 0)');
+  assert.equal(tp.probes.length, 2);
+
+  await assert.rejects(conn.sendRequest('millpath/toolpath', { textDocument: { uri }, path: '9.9Q' }));
+  await conn.sendRequest('shutdown');
+  await conn.sendNotification('exit');
+  conn.dispose();
+  proc.kill();
+});
