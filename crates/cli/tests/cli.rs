@@ -372,3 +372,33 @@ fn fmt_rewrites_and_refuses_broken_files() {
     );
     assert!(!dir.path().join("b.dxf").exists());
 }
+
+#[test]
+fn render_writes_a_toolpath_page_and_an_svg() {
+    let dir = tempfile::tempdir().unwrap();
+    for f in ["2001.mpath", "2010.mpath", "millpath.toml"] {
+        std::fs::copy(examples().join("text").join(f), dir.path().join(f)).unwrap();
+    }
+    let o = millpath(dir.path(), &["render", "2010.mpath", "--svg", "t.svg"]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let svg = std::fs::read_to_string(dir.path().join("t.svg")).unwrap();
+    assert!(svg.starts_with("<svg xmlns=\"http://www.w3.org/2000/svg\""));
+    assert!(svg.matches("<line").count() >= 10 && svg.contains("stroke-dasharray"));
+    let o = millpath(dir.path(), &["render", "2010.mpath"]);
+    assert_eq!(o.status.code(), Some(0));
+    let html = std::fs::read_to_string(dir.path().join("2010_toolpath.html")).unwrap();
+    assert!(html.contains(r#"<script id="toolpath-data" type="application/json">{"#));
+    assert!(html.contains(r#""kind":"mill""#));
+    // a path that does not exist
+    let o = millpath(
+        dir.path(),
+        &["render", "2010.mpath", "--path", "9.9Q", "--svg", "x.svg"],
+    );
+    assert_eq!(o.status.code(), Some(1));
+    assert!(!dir.path().join("x.svg").exists());
+}
