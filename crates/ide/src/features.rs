@@ -585,32 +585,56 @@ pub struct Preview {
     pub errors: Vec<String>,
 }
 
-/// Preview of `name` (default: the first path of the document).
-pub fn preview(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<Preview, String> {
+/// A path built as `millpath compile` builds it, with the errors of the build.
+struct TopModel {
+    model: std::rc::Rc<millpath_core::model::Model>,
+    lang: Lang,
+    sweep_speed: f64,
+    errors: Vec<String>,
+}
+
+/// Builds `name` (default: the first path of the file) with the file's settings.
+fn top_model(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<TopModel, String> {
     let ds = ws.settings_for(path);
     let lang = ds.settings.lang;
+    let sweep_speed = ds.settings.sweep_speed;
     let fs = ws.fs();
-    let mut session = Session::new(ds.settings, &fs).map_err(|e| {
+    let joined = |e: &[millpath_core::Diagnostic]| {
         e.iter()
             .map(|d| d.message(lang))
             .collect::<Vec<_>>()
             .join("; ")
-    })?;
+    };
+    let mut session = Session::new(ds.settings, &fs).map_err(|e| joined(&e))?;
     let names = session.load_file(path);
     let name = match name {
         Some(n) => n.to_string(),
         None => names.first().cloned().ok_or("no path in this file")?,
     };
-    let model = match session.build_top(&name) {
-        Ok(Some(m)) => m,
-        Ok(None) => {
-            return Err(format!(
-                "path {name} cannot be built: {}",
-                messages(&session, lang).join("; ")
-            ))
-        }
-        Err(abort) => return Err(abort.message(lang)),
-    };
+    match session.build_top(&name) {
+        Ok(Some(model)) => Ok(TopModel {
+            model,
+            lang,
+            sweep_speed,
+            errors: messages(&session, lang),
+        }),
+        Ok(None) => Err(format!(
+            "path {name} cannot be built: {}",
+            messages(&session, lang).join("; ")
+        )),
+        Err(abort) => Err(abort.message(lang)),
+    }
+}
+
+/// Preview of `name` (default: the first path of the document).
+pub fn preview(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<Preview, String> {
+    let TopModel {
+        model,
+        lang,
+        sweep_speed,
+        errors,
+    } = top_model(ws, path, name)?;
+    let name = model.name().to_string();
     let file_name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
@@ -619,7 +643,7 @@ pub fn preview(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<Previe
         &model,
         &file_name,
         &millpath_core::banner(),
-        session.settings.sweep_speed,
+        sweep_speed,
         lang,
     )
     .map_err(|e| {
@@ -629,7 +653,6 @@ pub fn preview(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<Previe
             .join("; ")
     })?;
     let stats = g.stats.lines(lang).to_vec();
-    let errors = messages(&session, lang);
     Ok(match g.output {
         Output::Milling(gcode) => Preview {
             path: name,
@@ -1300,30 +1323,8 @@ pub fn toolpath(
     name: Option<&str>,
 ) -> Result<serde_json::Value, String> {
     use serde_json::json;
-    let ds = ws.settings_for(path);
-    let lang = ds.settings.lang;
-    let fs = ws.fs();
-    let mut session = Session::new(ds.settings, &fs).map_err(|e| {
-        e.iter()
-            .map(|d| d.message(lang))
-            .collect::<Vec<_>>()
-            .join("; ")
-    })?;
-    let names = session.load_file(path);
-    let name = match name {
-        Some(n) => n.to_string(),
-        None => names.first().cloned().ok_or("no path in this file")?,
-    };
-    let model = match session.build_top(&name) {
-        Ok(Some(m)) => m,
-        Ok(None) => {
-            return Err(format!(
-                "path {name} cannot be built: {}",
-                messages(&session, lang).join("; ")
-            ))
-        }
-        Err(abort) => return Err(abort.message(lang)),
-    };
+    let TopModel { model, lang, .. } = top_model(ws, path, name)?;
+    let name = model.name().to_string();
     let tp = millpath_core::gcode::toolpath(&model).map_err(|e| {
         e.iter()
             .map(|d| d.message(lang))

@@ -63,6 +63,15 @@ function M.setup(opts)
   })
 end
 
+--- A request to the server (the method call changed in Neovim 0.11).
+local function request(client, method, params, handler, bufnr)
+  if vim.fn.has('nvim-0.11') == 1 then
+    client:request(method, params, handler, bufnr)
+  else
+    client.request(method, params, handler, bufnr)
+  end
+end
+
 --- The name of the path block around the cursor (or the first one).
 local function path_at_cursor(bufnr)
   local row = vim.api.nvim_win_get_cursor(0)[1]
@@ -127,11 +136,7 @@ function M.preview(name)
         show(buf, result, err)
       end
     end
-    if client.request and vim.fn.has('nvim-0.11') == 1 then
-      client:request('millpath/gcodePreview', params, handler, src)
-    else
-      client.request('millpath/gcodePreview', params, handler, src)
-    end
+    request(client, 'millpath/gcodePreview', params, handler, src)
   end
   refresh()
   if not vim.b[src].millpath_preview_follow then
@@ -198,11 +203,7 @@ function M.toolpath(name)
       vim.fn.jobstart({ 'xdg-open', out }, { detach = true })
     end
   end
-  if vim.fn.has('nvim-0.11') == 1 then
-    client:request('millpath/toolpath', params, handler, src)
-  else
-    client.request('millpath/toolpath', params, handler, src)
-  end
+  request(client, 'millpath/toolpath', params, handler, src)
 end
 
 --- Opens a DXF drawing as MillPath text in a new buffer.
