@@ -76,6 +76,7 @@ enum Format {
     Human,
     Json,
     Github,
+    Sarif,
 }
 
 #[derive(Subcommand)]
@@ -505,6 +506,12 @@ fn run_check(m: &MachineArgs, format: Format, paths: &[PathBuf]) -> u8 {
             for d in &all {
                 println!("{}", report::github(d, lang));
             }
+        }
+        Format::Sarif => {
+            println!(
+                "{}",
+                serde_json::to_string_pretty(&report::sarif(&all, lang)).unwrap_or_default()
+            );
         }
     }
     u8::from(errors > 0)

@@ -78,6 +78,66 @@ pub fn json_value(d: &Diagnostic, lang: Lang) -> serde_json::Value {
     })
 }
 
+fn sarif_location(o: &Origin) -> Option<serde_json::Value> {
+    let (file, line, col) = match o {
+        Origin::Entity(e) => (e.file.path.display().to_string(), e.line, 1),
+        Origin::Span {
+            file, line, col, ..
+        } => (file.path.display().to_string(), *line, *col),
+        Origin::FileLine { file, line } => (file.clone(), *line, 1),
+        Origin::Path { file, .. } | Origin::File(file) => (file.path.display().to_string(), 1, 1),
+        Origin::Options | Origin::Input => return None,
+    };
+    Some(json!({
+        "physicalLocation": {
+            "artifactLocation": { "uri": file },
+            "region": { "startLine": line.max(1), "startColumn": col.max(1) }
+        }
+    }))
+}
+
+/// A SARIF 2.1.0 log of the diagnostics (for code-scanning tools).
+pub fn sarif(diags: &[Diagnostic], lang: Lang) -> serde_json::Value {
+    let mut rules: Vec<&Diagnostic> = Vec::new();
+    for d in diags {
+        if !rules.iter().any(|r| r.msg == d.msg) {
+            rules.push(d);
+        }
+    }
+    let results: Vec<serde_json::Value> = diags
+        .iter()
+        .map(|d| {
+            json!({
+                "ruleId": d.msg.code(),
+                "level": if d.severity == Severity::Error { "error" } else { "warning" },
+                "message": { "text": d.message(lang) },
+                "locations": sarif_location(&d.origin).into_iter().collect::<Vec<_>>(),
+                "relatedLocations": d.related.iter().filter_map(|r| {
+                    let mut l = sarif_location(&r.origin)?;
+                    l["message"] = json!({ "text": r.note });
+                    Some(l)
+                }).collect::<Vec<_>>(),
+            })
+        })
+        .collect();
+    json!({
+        "version": "2.1.0",
+        "$schema": "https://json.schemastore.org/sarif-2.1.0.json",
+        "runs": [{
+            "tool": { "driver": {
+                "name": "millpath",
+                "version": env!("CARGO_PKG_VERSION"),
+                "rules": rules.iter().map(|d| json!({
+                    "id": d.msg.code(),
+                    "name": d.msg.name(),
+                    "shortDescription": { "text": d.msg.template(Lang::En) },
+                })).collect::<Vec<_>>(),
+            }},
+            "results": results,
+        }]
+    })
+}
+
 /// `::error file=F,line=L,title=millpath MP012::message`
 pub fn github(d: &Diagnostic, lang: Lang) -> String {
     let kind = if d.severity == Severity::Error {
@@ -160,6 +220,17 @@ mod tests {
         let j = json_value(&d, Lang::En);
         assert_eq!(j["location"]["line"], 120);
         assert_eq!(j["location"]["layer"], "8999_1P");
+        let sarif = sarif(std::slice::from_ref(&d), Lang::En);
+        let r = &sarif["runs"][0]["results"][0];
+        assert_eq!(r["level"], "error");
+        assert_eq!(
+            r["locations"][0]["physicalLocation"]["region"]["startLine"],
+            120
+        );
+        assert_eq!(
+            sarif["runs"][0]["tool"]["driver"]["rules"][0]["id"],
+            r["ruleId"]
+        );
         let g = github(&d, Lang::En);
         assert!(
             g.starts_with("::error file=dir/a.dxf,line=120,title=millpath MP"),

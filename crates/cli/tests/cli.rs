@@ -186,6 +186,16 @@ fn check_formats_and_exit_status() {
         "{out}"
     );
     assert!(out.contains("file=sub/1234.2P.dxf,line="));
+    let o = millpath(dir.path(), &["check", "--format", "sarif", "sub"]);
+    assert_eq!(o.status.code(), Some(1));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["version"], "2.1.0");
+    let results = v["runs"][0]["results"].as_array().unwrap();
+    assert!(!results.is_empty());
+    assert_eq!(
+        results[0]["locations"][0]["physicalLocation"]["artifactLocation"]["uri"],
+        "sub/1234.2P.dxf"
+    );
 }
 
 #[test]
