@@ -1,6 +1,6 @@
 //! The answers to editor questions.
 
-use crate::{analyze, file_ref, workspace_files, Analysis, Pos, SettingSource, Workspace};
+use crate::{analyze, file_ref, workspace_files, Analysis, Pos, Workspace};
 use millpath_core::diag::{Msg, Origin};
 use millpath_core::drawing::{
     RawPath, RawSegment, SegKind, Style as CoreStyle, PATH_KEYS, PROBE_KEYS,
@@ -356,18 +356,20 @@ fn provenance(a: &Analysis, path: &RawPath, el: &Element, seg: Option<&RawSegmen
         let t_ = start.and_then(|t| t.raw('T')).and_then(parse_number);
         match k {
             'F' => push(k, fmt_num(settings.settings.feed), settings.feed.describe()),
-            'S' => match settings.sweep_height {
-                SettingSource::Default if t_.is_some() && o.is_some() => push(
-                    k,
-                    fmt_num(t_.unwrap_or(0.0) + o.unwrap_or(0.0)),
-                    "T+O".into(),
-                ),
-                ref src => push(
+            'S' => {
+                // top level: the machine's sweep height; embedded or checked: T+O
+                let sub = match (t_, o) {
+                    (Some(t), Some(o)) => {
+                        format!("; T+O = {} when embedded or checked", fmt_num(t + o))
+                    }
+                    _ => String::new(),
+                };
+                push(
                     k,
                     fmt_num(settings.settings.sweep_height),
-                    format!("{} (top level; T+O in subpaths)", src.describe()),
-                ),
-            },
+                    format!("{} (top level{sub})", settings.sweep_height.describe()),
+                );
+            }
             'A' => {
                 if let Some(o) = o {
                     push(k, fmt_num(4.0 * o), "4·O".into())
