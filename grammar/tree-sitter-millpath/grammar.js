@@ -51,7 +51,13 @@ module.exports = grammar({
 
     point: $ => seq('(', field('x', $.number), ',', field('y', $.number), ')'),
 
-    line: $ => seq(field('from', $.point), '->', field('to', $.point)),
+    line: $ => seq(
+      field('from', $.point), '->', field('to', $.point),
+      optional(seq(field('direction', $.turn), field('center', $.point))),
+    ),
+
+    // one token, so that it beats a parameter word `ccw` by length
+    turn: $ => token(seq(choice('ccw', 'cw'), /[ \t]+/, 'around')),
 
     arc: $ => seq(
       'arc',

@@ -990,3 +990,16 @@ fn toolpath_moves_follow_the_gcode() {
     assert_eq!(tp.probes[0].0, "#51");
     assert!((tp.probes[0].1.x - 10.0).abs() < 1e-9);
 }
+
+#[test]
+fn hand_written_arcs_compile_like_the_exact_form() {
+    let sugar = "path 1000.1P {\n  start (10, 0)  O2 T1 I2 B0\n  end (0, 10)\n  mill (10, 0) -> (0, 10) ccw around (0, 0)\n}\n";
+    let exact = "path 1000.1P {\n  start (10, 0)  O2 T1 I2 B0\n  end (0, 10)\n  mill arc (0, 0) r10 from 0 to 90\n}\n";
+    let a = compile(&[("1000.1P.mpath", sugar.into())], "1000.1P.mpath");
+    let b = compile(&[("1000.1P.mpath", exact.into())], "1000.1P.mpath");
+    assert!(a.diags.is_empty(), "{:?}", a.messages());
+    assert_eq!(a.output("_Milling.gcode"), b.output("_Milling.gcode"));
+    assert!(a
+        .output("_Milling.gcode")
+        .contains("G03 F150.000 I-10.000 J0.000 X-10.000 Y10.000"));
+}

@@ -158,6 +158,29 @@ pub enum Geometry {
     Circle { c: Point, d: f64 },
 }
 
+impl Geometry {
+    /// The arc from `a` to `b` around `c` (`ccw` or clockwise) in the exact form: centre,
+    /// radius (|a − c|) and the angles of `a` and `b`, counter-clockwise as DXF stores arcs.
+    pub fn arc_through(a: Point, b: Point, c: Point, ccw: bool) -> Geometry {
+        let angle = |p: Point| {
+            let d = (p.y - c.y).atan2(p.x - c.x).to_degrees();
+            if d < 0.0 {
+                d + 360.0
+            } else {
+                d
+            }
+        };
+        let r = (a.x - c.x).hypot(a.y - c.y);
+        let (from, to) = if ccw { (a, b) } else { (b, a) };
+        Geometry::Arc {
+            c,
+            r,
+            a0: angle(from),
+            a1: angle(to),
+        }
+    }
+}
+
 #[derive(Debug, Clone, PartialEq)]
 pub struct Element {
     pub kind: Spanned<Kind>,

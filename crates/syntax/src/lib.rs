@@ -127,6 +127,25 @@ path 1234.1P {  # key handle
     }
 
     #[test]
+    fn arcs_by_end_points_and_centre() {
+        let src = "path X {\n  mill (10, 0) -> (0, 10) ccw around (0, 0)\n  mill (0, 10) -> (10, 0) cw around (0, 0)\n}\n";
+        let (f, e) = parse(src);
+        assert!(e.is_empty(), "{e:?}");
+        let els: Vec<&Element> = f.paths().next().unwrap().elements().collect();
+        let quarter = Geometry::Arc {
+            c: Point { x: 0.0, y: 0.0 },
+            r: 10.0,
+            a0: 0.0,
+            a1: 90.0,
+        };
+        assert_eq!(els[0].geometry.value, quarter);
+        // clockwise from (0,10) to (10,0) is the same counter-clockwise arc
+        assert_eq!(els[1].geometry.value, quarter);
+        // the formatter writes the exact form
+        assert!(format(&f, src).contains("  mill arc (0, 0) r10 from 0 to 90\n"));
+    }
+
+    #[test]
     fn numbers_are_shortest_and_exact() {
         assert_eq!(format::num(0.1 + 0.2), "0.30000000000000004");
         assert_eq!(format::num(-0.0), "-0");

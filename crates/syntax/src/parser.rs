@@ -103,10 +103,18 @@ fn point<'t, 's: 't>() -> impl Parser<'t, In<'t, 's>, Point, Extra<'t, 's>> + Cl
 }
 
 fn line_geometry<'t, 's: 't>() -> impl Parser<'t, In<'t, 's>, Geometry, Extra<'t, 's>> + Clone {
+    // `(a) -> (b)`, or the hand-writing form of an arc `(a) -> (b) ccw around (c)`
+    let turn = choice((kw("ccw").to(true), kw("cw").to(false)))
+        .then_ignore(kw("around"))
+        .then(point());
     let line = point()
         .then_ignore(just(Token::Arrow))
         .then(point())
-        .map(|(a, b)| Geometry::Line(a, b));
+        .then(turn.or_not())
+        .map(|((a, b), around)| match around {
+            None => Geometry::Line(a, b),
+            Some((ccw, c)) => Geometry::arc_through(a, b, c, ccw),
+        });
     let arc = kw("arc")
         .ignore_then(point())
         .then(prefixed("r"))

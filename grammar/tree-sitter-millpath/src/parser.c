@@ -7,16 +7,16 @@
 #endif
 
 #define LANGUAGE_VERSION 15
-#define STATE_COUNT 67
+#define STATE_COUNT 74
 #define LARGE_STATE_COUNT 2
-#define SYMBOL_COUNT 49
+#define SYMBOL_COUNT 50
 #define ALIAS_COUNT 0
-#define TOKEN_COUNT 35
+#define TOKEN_COUNT 36
 #define EXTERNAL_TOKEN_COUNT 0
-#define FIELD_COUNT 13
+#define FIELD_COUNT 14
 #define MAX_ALIAS_SEQUENCE_LENGTH 9
 #define MAX_RESERVED_WORD_SET_SIZE 0
-#define PRODUCTION_ID_COUNT 8
+#define PRODUCTION_ID_COUNT 9
 #define SUPERTYPE_COUNT 0
 
 enum ts_symbol_identifiers {
@@ -46,28 +46,29 @@ enum ts_symbol_identifiers {
   anon_sym_COMMA = 24,
   anon_sym_RPAREN = 25,
   anon_sym_DASH_GT = 26,
-  anon_sym_arc = 27,
-  anon_sym_from = 28,
-  anon_sym_to = 29,
-  sym_radius = 30,
-  sym_diameter = 31,
-  sym_number = 32,
-  sym_parameter = 33,
-  sym_string = 34,
-  sym_source_file = 35,
-  sym__comment_line = 36,
-  sym_path = 37,
-  sym_element = 38,
-  sym_kind = 39,
-  sym__geometry = 40,
-  sym_point = 41,
-  sym_line = 42,
-  sym_arc = 43,
-  sym_circle = 44,
-  sym_parameters = 45,
-  aux_sym_source_file_repeat1 = 46,
-  aux_sym_path_repeat1 = 47,
-  aux_sym_parameters_repeat1 = 48,
+  sym_turn = 27,
+  anon_sym_arc = 28,
+  anon_sym_from = 29,
+  anon_sym_to = 30,
+  sym_radius = 31,
+  sym_diameter = 32,
+  sym_number = 33,
+  sym_parameter = 34,
+  sym_string = 35,
+  sym_source_file = 36,
+  sym__comment_line = 37,
+  sym_path = 38,
+  sym_element = 39,
+  sym_kind = 40,
+  sym__geometry = 41,
+  sym_point = 42,
+  sym_line = 43,
+  sym_arc = 44,
+  sym_circle = 45,
+  sym_parameters = 46,
+  aux_sym_source_file_repeat1 = 47,
+  aux_sym_path_repeat1 = 48,
+  aux_sym_parameters_repeat1 = 49,
 };
 
 static const char * const ts_symbol_names[] = {
@@ -98,6 +99,7 @@ static const char * const ts_symbol_names[] = {
   [anon_sym_COMMA] = ",",
   [anon_sym_RPAREN] = ")",
   [anon_sym_DASH_GT] = "->",
+  [sym_turn] = "turn",
   [anon_sym_arc] = "arc",
   [anon_sym_from] = "from",
   [anon_sym_to] = "to",
@@ -150,6 +152,7 @@ static const TSSymbol ts_symbol_map[] = {
   [anon_sym_COMMA] = anon_sym_COMMA,
   [anon_sym_RPAREN] = anon_sym_RPAREN,
   [anon_sym_DASH_GT] = anon_sym_DASH_GT,
+  [sym_turn] = sym_turn,
   [anon_sym_arc] = anon_sym_arc,
   [anon_sym_from] = anon_sym_from,
   [anon_sym_to] = anon_sym_to,
@@ -283,6 +286,10 @@ static const TSSymbolMetadata ts_symbol_metadata[] = {
     .visible = true,
     .named = false,
   },
+  [sym_turn] = {
+    .visible = true,
+    .named = true,
+  },
   [anon_sym_arc] = {
     .visible = true,
     .named = false,
@@ -376,23 +383,25 @@ static const TSSymbolMetadata ts_symbol_metadata[] = {
 enum ts_field_identifiers {
   field_center = 1,
   field_diameter = 2,
-  field_end_angle = 3,
-  field_from = 4,
-  field_geometry = 5,
-  field_kind = 6,
-  field_linetype = 7,
-  field_name = 8,
-  field_radius = 9,
-  field_start_angle = 10,
-  field_to = 11,
-  field_x = 12,
-  field_y = 13,
+  field_direction = 3,
+  field_end_angle = 4,
+  field_from = 5,
+  field_geometry = 6,
+  field_kind = 7,
+  field_linetype = 8,
+  field_name = 9,
+  field_radius = 10,
+  field_start_angle = 11,
+  field_to = 12,
+  field_x = 13,
+  field_y = 14,
 };
 
 static const char * const ts_field_names[] = {
   [0] = NULL,
   [field_center] = "center",
   [field_diameter] = "diameter",
+  [field_direction] = "direction",
   [field_end_angle] = "end_angle",
   [field_from] = "from",
   [field_geometry] = "geometry",
@@ -414,6 +423,7 @@ static const TSMapSlice ts_field_map_slices[PRODUCTION_ID_COUNT] = {
   [5] = {.index = 6, .length = 2},
   [6] = {.index = 8, .length = 2},
   [7] = {.index = 10, .length = 4},
+  [8] = {.index = 14, .length = 4},
 };
 
 static const TSFieldMapEntry ts_field_map_entries[] = {
@@ -434,6 +444,11 @@ static const TSFieldMapEntry ts_field_map_entries[] = {
     {field_x, 1},
     {field_y, 3},
   [10] =
+    {field_center, 4},
+    {field_direction, 3},
+    {field_from, 0},
+    {field_to, 2},
+  [14] =
     {field_center, 1},
     {field_end_angle, 6},
     {field_radius, 2},
@@ -469,7 +484,7 @@ static const TSStateId ts_primary_state_ids[STATE_COUNT] = {
   [17] = 17,
   [18] = 18,
   [19] = 19,
-  [20] = 20,
+  [20] = 16,
   [21] = 21,
   [22] = 22,
   [23] = 23,
@@ -480,10 +495,10 @@ static const TSStateId ts_primary_state_ids[STATE_COUNT] = {
   [28] = 28,
   [29] = 29,
   [30] = 30,
-  [31] = 16,
+  [31] = 31,
   [32] = 32,
   [33] = 33,
-  [34] = 34,
+  [34] = 16,
   [35] = 35,
   [36] = 36,
   [37] = 37,
@@ -501,21 +516,28 @@ static const TSStateId ts_primary_state_ids[STATE_COUNT] = {
   [49] = 49,
   [50] = 50,
   [51] = 51,
-  [52] = 43,
+  [52] = 52,
   [53] = 53,
-  [54] = 54,
+  [54] = 46,
   [55] = 55,
   [56] = 56,
-  [57] = 16,
+  [57] = 57,
   [58] = 58,
-  [59] = 49,
-  [60] = 49,
-  [61] = 56,
-  [62] = 56,
-  [63] = 63,
-  [64] = 43,
-  [65] = 47,
-  [66] = 47,
+  [59] = 16,
+  [60] = 60,
+  [61] = 61,
+  [62] = 49,
+  [63] = 49,
+  [64] = 49,
+  [65] = 46,
+  [66] = 46,
+  [67] = 67,
+  [68] = 52,
+  [69] = 52,
+  [70] = 52,
+  [71] = 47,
+  [72] = 47,
+  [73] = 47,
 };
 
 static const TSCharacterRange sym_word_character_set_1[] = {
@@ -528,61 +550,74 @@ static bool ts_lex(TSLexer *lexer, TSStateId state) {
   eof = lexer->eof(lexer);
   switch (state) {
     case 0:
-      if (eof) ADVANCE(23);
+      if (eof) ADVANCE(30);
       ADVANCE_MAP(
-        '\n', 24,
+        '\n', 31,
         '\r', 1,
-        '"', 5,
-        '#', 25,
-        '(', 29,
-        ')', 31,
-        '+', 50,
-        ',', 30,
-        '-', 49,
-        '.', 56,
-        'd', 62,
-        '{', 26,
-        '}', 27,
+        '"', 6,
+        '#', 32,
+        '(', 36,
+        ')', 38,
+        '+', 58,
+        ',', 37,
+        '-', 57,
+        '.', 67,
+        'c', 75,
+        'd', 73,
+        '{', 33,
+        '}', 34,
       );
       if (lookahead == '\t' ||
           lookahead == '\f' ||
           lookahead == ' ') SKIP(0);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(44);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(52);
       if (lookahead != 0 &&
-          (lookahead < '\t' || '\r' < lookahead)) ADVANCE(67);
+          (lookahead < '\t' || '\r' < lookahead)) ADVANCE(81);
       END_STATE();
     case 1:
-      if (lookahead == '\n') ADVANCE(24);
+      if (lookahead == '\n') ADVANCE(31);
       END_STATE();
     case 2:
-      if (lookahead == '\n') ADVANCE(24);
+      if (lookahead == '\n') ADVANCE(31);
       if (lookahead == '\r') ADVANCE(1);
-      if (lookahead == '"') ADVANCE(5);
-      if (lookahead == '#') ADVANCE(25);
-      if (lookahead == '-') ADVANCE(53);
-      if (lookahead == 'd') ADVANCE(51);
+      if (lookahead == '"') ADVANCE(6);
+      if (lookahead == '#') ADVANCE(32);
+      if (lookahead == '-') ADVANCE(61);
+      if (lookahead == 'd') ADVANCE(59);
       if (lookahead == '\t' ||
           lookahead == '\f' ||
           lookahead == ' ') SKIP(2);
       if (lookahead != 0 &&
-          (lookahead < '\t' || '\r' < lookahead)) ADVANCE(60);
+          (lookahead < '\t' || '\r' < lookahead)) ADVANCE(71);
       END_STATE();
     case 3:
-      if (lookahead == '\n') ADVANCE(24);
+      if (lookahead == '\n') ADVANCE(31);
       if (lookahead == '\r') ADVANCE(1);
-      if (lookahead == '"') ADVANCE(5);
-      if (lookahead == '#') ADVANCE(25);
+      if (lookahead == '"') ADVANCE(6);
+      if (lookahead == '#') ADVANCE(32);
+      if (lookahead == 'c') ADVANCE(62);
       if (lookahead == '\t' ||
           lookahead == '\f' ||
           lookahead == ' ') SKIP(3);
       if (lookahead != 0 &&
-          (lookahead < '\t' || '\r' < lookahead)) ADVANCE(60);
+          (lookahead < '\t' || '\r' < lookahead)) ADVANCE(71);
       END_STATE();
     case 4:
-      if (lookahead == '"') ADVANCE(5);
+      if (lookahead == '\n') ADVANCE(31);
+      if (lookahead == '\r') ADVANCE(1);
+      if (lookahead == '"') ADVANCE(6);
+      if (lookahead == '#') ADVANCE(32);
       if (lookahead == '\t' ||
           lookahead == '\f' ||
           lookahead == ' ') SKIP(4);
+      if (lookahead != 0 &&
+          (lookahead < '\t' || '\r' < lookahead)) ADVANCE(71);
+      END_STATE();
+    case 5:
+      if (lookahead == '"') ADVANCE(6);
+      if (lookahead == '\t' ||
+          lookahead == '\f' ||
+          lookahead == ' ') SKIP(5);
       if (lookahead != 0 &&
           (lookahead < '\t' || '\r' < lookahead) &&
           lookahead != '"' &&
@@ -591,363 +626,408 @@ static bool ts_lex(TSLexer *lexer, TSStateId state) {
           lookahead != ')' &&
           lookahead != ',' &&
           lookahead != '{' &&
-          lookahead != '}') ADVANCE(28);
-      END_STATE();
-    case 5:
-      if (lookahead == '"') ADVANCE(61);
-      if (lookahead == '\\') ADVANCE(21);
-      if (lookahead != 0 &&
-          lookahead != '\n' &&
-          lookahead != '\r') ADVANCE(5);
+          lookahead != '}') ADVANCE(35);
       END_STATE();
     case 6:
-      if (lookahead == '.') ADVANCE(16);
-      if (lookahead == '\t' ||
-          lookahead == ' ') ADVANCE(6);
-      if (lookahead == '+' ||
-          lookahead == '-') ADVANCE(7);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(37);
+      if (lookahead == '"') ADVANCE(72);
+      if (lookahead == '\\') ADVANCE(28);
+      if (lookahead != 0 &&
+          lookahead != '\n' &&
+          lookahead != '\r') ADVANCE(6);
       END_STATE();
     case 7:
-      if (lookahead == '.') ADVANCE(16);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(37);
+      if (lookahead == '.') ADVANCE(23);
+      if (lookahead == '\t' ||
+          lookahead == ' ') ADVANCE(7);
+      if (lookahead == '+' ||
+          lookahead == '-') ADVANCE(8);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(45);
       END_STATE();
     case 8:
-      if (lookahead == '.') ADVANCE(20);
+      if (lookahead == '.') ADVANCE(23);
       if (('0' <= lookahead && lookahead <= '9')) ADVANCE(45);
       END_STATE();
     case 9:
-      if (lookahead == '.') ADVANCE(18);
-      if (lookahead == '\t' ||
-          lookahead == ' ') ADVANCE(9);
-      if (lookahead == '+' ||
-          lookahead == '-') ADVANCE(10);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(33);
+      if (lookahead == '.') ADVANCE(27);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(53);
       END_STATE();
     case 10:
-      if (lookahead == '.') ADVANCE(18);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(33);
+      if (lookahead == '.') ADVANCE(25);
+      if (lookahead == '\t' ||
+          lookahead == ' ') ADVANCE(10);
+      if (lookahead == '+' ||
+          lookahead == '-') ADVANCE(11);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(41);
       END_STATE();
     case 11:
-      if (lookahead == 'r') ADVANCE(9);
-      if (lookahead == '\t' ||
-          lookahead == '\f' ||
-          lookahead == ' ') SKIP(11);
+      if (lookahead == '.') ADVANCE(25);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(41);
       END_STATE();
     case 12:
-      if (lookahead == '+' ||
-          lookahead == '-') ADVANCE(17);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(43);
+      if (lookahead == 'a') ADVANCE(16);
+      if (lookahead == '\t' ||
+          lookahead == ' ') ADVANCE(12);
       END_STATE();
     case 13:
-      if (lookahead == '+' ||
-          lookahead == '-') ADVANCE(15);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(48);
+      if (lookahead == 'd') ADVANCE(40);
       END_STATE();
     case 14:
-      if (lookahead == '+' ||
-          lookahead == '-') ADVANCE(19);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(35);
+      if (lookahead == 'n') ADVANCE(13);
       END_STATE();
     case 15:
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(48);
+      if (lookahead == 'o') ADVANCE(18);
       END_STATE();
     case 16:
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(40);
+      if (lookahead == 'r') ADVANCE(15);
       END_STATE();
     case 17:
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(43);
+      if (lookahead == 'r') ADVANCE(10);
+      if (lookahead == '\t' ||
+          lookahead == '\f' ||
+          lookahead == ' ') SKIP(17);
       END_STATE();
     case 18:
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(34);
+      if (lookahead == 'u') ADVANCE(14);
       END_STATE();
     case 19:
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(35);
+      if (lookahead == '+' ||
+          lookahead == '-') ADVANCE(24);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(51);
       END_STATE();
     case 20:
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(47);
+      if (lookahead == '+' ||
+          lookahead == '-') ADVANCE(22);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(56);
       END_STATE();
     case 21:
-      if (lookahead != 0 &&
-          lookahead != '\n') ADVANCE(5);
+      if (lookahead == '+' ||
+          lookahead == '-') ADVANCE(26);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(43);
       END_STATE();
     case 22:
-      if (eof) ADVANCE(23);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(56);
+      END_STATE();
+    case 23:
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(48);
+      END_STATE();
+    case 24:
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(51);
+      END_STATE();
+    case 25:
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(42);
+      END_STATE();
+    case 26:
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(43);
+      END_STATE();
+    case 27:
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(55);
+      END_STATE();
+    case 28:
+      if (lookahead != 0 &&
+          lookahead != '\n') ADVANCE(6);
+      END_STATE();
+    case 29:
+      if (eof) ADVANCE(30);
       ADVANCE_MAP(
-        '\n', 24,
+        '\n', 31,
         '\r', 1,
-        '"', 5,
-        '#', 25,
-        '(', 29,
-        ')', 31,
-        ',', 30,
-        '.', 20,
-        '{', 26,
-        '}', 27,
-        '+', 8,
-        '-', 8,
+        '"', 6,
+        '#', 32,
+        '(', 36,
+        ')', 38,
+        ',', 37,
+        '.', 27,
+        '{', 33,
+        '}', 34,
+        '+', 9,
+        '-', 9,
       );
       if (lookahead == '\t' ||
           lookahead == '\f' ||
-          lookahead == ' ') SKIP(22);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(45);
+          lookahead == ' ') SKIP(29);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(53);
       if (lookahead != 0 &&
-          (lookahead < '\t' || '\r' < lookahead)) ADVANCE(67);
+          (lookahead < '\t' || '\r' < lookahead)) ADVANCE(81);
       END_STATE();
-    case 23:
+    case 30:
       ACCEPT_TOKEN(ts_builtin_sym_end);
       END_STATE();
-    case 24:
+    case 31:
       ACCEPT_TOKEN(sym__newline);
       END_STATE();
-    case 25:
+    case 32:
       ACCEPT_TOKEN(sym_comment);
       if (lookahead != 0 &&
           lookahead != '\n' &&
-          lookahead != '\r') ADVANCE(25);
+          lookahead != '\r') ADVANCE(32);
       END_STATE();
-    case 26:
+    case 33:
       ACCEPT_TOKEN(anon_sym_LBRACE);
       END_STATE();
-    case 27:
+    case 34:
       ACCEPT_TOKEN(anon_sym_RBRACE);
       END_STATE();
-    case 28:
+    case 35:
       ACCEPT_TOKEN(sym_name);
       if ((!eof && set_contains(sym_word_character_set_1, 9, lookahead)) ||
           lookahead == '#' ||
           lookahead == '+' ||
           lookahead == '-' ||
           lookahead == '.' ||
-          ('0' <= lookahead && lookahead <= '9')) ADVANCE(28);
-      END_STATE();
-    case 29:
-      ACCEPT_TOKEN(anon_sym_LPAREN);
-      END_STATE();
-    case 30:
-      ACCEPT_TOKEN(anon_sym_COMMA);
-      END_STATE();
-    case 31:
-      ACCEPT_TOKEN(anon_sym_RPAREN);
-      END_STATE();
-    case 32:
-      ACCEPT_TOKEN(anon_sym_DASH_GT);
-      END_STATE();
-    case 33:
-      ACCEPT_TOKEN(sym_radius);
-      if (lookahead == '.') ADVANCE(34);
-      if (lookahead == 'E' ||
-          lookahead == 'e') ADVANCE(14);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(33);
-      END_STATE();
-    case 34:
-      ACCEPT_TOKEN(sym_radius);
-      if (lookahead == 'E' ||
-          lookahead == 'e') ADVANCE(14);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(34);
-      END_STATE();
-    case 35:
-      ACCEPT_TOKEN(sym_radius);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(35);
+          ('0' <= lookahead && lookahead <= '9')) ADVANCE(35);
       END_STATE();
     case 36:
-      ACCEPT_TOKEN(sym_diameter);
-      if (lookahead == '.') ADVANCE(39);
-      if (lookahead == 'E' ||
-          lookahead == 'e') ADVANCE(64);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(36);
-      if ((!eof && set_contains(sym_word_character_set_1, 9, lookahead)) ||
-          lookahead == '#' ||
-          lookahead == '+' ||
-          lookahead == '-' ||
-          lookahead == '.') ADVANCE(67);
+      ACCEPT_TOKEN(anon_sym_LPAREN);
       END_STATE();
     case 37:
-      ACCEPT_TOKEN(sym_diameter);
-      if (lookahead == '.') ADVANCE(40);
-      if (lookahead == 'E' ||
-          lookahead == 'e') ADVANCE(12);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(37);
+      ACCEPT_TOKEN(anon_sym_COMMA);
       END_STATE();
     case 38:
-      ACCEPT_TOKEN(sym_diameter);
-      if (lookahead == '.') ADVANCE(41);
-      if (lookahead == 'E' ||
-          lookahead == 'e') ADVANCE(55);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(38);
+      ACCEPT_TOKEN(anon_sym_RPAREN);
       END_STATE();
     case 39:
-      ACCEPT_TOKEN(sym_diameter);
-      if (lookahead == 'E' ||
-          lookahead == 'e') ADVANCE(64);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(39);
-      if ((!eof && set_contains(sym_word_character_set_1, 9, lookahead)) ||
-          lookahead == '#' ||
-          lookahead == '+' ||
-          lookahead == '-' ||
-          lookahead == '.') ADVANCE(67);
+      ACCEPT_TOKEN(anon_sym_DASH_GT);
       END_STATE();
     case 40:
-      ACCEPT_TOKEN(sym_diameter);
-      if (lookahead == 'E' ||
-          lookahead == 'e') ADVANCE(12);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(40);
+      ACCEPT_TOKEN(sym_turn);
       END_STATE();
     case 41:
-      ACCEPT_TOKEN(sym_diameter);
+      ACCEPT_TOKEN(sym_radius);
+      if (lookahead == '.') ADVANCE(42);
       if (lookahead == 'E' ||
-          lookahead == 'e') ADVANCE(55);
+          lookahead == 'e') ADVANCE(21);
       if (('0' <= lookahead && lookahead <= '9')) ADVANCE(41);
       END_STATE();
     case 42:
-      ACCEPT_TOKEN(sym_diameter);
+      ACCEPT_TOKEN(sym_radius);
+      if (lookahead == 'E' ||
+          lookahead == 'e') ADVANCE(21);
       if (('0' <= lookahead && lookahead <= '9')) ADVANCE(42);
+      END_STATE();
+    case 43:
+      ACCEPT_TOKEN(sym_radius);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(43);
+      END_STATE();
+    case 44:
+      ACCEPT_TOKEN(sym_diameter);
+      if (lookahead == '.') ADVANCE(47);
+      if (lookahead == 'E' ||
+          lookahead == 'e') ADVANCE(78);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(44);
       if ((!eof && set_contains(sym_word_character_set_1, 9, lookahead)) ||
           lookahead == '#' ||
           lookahead == '+' ||
           lookahead == '-' ||
-          lookahead == '.') ADVANCE(67);
-      END_STATE();
-    case 43:
-      ACCEPT_TOKEN(sym_diameter);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(43);
-      END_STATE();
-    case 44:
-      ACCEPT_TOKEN(sym_number);
-      if (lookahead == '.') ADVANCE(46);
-      if (lookahead == 'E' ||
-          lookahead == 'e') ADVANCE(54);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(44);
+          lookahead == '.') ADVANCE(81);
       END_STATE();
     case 45:
-      ACCEPT_TOKEN(sym_number);
-      if (lookahead == '.') ADVANCE(47);
+      ACCEPT_TOKEN(sym_diameter);
+      if (lookahead == '.') ADVANCE(48);
       if (lookahead == 'E' ||
-          lookahead == 'e') ADVANCE(13);
+          lookahead == 'e') ADVANCE(19);
       if (('0' <= lookahead && lookahead <= '9')) ADVANCE(45);
       END_STATE();
     case 46:
-      ACCEPT_TOKEN(sym_number);
+      ACCEPT_TOKEN(sym_diameter);
+      if (lookahead == '.') ADVANCE(49);
       if (lookahead == 'E' ||
-          lookahead == 'e') ADVANCE(54);
+          lookahead == 'e') ADVANCE(66);
       if (('0' <= lookahead && lookahead <= '9')) ADVANCE(46);
       END_STATE();
     case 47:
-      ACCEPT_TOKEN(sym_number);
+      ACCEPT_TOKEN(sym_diameter);
       if (lookahead == 'E' ||
-          lookahead == 'e') ADVANCE(13);
+          lookahead == 'e') ADVANCE(78);
       if (('0' <= lookahead && lookahead <= '9')) ADVANCE(47);
+      if ((!eof && set_contains(sym_word_character_set_1, 9, lookahead)) ||
+          lookahead == '#' ||
+          lookahead == '+' ||
+          lookahead == '-' ||
+          lookahead == '.') ADVANCE(81);
       END_STATE();
     case 48:
-      ACCEPT_TOKEN(sym_number);
+      ACCEPT_TOKEN(sym_diameter);
+      if (lookahead == 'E' ||
+          lookahead == 'e') ADVANCE(19);
       if (('0' <= lookahead && lookahead <= '9')) ADVANCE(48);
       END_STATE();
     case 49:
-      ACCEPT_TOKEN(sym_parameter);
-      if (lookahead == '.') ADVANCE(56);
-      if (lookahead == '>') ADVANCE(32);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(44);
-      if (lookahead != 0 &&
-          (lookahead < '\t' || '\r' < lookahead) &&
-          lookahead != ' ') ADVANCE(60);
+      ACCEPT_TOKEN(sym_diameter);
+      if (lookahead == 'E' ||
+          lookahead == 'e') ADVANCE(66);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(49);
       END_STATE();
     case 50:
-      ACCEPT_TOKEN(sym_parameter);
-      if (lookahead == '.') ADVANCE(56);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(44);
-      if (lookahead != 0 &&
-          (lookahead < '\t' || '\r' < lookahead) &&
-          lookahead != ' ') ADVANCE(60);
+      ACCEPT_TOKEN(sym_diameter);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(50);
+      if ((!eof && set_contains(sym_word_character_set_1, 9, lookahead)) ||
+          lookahead == '#' ||
+          lookahead == '+' ||
+          lookahead == '-' ||
+          lookahead == '.') ADVANCE(81);
       END_STATE();
     case 51:
-      ACCEPT_TOKEN(sym_parameter);
-      if (lookahead == '.') ADVANCE(59);
-      if (lookahead == '\t' ||
-          lookahead == ' ') ADVANCE(6);
-      if (lookahead == '+' ||
-          lookahead == '-') ADVANCE(52);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(38);
-      if (lookahead != 0 &&
-          (lookahead < '\t' || '\r' < lookahead)) ADVANCE(60);
+      ACCEPT_TOKEN(sym_diameter);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(51);
       END_STATE();
     case 52:
-      ACCEPT_TOKEN(sym_parameter);
-      if (lookahead == '.') ADVANCE(59);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(38);
-      if (lookahead != 0 &&
-          (lookahead < '\t' || '\r' < lookahead) &&
-          lookahead != ' ') ADVANCE(60);
+      ACCEPT_TOKEN(sym_number);
+      if (lookahead == '.') ADVANCE(54);
+      if (lookahead == 'E' ||
+          lookahead == 'e') ADVANCE(65);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(52);
       END_STATE();
     case 53:
-      ACCEPT_TOKEN(sym_parameter);
-      if (lookahead == '>') ADVANCE(32);
-      if (lookahead != 0 &&
-          (lookahead < '\t' || '\r' < lookahead) &&
-          lookahead != ' ') ADVANCE(60);
+      ACCEPT_TOKEN(sym_number);
+      if (lookahead == '.') ADVANCE(55);
+      if (lookahead == 'E' ||
+          lookahead == 'e') ADVANCE(20);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(53);
       END_STATE();
     case 54:
-      ACCEPT_TOKEN(sym_parameter);
-      if (lookahead == '+' ||
-          lookahead == '-') ADVANCE(57);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(48);
-      if (lookahead != 0 &&
-          (lookahead < '\t' || '\r' < lookahead) &&
-          lookahead != ' ') ADVANCE(60);
+      ACCEPT_TOKEN(sym_number);
+      if (lookahead == 'E' ||
+          lookahead == 'e') ADVANCE(65);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(54);
       END_STATE();
     case 55:
-      ACCEPT_TOKEN(sym_parameter);
-      if (lookahead == '+' ||
-          lookahead == '-') ADVANCE(58);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(43);
-      if (lookahead != 0 &&
-          (lookahead < '\t' || '\r' < lookahead) &&
-          lookahead != ' ') ADVANCE(60);
+      ACCEPT_TOKEN(sym_number);
+      if (lookahead == 'E' ||
+          lookahead == 'e') ADVANCE(20);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(55);
       END_STATE();
     case 56:
-      ACCEPT_TOKEN(sym_parameter);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(46);
-      if (lookahead != 0 &&
-          (lookahead < '\t' || '\r' < lookahead) &&
-          lookahead != ' ') ADVANCE(60);
+      ACCEPT_TOKEN(sym_number);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(56);
       END_STATE();
     case 57:
       ACCEPT_TOKEN(sym_parameter);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(48);
+      if (lookahead == '.') ADVANCE(67);
+      if (lookahead == '>') ADVANCE(39);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(52);
       if (lookahead != 0 &&
           (lookahead < '\t' || '\r' < lookahead) &&
-          lookahead != ' ') ADVANCE(60);
+          lookahead != ' ') ADVANCE(71);
       END_STATE();
     case 58:
       ACCEPT_TOKEN(sym_parameter);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(43);
+      if (lookahead == '.') ADVANCE(67);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(52);
       if (lookahead != 0 &&
           (lookahead < '\t' || '\r' < lookahead) &&
-          lookahead != ' ') ADVANCE(60);
+          lookahead != ' ') ADVANCE(71);
       END_STATE();
     case 59:
       ACCEPT_TOKEN(sym_parameter);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(41);
+      if (lookahead == '.') ADVANCE(70);
+      if (lookahead == '\t' ||
+          lookahead == ' ') ADVANCE(7);
+      if (lookahead == '+' ||
+          lookahead == '-') ADVANCE(60);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(46);
       if (lookahead != 0 &&
-          (lookahead < '\t' || '\r' < lookahead) &&
-          lookahead != ' ') ADVANCE(60);
+          (lookahead < '\t' || '\r' < lookahead)) ADVANCE(71);
       END_STATE();
     case 60:
       ACCEPT_TOKEN(sym_parameter);
+      if (lookahead == '.') ADVANCE(70);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(46);
       if (lookahead != 0 &&
           (lookahead < '\t' || '\r' < lookahead) &&
-          lookahead != ' ') ADVANCE(60);
+          lookahead != ' ') ADVANCE(71);
       END_STATE();
     case 61:
-      ACCEPT_TOKEN(sym_string);
+      ACCEPT_TOKEN(sym_parameter);
+      if (lookahead == '>') ADVANCE(39);
+      if (lookahead != 0 &&
+          (lookahead < '\t' || '\r' < lookahead) &&
+          lookahead != ' ') ADVANCE(71);
       END_STATE();
     case 62:
-      ACCEPT_TOKEN(sym_word);
-      if (lookahead == '.') ADVANCE(65);
+      ACCEPT_TOKEN(sym_parameter);
+      if (lookahead == 'c') ADVANCE(63);
+      if (lookahead == 'w') ADVANCE(64);
+      if (lookahead != 0 &&
+          (lookahead < '\t' || '\r' < lookahead) &&
+          lookahead != ' ') ADVANCE(71);
+      END_STATE();
+    case 63:
+      ACCEPT_TOKEN(sym_parameter);
+      if (lookahead == 'w') ADVANCE(64);
+      if (lookahead != 0 &&
+          (lookahead < '\t' || '\r' < lookahead) &&
+          lookahead != ' ') ADVANCE(71);
+      END_STATE();
+    case 64:
+      ACCEPT_TOKEN(sym_parameter);
       if (lookahead == '\t' ||
-          lookahead == ' ') ADVANCE(6);
+          lookahead == ' ') ADVANCE(12);
+      if (lookahead != 0 &&
+          (lookahead < '\t' || '\r' < lookahead)) ADVANCE(71);
+      END_STATE();
+    case 65:
+      ACCEPT_TOKEN(sym_parameter);
       if (lookahead == '+' ||
-          lookahead == '-') ADVANCE(63);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(36);
+          lookahead == '-') ADVANCE(68);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(56);
+      if (lookahead != 0 &&
+          (lookahead < '\t' || '\r' < lookahead) &&
+          lookahead != ' ') ADVANCE(71);
+      END_STATE();
+    case 66:
+      ACCEPT_TOKEN(sym_parameter);
+      if (lookahead == '+' ||
+          lookahead == '-') ADVANCE(69);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(51);
+      if (lookahead != 0 &&
+          (lookahead < '\t' || '\r' < lookahead) &&
+          lookahead != ' ') ADVANCE(71);
+      END_STATE();
+    case 67:
+      ACCEPT_TOKEN(sym_parameter);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(54);
+      if (lookahead != 0 &&
+          (lookahead < '\t' || '\r' < lookahead) &&
+          lookahead != ' ') ADVANCE(71);
+      END_STATE();
+    case 68:
+      ACCEPT_TOKEN(sym_parameter);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(56);
+      if (lookahead != 0 &&
+          (lookahead < '\t' || '\r' < lookahead) &&
+          lookahead != ' ') ADVANCE(71);
+      END_STATE();
+    case 69:
+      ACCEPT_TOKEN(sym_parameter);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(51);
+      if (lookahead != 0 &&
+          (lookahead < '\t' || '\r' < lookahead) &&
+          lookahead != ' ') ADVANCE(71);
+      END_STATE();
+    case 70:
+      ACCEPT_TOKEN(sym_parameter);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(49);
+      if (lookahead != 0 &&
+          (lookahead < '\t' || '\r' < lookahead) &&
+          lookahead != ' ') ADVANCE(71);
+      END_STATE();
+    case 71:
+      ACCEPT_TOKEN(sym_parameter);
+      if (lookahead != 0 &&
+          (lookahead < '\t' || '\r' < lookahead) &&
+          lookahead != ' ') ADVANCE(71);
+      END_STATE();
+    case 72:
+      ACCEPT_TOKEN(sym_string);
+      END_STATE();
+    case 73:
+      ACCEPT_TOKEN(sym_word);
+      if (lookahead == '.') ADVANCE(79);
+      if (lookahead == '\t' ||
+          lookahead == ' ') ADVANCE(7);
+      if (lookahead == '+' ||
+          lookahead == '-') ADVANCE(74);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(44);
       if (lookahead != 0 &&
           (lookahead < '\t' || '\r' < lookahead) &&
           lookahead != '"' &&
@@ -955,53 +1035,87 @@ static bool ts_lex(TSLexer *lexer, TSStateId state) {
           lookahead != ')' &&
           (lookahead < '+' || '.' < lookahead) &&
           lookahead != '{' &&
-          lookahead != '}') ADVANCE(67);
+          lookahead != '}') ADVANCE(81);
       END_STATE();
-    case 63:
+    case 74:
       ACCEPT_TOKEN(sym_word);
-      if (lookahead == '.') ADVANCE(65);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(36);
+      if (lookahead == '.') ADVANCE(79);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(44);
       if ((!eof && set_contains(sym_word_character_set_1, 9, lookahead)) ||
           lookahead == '#' ||
           lookahead == '+' ||
           lookahead == '-' ||
-          lookahead == '.') ADVANCE(67);
+          lookahead == '.') ADVANCE(81);
       END_STATE();
-    case 64:
+    case 75:
+      ACCEPT_TOKEN(sym_word);
+      if (lookahead == 'c') ADVANCE(76);
+      if (lookahead == 'w') ADVANCE(77);
+      if ((!eof && set_contains(sym_word_character_set_1, 9, lookahead)) ||
+          lookahead == '#' ||
+          lookahead == '+' ||
+          lookahead == '-' ||
+          lookahead == '.' ||
+          ('0' <= lookahead && lookahead <= '9')) ADVANCE(81);
+      END_STATE();
+    case 76:
+      ACCEPT_TOKEN(sym_word);
+      if (lookahead == 'w') ADVANCE(77);
+      if ((!eof && set_contains(sym_word_character_set_1, 9, lookahead)) ||
+          lookahead == '#' ||
+          lookahead == '+' ||
+          lookahead == '-' ||
+          lookahead == '.' ||
+          ('0' <= lookahead && lookahead <= '9')) ADVANCE(81);
+      END_STATE();
+    case 77:
+      ACCEPT_TOKEN(sym_word);
+      if (lookahead == '\t' ||
+          lookahead == ' ') ADVANCE(12);
+      if (lookahead != 0 &&
+          (lookahead < '\t' || '\r' < lookahead) &&
+          lookahead != '"' &&
+          lookahead != '(' &&
+          lookahead != ')' &&
+          lookahead != ',' &&
+          lookahead != '{' &&
+          lookahead != '}') ADVANCE(81);
+      END_STATE();
+    case 78:
       ACCEPT_TOKEN(sym_word);
       if (lookahead == '+' ||
-          lookahead == '-') ADVANCE(66);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(42);
+          lookahead == '-') ADVANCE(80);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(50);
       if ((!eof && set_contains(sym_word_character_set_1, 9, lookahead)) ||
           lookahead == '#' ||
-          lookahead == '.') ADVANCE(67);
+          lookahead == '.') ADVANCE(81);
       END_STATE();
-    case 65:
+    case 79:
       ACCEPT_TOKEN(sym_word);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(39);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(47);
       if ((!eof && set_contains(sym_word_character_set_1, 9, lookahead)) ||
           lookahead == '#' ||
           lookahead == '+' ||
           lookahead == '-' ||
-          lookahead == '.') ADVANCE(67);
+          lookahead == '.') ADVANCE(81);
       END_STATE();
-    case 66:
+    case 80:
       ACCEPT_TOKEN(sym_word);
-      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(42);
+      if (('0' <= lookahead && lookahead <= '9')) ADVANCE(50);
       if ((!eof && set_contains(sym_word_character_set_1, 9, lookahead)) ||
           lookahead == '#' ||
           lookahead == '+' ||
           lookahead == '-' ||
-          lookahead == '.') ADVANCE(67);
+          lookahead == '.') ADVANCE(81);
       END_STATE();
-    case 67:
+    case 81:
       ACCEPT_TOKEN(sym_word);
       if ((!eof && set_contains(sym_word_character_set_1, 9, lookahead)) ||
           lookahead == '#' ||
           lookahead == '+' ||
           lookahead == '-' ||
           lookahead == '.' ||
-          ('0' <= lookahead && lookahead <= '9')) ADVANCE(67);
+          ('0' <= lookahead && lookahead <= '9')) ADVANCE(81);
       END_STATE();
     default:
       return false;
@@ -1258,72 +1372,79 @@ static bool ts_lex_keywords(TSLexer *lexer, TSStateId state) {
 
 static const TSLexerMode ts_lex_modes[STATE_COUNT] = {
   [0] = {.lex_state = 0},
-  [1] = {.lex_state = 22},
-  [2] = {.lex_state = 22},
-  [3] = {.lex_state = 22},
-  [4] = {.lex_state = 22},
-  [5] = {.lex_state = 22},
-  [6] = {.lex_state = 22},
-  [7] = {.lex_state = 22},
-  [8] = {.lex_state = 22},
-  [9] = {.lex_state = 22},
-  [10] = {.lex_state = 22},
-  [11] = {.lex_state = 22},
-  [12] = {.lex_state = 22},
-  [13] = {.lex_state = 22},
+  [1] = {.lex_state = 29},
+  [2] = {.lex_state = 29},
+  [3] = {.lex_state = 29},
+  [4] = {.lex_state = 29},
+  [5] = {.lex_state = 29},
+  [6] = {.lex_state = 29},
+  [7] = {.lex_state = 29},
+  [8] = {.lex_state = 29},
+  [9] = {.lex_state = 29},
+  [10] = {.lex_state = 29},
+  [11] = {.lex_state = 29},
+  [12] = {.lex_state = 29},
+  [13] = {.lex_state = 29},
   [14] = {.lex_state = 2},
-  [15] = {.lex_state = 3},
+  [15] = {.lex_state = 4},
   [16] = {.lex_state = 2},
-  [17] = {.lex_state = 3},
+  [17] = {.lex_state = 4},
   [18] = {.lex_state = 3},
-  [19] = {.lex_state = 22},
-  [20] = {.lex_state = 22},
-  [21] = {.lex_state = 22},
-  [22] = {.lex_state = 22},
-  [23] = {.lex_state = 22},
-  [24] = {.lex_state = 22},
-  [25] = {.lex_state = 3},
-  [26] = {.lex_state = 3},
-  [27] = {.lex_state = 22},
-  [28] = {.lex_state = 22},
-  [29] = {.lex_state = 22},
-  [30] = {.lex_state = 22},
-  [31] = {.lex_state = 3},
-  [32] = {.lex_state = 3},
-  [33] = {.lex_state = 22},
-  [34] = {.lex_state = 22},
-  [35] = {.lex_state = 22},
-  [36] = {.lex_state = 0},
-  [37] = {.lex_state = 22},
-  [38] = {.lex_state = 22},
-  [39] = {.lex_state = 0},
-  [40] = {.lex_state = 4},
-  [41] = {.lex_state = 22},
-  [42] = {.lex_state = 22},
-  [43] = {.lex_state = 22},
-  [44] = {.lex_state = 0},
-  [45] = {.lex_state = 0},
-  [46] = {.lex_state = 22},
-  [47] = {.lex_state = 22},
+  [19] = {.lex_state = 4},
+  [20] = {.lex_state = 3},
+  [21] = {.lex_state = 29},
+  [22] = {.lex_state = 29},
+  [23] = {.lex_state = 29},
+  [24] = {.lex_state = 29},
+  [25] = {.lex_state = 4},
+  [26] = {.lex_state = 29},
+  [27] = {.lex_state = 29},
+  [28] = {.lex_state = 29},
+  [29] = {.lex_state = 29},
+  [30] = {.lex_state = 29},
+  [31] = {.lex_state = 29},
+  [32] = {.lex_state = 4},
+  [33] = {.lex_state = 4},
+  [34] = {.lex_state = 4},
+  [35] = {.lex_state = 29},
+  [36] = {.lex_state = 29},
+  [37] = {.lex_state = 29},
+  [38] = {.lex_state = 0},
+  [39] = {.lex_state = 29},
+  [40] = {.lex_state = 29},
+  [41] = {.lex_state = 0},
+  [42] = {.lex_state = 5},
+  [43] = {.lex_state = 29},
+  [44] = {.lex_state = 29},
+  [45] = {.lex_state = 29},
+  [46] = {.lex_state = 29},
+  [47] = {.lex_state = 29},
   [48] = {.lex_state = 0},
-  [49] = {.lex_state = 22},
-  [50] = {.lex_state = 22},
+  [49] = {.lex_state = 29},
+  [50] = {.lex_state = 29},
   [51] = {.lex_state = 0},
-  [52] = {.lex_state = 22},
-  [53] = {.lex_state = 11},
-  [54] = {.lex_state = 22},
-  [55] = {.lex_state = 22},
-  [56] = {.lex_state = 22},
-  [57] = {.lex_state = 11},
-  [58] = {.lex_state = 22},
-  [59] = {.lex_state = 22},
-  [60] = {.lex_state = 22},
-  [61] = {.lex_state = 22},
-  [62] = {.lex_state = 22},
-  [63] = {.lex_state = 0},
-  [64] = {.lex_state = 22},
-  [65] = {.lex_state = 22},
-  [66] = {.lex_state = 22},
+  [52] = {.lex_state = 29},
+  [53] = {.lex_state = 17},
+  [54] = {.lex_state = 29},
+  [55] = {.lex_state = 29},
+  [56] = {.lex_state = 29},
+  [57] = {.lex_state = 29},
+  [58] = {.lex_state = 0},
+  [59] = {.lex_state = 17},
+  [60] = {.lex_state = 0},
+  [61] = {.lex_state = 0},
+  [62] = {.lex_state = 29},
+  [63] = {.lex_state = 29},
+  [64] = {.lex_state = 29},
+  [65] = {.lex_state = 29},
+  [66] = {.lex_state = 29},
+  [67] = {.lex_state = 29},
+  [68] = {.lex_state = 29},
+  [69] = {.lex_state = 29},
+  [70] = {.lex_state = 29},
+  [71] = {.lex_state = 29},
+  [72] = {.lex_state = 29},
+  [73] = {.lex_state = 29},
 };
 
 static const uint16_t ts_parse_table[LARGE_STATE_COUNT][SYMBOL_COUNT] = {
@@ -1354,6 +1475,7 @@ static const uint16_t ts_parse_table[LARGE_STATE_COUNT][SYMBOL_COUNT] = {
     [anon_sym_COMMA] = ACTIONS(1),
     [anon_sym_RPAREN] = ACTIONS(1),
     [anon_sym_DASH_GT] = ACTIONS(1),
+    [sym_turn] = ACTIONS(1),
     [anon_sym_arc] = ACTIONS(1),
     [anon_sym_from] = ACTIONS(1),
     [anon_sym_to] = ACTIONS(1),
@@ -1363,7 +1485,7 @@ static const uint16_t ts_parse_table[LARGE_STATE_COUNT][SYMBOL_COUNT] = {
     [sym_string] = ACTIONS(1),
   },
   [STATE(1)] = {
-    [sym_source_file] = STATE(63),
+    [sym_source_file] = STATE(58),
     [sym__comment_line] = STATE(12),
     [sym_path] = STATE(12),
     [aux_sym_source_file_repeat1] = STATE(12),
@@ -1668,7 +1790,7 @@ static const uint16_t ts_small_parse_table[] = {
       sym_comment,
     STATE(17), 1,
       aux_sym_parameters_repeat1,
-    STATE(39), 1,
+    STATE(41), 1,
       sym_parameters,
     ACTIONS(85), 2,
       sym_parameter,
@@ -1683,7 +1805,7 @@ static const uint16_t ts_small_parse_table[] = {
       sym_diameter,
       sym_string,
   [376] = 3,
-    STATE(18), 1,
+    STATE(19), 1,
       aux_sym_parameters_repeat1,
     ACTIONS(91), 2,
       sym__newline,
@@ -1692,23 +1814,32 @@ static const uint16_t ts_small_parse_table[] = {
       sym_parameter,
       sym_string,
   [388] = 3,
-    STATE(18), 1,
-      aux_sym_parameters_repeat1,
-    ACTIONS(95), 2,
+    ACTIONS(97), 1,
+      sym_turn,
+    ACTIONS(99), 1,
+      sym_parameter,
+    ACTIONS(95), 3,
       sym__newline,
       sym_comment,
-    ACTIONS(97), 2,
-      sym_parameter,
       sym_string,
   [400] = 3,
-    ACTIONS(102), 1,
+    STATE(19), 1,
+      aux_sym_parameters_repeat1,
+    ACTIONS(101), 2,
       sym__newline,
-    ACTIONS(104), 1,
       sym_comment,
-    ACTIONS(100), 2,
-      ts_builtin_sym_end,
-      anon_sym_path,
-  [411] = 3,
+    ACTIONS(103), 2,
+      sym_parameter,
+      sym_string,
+  [412] = 2,
+    ACTIONS(89), 1,
+      sym_parameter,
+    ACTIONS(87), 4,
+      sym__newline,
+      sym_comment,
+      sym_turn,
+      sym_string,
+  [422] = 3,
     ACTIONS(108), 1,
       sym__newline,
     ACTIONS(110), 1,
@@ -1716,201 +1847,226 @@ static const uint16_t ts_small_parse_table[] = {
     ACTIONS(106), 2,
       ts_builtin_sym_end,
       anon_sym_path,
-  [422] = 1,
-    ACTIONS(112), 4,
-      ts_builtin_sym_end,
+  [433] = 3,
+    ACTIONS(114), 1,
       sym__newline,
-      sym_comment,
-      anon_sym_path,
-  [429] = 2,
-    ACTIONS(114), 2,
-      anon_sym_drill,
-      anon_sym_helix,
-    ACTIONS(116), 2,
-      anon_sym_LPAREN,
-      anon_sym_arc,
-  [438] = 3,
-    ACTIONS(118), 1,
-      sym__newline,
-    ACTIONS(120), 1,
+    ACTIONS(116), 1,
       sym_comment,
     ACTIONS(112), 2,
       ts_builtin_sym_end,
       anon_sym_path,
-  [449] = 2,
-    ACTIONS(124), 1,
-      sym__newline,
-    ACTIONS(122), 3,
+  [444] = 1,
+    ACTIONS(118), 4,
       ts_builtin_sym_end,
+      sym__newline,
       sym_comment,
       anon_sym_path,
-  [458] = 1,
+  [451] = 2,
+    ACTIONS(120), 2,
+      anon_sym_drill,
+      anon_sym_helix,
+    ACTIONS(122), 2,
+      anon_sym_LPAREN,
+      anon_sym_arc,
+  [460] = 1,
+    ACTIONS(124), 4,
+      sym__newline,
+      sym_comment,
+      sym_parameter,
+      sym_string,
+  [467] = 1,
     ACTIONS(126), 4,
-      sym__newline,
-      sym_comment,
-      sym_parameter,
-      sym_string,
-  [465] = 1,
-    ACTIONS(128), 4,
-      sym__newline,
-      sym_comment,
-      sym_parameter,
-      sym_string,
-  [472] = 1,
-    ACTIONS(122), 4,
       ts_builtin_sym_end,
       sym__newline,
       sym_comment,
       anon_sym_path,
-  [479] = 1,
+  [474] = 2,
+    ACTIONS(128), 1,
+      sym__newline,
+    ACTIONS(118), 3,
+      ts_builtin_sym_end,
+      sym_comment,
+      anon_sym_path,
+  [483] = 1,
     ACTIONS(130), 4,
       ts_builtin_sym_end,
       sym__newline,
       sym_comment,
       anon_sym_path,
-  [486] = 1,
-    ACTIONS(106), 4,
+  [490] = 2,
+    ACTIONS(132), 1,
+      sym__newline,
+    ACTIONS(130), 3,
+      ts_builtin_sym_end,
+      sym_comment,
+      anon_sym_path,
+  [499] = 1,
+    ACTIONS(112), 4,
       ts_builtin_sym_end,
       sym__newline,
       sym_comment,
       anon_sym_path,
-  [493] = 2,
-    ACTIONS(118), 1,
+  [506] = 3,
+    ACTIONS(128), 1,
       sym__newline,
-    ACTIONS(112), 3,
-      ts_builtin_sym_end,
+    ACTIONS(134), 1,
       sym_comment,
+    ACTIONS(118), 2,
+      ts_builtin_sym_end,
       anon_sym_path,
-  [502] = 1,
+  [517] = 1,
+    ACTIONS(136), 4,
+      sym__newline,
+      sym_comment,
+      sym_parameter,
+      sym_string,
+  [524] = 1,
+    ACTIONS(138), 4,
+      sym__newline,
+      sym_comment,
+      sym_parameter,
+      sym_string,
+  [531] = 1,
     ACTIONS(87), 4,
       sym__newline,
       sym_comment,
       sym_parameter,
       sym_string,
-  [509] = 1,
-    ACTIONS(132), 4,
+  [538] = 2,
+    ACTIONS(114), 1,
       sym__newline,
-      sym_comment,
-      sym_parameter,
-      sym_string,
-  [516] = 2,
-    ACTIONS(108), 1,
-      sym__newline,
-    ACTIONS(106), 3,
+    ACTIONS(112), 3,
       ts_builtin_sym_end,
       sym_comment,
       anon_sym_path,
-  [525] = 2,
-    ACTIONS(134), 1,
+  [547] = 2,
+    ACTIONS(140), 1,
       anon_sym_LPAREN,
     STATE(53), 1,
       sym_point,
-  [532] = 1,
-    ACTIONS(136), 2,
+  [554] = 1,
+    ACTIONS(142), 2,
       sym_string,
       sym_word,
-  [537] = 2,
-    ACTIONS(138), 1,
+  [559] = 2,
+    ACTIONS(144), 1,
       sym__newline,
-    ACTIONS(140), 1,
-      sym_comment,
-  [544] = 1,
-    ACTIONS(142), 2,
-      anon_sym_LPAREN,
-      anon_sym_arc,
-  [549] = 1,
-    ACTIONS(144), 2,
-      anon_sym_LPAREN,
-      anon_sym_arc,
-  [554] = 2,
     ACTIONS(146), 1,
-      sym__newline,
-    ACTIONS(148), 1,
       sym_comment,
-  [561] = 1,
+  [566] = 1,
+    ACTIONS(148), 2,
+      anon_sym_LPAREN,
+      anon_sym_arc,
+  [571] = 1,
     ACTIONS(150), 2,
+      anon_sym_LPAREN,
+      anon_sym_arc,
+  [576] = 2,
+    ACTIONS(152), 1,
+      sym__newline,
+    ACTIONS(154), 1,
+      sym_comment,
+  [583] = 1,
+    ACTIONS(156), 2,
       sym_name,
       sym_string,
-  [566] = 2,
-    ACTIONS(152), 1,
+  [588] = 2,
+    ACTIONS(158), 1,
       anon_sym_LPAREN,
-    STATE(26), 1,
+    STATE(18), 1,
       sym_point,
-  [573] = 1,
-    ACTIONS(116), 2,
+  [595] = 1,
+    ACTIONS(122), 2,
       anon_sym_LPAREN,
       anon_sym_arc,
-  [578] = 1,
-    ACTIONS(154), 1,
-      anon_sym_COMMA,
-  [582] = 1,
-    ACTIONS(156), 1,
-      sym__newline,
-  [586] = 1,
-    ACTIONS(146), 1,
-      sym__newline,
-  [590] = 1,
-    ACTIONS(158), 1,
-      anon_sym_LBRACE,
-  [594] = 1,
+  [600] = 2,
     ACTIONS(160), 1,
-      sym_number,
-  [598] = 1,
+      anon_sym_LPAREN,
+    STATE(33), 1,
+      sym_point,
+  [607] = 1,
     ACTIONS(162), 1,
-      sym__newline,
-  [602] = 1,
+      sym_number,
+  [611] = 1,
     ACTIONS(164), 1,
-      anon_sym_RPAREN,
-  [606] = 1,
+      sym_number,
+  [615] = 1,
     ACTIONS(166), 1,
-      sym_number,
-  [610] = 1,
-    ACTIONS(168), 1,
       sym__newline,
-  [614] = 1,
+  [619] = 1,
+    ACTIONS(168), 1,
+      anon_sym_RPAREN,
+  [623] = 1,
     ACTIONS(170), 1,
-      anon_sym_COMMA,
-  [618] = 1,
-    ACTIONS(172), 1,
-      sym_radius,
-  [622] = 1,
-    ACTIONS(174), 1,
-      anon_sym_to,
-  [626] = 1,
-    ACTIONS(176), 1,
       sym_number,
-  [630] = 1,
+  [627] = 1,
+    ACTIONS(172), 1,
+      sym__newline,
+  [631] = 1,
+    ACTIONS(174), 1,
+      anon_sym_COMMA,
+  [635] = 1,
+    ACTIONS(176), 1,
+      sym_radius,
+  [639] = 1,
     ACTIONS(178), 1,
       sym_number,
-  [634] = 1,
+  [643] = 1,
+    ACTIONS(180), 1,
+      anon_sym_to,
+  [647] = 1,
+    ACTIONS(182), 1,
+      anon_sym_from,
+  [651] = 1,
+    ACTIONS(184), 1,
+      sym_number,
+  [655] = 1,
+    ACTIONS(186), 1,
+      ts_builtin_sym_end,
+  [659] = 1,
     ACTIONS(87), 1,
       sym_radius,
-  [638] = 1,
-    ACTIONS(180), 1,
-      anon_sym_from,
-  [642] = 1,
-    ACTIONS(182), 1,
-      anon_sym_RPAREN,
-  [646] = 1,
-    ACTIONS(184), 1,
-      anon_sym_RPAREN,
-  [650] = 1,
-    ACTIONS(186), 1,
-      sym_number,
-  [654] = 1,
+  [663] = 1,
     ACTIONS(188), 1,
-      sym_number,
-  [658] = 1,
+      sym__newline,
+  [667] = 1,
+    ACTIONS(152), 1,
+      sym__newline,
+  [671] = 1,
     ACTIONS(190), 1,
-      ts_builtin_sym_end,
-  [662] = 1,
+      anon_sym_RPAREN,
+  [675] = 1,
     ACTIONS(192), 1,
-      anon_sym_COMMA,
-  [666] = 1,
+      anon_sym_RPAREN,
+  [679] = 1,
     ACTIONS(194), 1,
-      sym_number,
-  [670] = 1,
+      anon_sym_RPAREN,
+  [683] = 1,
     ACTIONS(196), 1,
+      sym_number,
+  [687] = 1,
+    ACTIONS(198), 1,
+      sym_number,
+  [691] = 1,
+    ACTIONS(200), 1,
+      anon_sym_LBRACE,
+  [695] = 1,
+    ACTIONS(202), 1,
+      anon_sym_COMMA,
+  [699] = 1,
+    ACTIONS(204), 1,
+      anon_sym_COMMA,
+  [703] = 1,
+    ACTIONS(206), 1,
+      anon_sym_COMMA,
+  [707] = 1,
+    ACTIONS(208), 1,
+      sym_number,
+  [711] = 1,
+    ACTIONS(210), 1,
+      sym_number,
+  [715] = 1,
+    ACTIONS(212), 1,
       sym_number,
 };
 
@@ -1933,53 +2089,60 @@ static const uint32_t ts_small_parse_table_map[] = {
   [SMALL_STATE(17)] = 376,
   [SMALL_STATE(18)] = 388,
   [SMALL_STATE(19)] = 400,
-  [SMALL_STATE(20)] = 411,
+  [SMALL_STATE(20)] = 412,
   [SMALL_STATE(21)] = 422,
-  [SMALL_STATE(22)] = 429,
-  [SMALL_STATE(23)] = 438,
-  [SMALL_STATE(24)] = 449,
-  [SMALL_STATE(25)] = 458,
-  [SMALL_STATE(26)] = 465,
-  [SMALL_STATE(27)] = 472,
-  [SMALL_STATE(28)] = 479,
-  [SMALL_STATE(29)] = 486,
-  [SMALL_STATE(30)] = 493,
-  [SMALL_STATE(31)] = 502,
-  [SMALL_STATE(32)] = 509,
-  [SMALL_STATE(33)] = 516,
-  [SMALL_STATE(34)] = 525,
-  [SMALL_STATE(35)] = 532,
-  [SMALL_STATE(36)] = 537,
-  [SMALL_STATE(37)] = 544,
-  [SMALL_STATE(38)] = 549,
-  [SMALL_STATE(39)] = 554,
-  [SMALL_STATE(40)] = 561,
-  [SMALL_STATE(41)] = 566,
-  [SMALL_STATE(42)] = 573,
-  [SMALL_STATE(43)] = 578,
-  [SMALL_STATE(44)] = 582,
-  [SMALL_STATE(45)] = 586,
-  [SMALL_STATE(46)] = 590,
-  [SMALL_STATE(47)] = 594,
-  [SMALL_STATE(48)] = 598,
-  [SMALL_STATE(49)] = 602,
-  [SMALL_STATE(50)] = 606,
-  [SMALL_STATE(51)] = 610,
-  [SMALL_STATE(52)] = 614,
-  [SMALL_STATE(53)] = 618,
-  [SMALL_STATE(54)] = 622,
-  [SMALL_STATE(55)] = 626,
-  [SMALL_STATE(56)] = 630,
-  [SMALL_STATE(57)] = 634,
-  [SMALL_STATE(58)] = 638,
-  [SMALL_STATE(59)] = 642,
-  [SMALL_STATE(60)] = 646,
-  [SMALL_STATE(61)] = 650,
-  [SMALL_STATE(62)] = 654,
-  [SMALL_STATE(63)] = 658,
-  [SMALL_STATE(64)] = 662,
-  [SMALL_STATE(65)] = 666,
-  [SMALL_STATE(66)] = 670,
+  [SMALL_STATE(22)] = 433,
+  [SMALL_STATE(23)] = 444,
+  [SMALL_STATE(24)] = 451,
+  [SMALL_STATE(25)] = 460,
+  [SMALL_STATE(26)] = 467,
+  [SMALL_STATE(27)] = 474,
+  [SMALL_STATE(28)] = 483,
+  [SMALL_STATE(29)] = 490,
+  [SMALL_STATE(30)] = 499,
+  [SMALL_STATE(31)] = 506,
+  [SMALL_STATE(32)] = 517,
+  [SMALL_STATE(33)] = 524,
+  [SMALL_STATE(34)] = 531,
+  [SMALL_STATE(35)] = 538,
+  [SMALL_STATE(36)] = 547,
+  [SMALL_STATE(37)] = 554,
+  [SMALL_STATE(38)] = 559,
+  [SMALL_STATE(39)] = 566,
+  [SMALL_STATE(40)] = 571,
+  [SMALL_STATE(41)] = 576,
+  [SMALL_STATE(42)] = 583,
+  [SMALL_STATE(43)] = 588,
+  [SMALL_STATE(44)] = 595,
+  [SMALL_STATE(45)] = 600,
+  [SMALL_STATE(46)] = 607,
+  [SMALL_STATE(47)] = 611,
+  [SMALL_STATE(48)] = 615,
+  [SMALL_STATE(49)] = 619,
+  [SMALL_STATE(50)] = 623,
+  [SMALL_STATE(51)] = 627,
+  [SMALL_STATE(52)] = 631,
+  [SMALL_STATE(53)] = 635,
+  [SMALL_STATE(54)] = 639,
+  [SMALL_STATE(55)] = 643,
+  [SMALL_STATE(56)] = 647,
+  [SMALL_STATE(57)] = 651,
+  [SMALL_STATE(58)] = 655,
+  [SMALL_STATE(59)] = 659,
+  [SMALL_STATE(60)] = 663,
+  [SMALL_STATE(61)] = 667,
+  [SMALL_STATE(62)] = 671,
+  [SMALL_STATE(63)] = 675,
+  [SMALL_STATE(64)] = 679,
+  [SMALL_STATE(65)] = 683,
+  [SMALL_STATE(66)] = 687,
+  [SMALL_STATE(67)] = 691,
+  [SMALL_STATE(68)] = 695,
+  [SMALL_STATE(69)] = 699,
+  [SMALL_STATE(70)] = 703,
+  [SMALL_STATE(71)] = 707,
+  [SMALL_STATE(72)] = 711,
+  [SMALL_STATE(73)] = 715,
 };
 
 static const TSParseActionEntry ts_parse_actions[] = {
@@ -1988,22 +2151,22 @@ static const TSParseActionEntry ts_parse_actions[] = {
   [3] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_source_file, 0, 0, 0),
   [5] = {.entry = {.count = 1, .reusable = true}}, SHIFT(12),
   [7] = {.entry = {.count = 1, .reusable = true}}, SHIFT(51),
-  [9] = {.entry = {.count = 1, .reusable = true}}, SHIFT(40),
+  [9] = {.entry = {.count = 1, .reusable = true}}, SHIFT(42),
   [11] = {.entry = {.count = 2, .reusable = true}}, REDUCE(aux_sym_path_repeat1, 2, 0, 0), SHIFT_REPEAT(2),
   [14] = {.entry = {.count = 2, .reusable = true}}, REDUCE(aux_sym_path_repeat1, 2, 0, 0), SHIFT_REPEAT(51),
   [17] = {.entry = {.count = 1, .reusable = true}}, REDUCE(aux_sym_path_repeat1, 2, 0, 0),
-  [19] = {.entry = {.count = 2, .reusable = true}}, REDUCE(aux_sym_path_repeat1, 2, 0, 0), SHIFT_REPEAT(42),
-  [22] = {.entry = {.count = 2, .reusable = true}}, REDUCE(aux_sym_path_repeat1, 2, 0, 0), SHIFT_REPEAT(22),
-  [25] = {.entry = {.count = 2, .reusable = true}}, REDUCE(aux_sym_path_repeat1, 2, 0, 0), SHIFT_REPEAT(35),
+  [19] = {.entry = {.count = 2, .reusable = true}}, REDUCE(aux_sym_path_repeat1, 2, 0, 0), SHIFT_REPEAT(44),
+  [22] = {.entry = {.count = 2, .reusable = true}}, REDUCE(aux_sym_path_repeat1, 2, 0, 0), SHIFT_REPEAT(24),
+  [25] = {.entry = {.count = 2, .reusable = true}}, REDUCE(aux_sym_path_repeat1, 2, 0, 0), SHIFT_REPEAT(37),
   [28] = {.entry = {.count = 1, .reusable = true}}, SHIFT(5),
-  [30] = {.entry = {.count = 1, .reusable = true}}, SHIFT(20),
-  [32] = {.entry = {.count = 1, .reusable = true}}, SHIFT(42),
-  [34] = {.entry = {.count = 1, .reusable = true}}, SHIFT(22),
-  [36] = {.entry = {.count = 1, .reusable = true}}, SHIFT(35),
+  [30] = {.entry = {.count = 1, .reusable = true}}, SHIFT(22),
+  [32] = {.entry = {.count = 1, .reusable = true}}, SHIFT(44),
+  [34] = {.entry = {.count = 1, .reusable = true}}, SHIFT(24),
+  [36] = {.entry = {.count = 1, .reusable = true}}, SHIFT(37),
   [38] = {.entry = {.count = 1, .reusable = true}}, SHIFT(6),
-  [40] = {.entry = {.count = 1, .reusable = true}}, SHIFT(19),
+  [40] = {.entry = {.count = 1, .reusable = true}}, SHIFT(21),
   [42] = {.entry = {.count = 1, .reusable = true}}, SHIFT(2),
-  [44] = {.entry = {.count = 1, .reusable = true}}, SHIFT(23),
+  [44] = {.entry = {.count = 1, .reusable = true}}, SHIFT(31),
   [46] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym__comment_line, 2, 0, 0),
   [48] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_element, 3, 0, 3),
   [50] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_element, 4, 0, 3),
@@ -2011,73 +2174,81 @@ static const TSParseActionEntry ts_parse_actions[] = {
   [54] = {.entry = {.count = 1, .reusable = true}}, REDUCE(aux_sym_source_file_repeat1, 2, 0, 0),
   [56] = {.entry = {.count = 2, .reusable = true}}, REDUCE(aux_sym_source_file_repeat1, 2, 0, 0), SHIFT_REPEAT(11),
   [59] = {.entry = {.count = 2, .reusable = true}}, REDUCE(aux_sym_source_file_repeat1, 2, 0, 0), SHIFT_REPEAT(51),
-  [62] = {.entry = {.count = 2, .reusable = true}}, REDUCE(aux_sym_source_file_repeat1, 2, 0, 0), SHIFT_REPEAT(40),
+  [62] = {.entry = {.count = 2, .reusable = true}}, REDUCE(aux_sym_source_file_repeat1, 2, 0, 0), SHIFT_REPEAT(42),
   [65] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_source_file, 1, 0, 0),
   [67] = {.entry = {.count = 1, .reusable = true}}, SHIFT(11),
   [69] = {.entry = {.count = 1, .reusable = true}}, SHIFT(47),
-  [71] = {.entry = {.count = 1, .reusable = true}}, SHIFT(34),
+  [71] = {.entry = {.count = 1, .reusable = true}}, SHIFT(36),
   [73] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym__geometry, 1, 0, 0),
-  [75] = {.entry = {.count = 1, .reusable = true}}, SHIFT(41),
+  [75] = {.entry = {.count = 1, .reusable = true}}, SHIFT(43),
   [77] = {.entry = {.count = 1, .reusable = true}}, SHIFT(25),
   [79] = {.entry = {.count = 1, .reusable = false}}, REDUCE(sym__geometry, 1, 0, 0),
   [81] = {.entry = {.count = 1, .reusable = true}}, SHIFT(8),
-  [83] = {.entry = {.count = 1, .reusable = true}}, SHIFT(45),
+  [83] = {.entry = {.count = 1, .reusable = true}}, SHIFT(61),
   [85] = {.entry = {.count = 1, .reusable = true}}, SHIFT(17),
   [87] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_point, 5, 0, 6),
   [89] = {.entry = {.count = 1, .reusable = false}}, REDUCE(sym_point, 5, 0, 6),
   [91] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_parameters, 1, 0, 0),
-  [93] = {.entry = {.count = 1, .reusable = true}}, SHIFT(18),
-  [95] = {.entry = {.count = 1, .reusable = true}}, REDUCE(aux_sym_parameters_repeat1, 2, 0, 0),
-  [97] = {.entry = {.count = 2, .reusable = true}}, REDUCE(aux_sym_parameters_repeat1, 2, 0, 0), SHIFT_REPEAT(18),
-  [100] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_path, 5, 0, 1),
-  [102] = {.entry = {.count = 1, .reusable = true}}, SHIFT(29),
-  [104] = {.entry = {.count = 1, .reusable = true}}, SHIFT(33),
-  [106] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_path, 6, 0, 1),
-  [108] = {.entry = {.count = 1, .reusable = true}}, SHIFT(21),
-  [110] = {.entry = {.count = 1, .reusable = true}}, SHIFT(30),
-  [112] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_path, 7, 0, 1),
-  [114] = {.entry = {.count = 1, .reusable = true}}, SHIFT(38),
-  [116] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_kind, 1, 0, 0),
-  [118] = {.entry = {.count = 1, .reusable = true}}, SHIFT(27),
-  [120] = {.entry = {.count = 1, .reusable = true}}, SHIFT(24),
-  [122] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_path, 8, 0, 1),
-  [124] = {.entry = {.count = 1, .reusable = true}}, SHIFT(28),
-  [126] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_circle, 2, 0, 4),
-  [128] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_line, 3, 0, 5),
-  [130] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_path, 9, 0, 1),
-  [132] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_arc, 7, 0, 7),
-  [134] = {.entry = {.count = 1, .reusable = true}}, SHIFT(65),
-  [136] = {.entry = {.count = 1, .reusable = true}}, SHIFT(37),
-  [138] = {.entry = {.count = 1, .reusable = true}}, SHIFT(4),
-  [140] = {.entry = {.count = 1, .reusable = true}}, SHIFT(48),
-  [142] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_kind, 2, 0, 2),
-  [144] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_kind, 2, 0, 0),
-  [146] = {.entry = {.count = 1, .reusable = true}}, SHIFT(9),
-  [148] = {.entry = {.count = 1, .reusable = true}}, SHIFT(44),
-  [150] = {.entry = {.count = 1, .reusable = true}}, SHIFT(46),
-  [152] = {.entry = {.count = 1, .reusable = true}}, SHIFT(66),
-  [154] = {.entry = {.count = 1, .reusable = true}}, SHIFT(61),
-  [156] = {.entry = {.count = 1, .reusable = true}}, SHIFT(10),
-  [158] = {.entry = {.count = 1, .reusable = true}}, SHIFT(36),
-  [160] = {.entry = {.count = 1, .reusable = true}}, SHIFT(52),
-  [162] = {.entry = {.count = 1, .reusable = true}}, SHIFT(3),
-  [164] = {.entry = {.count = 1, .reusable = true}}, SHIFT(16),
-  [166] = {.entry = {.count = 1, .reusable = true}}, SHIFT(54),
-  [168] = {.entry = {.count = 1, .reusable = true}}, SHIFT(7),
-  [170] = {.entry = {.count = 1, .reusable = true}}, SHIFT(56),
-  [172] = {.entry = {.count = 1, .reusable = true}}, SHIFT(58),
-  [174] = {.entry = {.count = 1, .reusable = true}}, SHIFT(55),
-  [176] = {.entry = {.count = 1, .reusable = true}}, SHIFT(32),
+  [93] = {.entry = {.count = 1, .reusable = true}}, SHIFT(19),
+  [95] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_line, 3, 0, 5),
+  [97] = {.entry = {.count = 1, .reusable = true}}, SHIFT(45),
+  [99] = {.entry = {.count = 1, .reusable = false}}, REDUCE(sym_line, 3, 0, 5),
+  [101] = {.entry = {.count = 1, .reusable = true}}, REDUCE(aux_sym_parameters_repeat1, 2, 0, 0),
+  [103] = {.entry = {.count = 2, .reusable = true}}, REDUCE(aux_sym_parameters_repeat1, 2, 0, 0), SHIFT_REPEAT(19),
+  [106] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_path, 5, 0, 1),
+  [108] = {.entry = {.count = 1, .reusable = true}}, SHIFT(30),
+  [110] = {.entry = {.count = 1, .reusable = true}}, SHIFT(35),
+  [112] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_path, 6, 0, 1),
+  [114] = {.entry = {.count = 1, .reusable = true}}, SHIFT(23),
+  [116] = {.entry = {.count = 1, .reusable = true}}, SHIFT(27),
+  [118] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_path, 7, 0, 1),
+  [120] = {.entry = {.count = 1, .reusable = true}}, SHIFT(40),
+  [122] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_kind, 1, 0, 0),
+  [124] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_circle, 2, 0, 4),
+  [126] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_path, 9, 0, 1),
+  [128] = {.entry = {.count = 1, .reusable = true}}, SHIFT(28),
+  [130] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_path, 8, 0, 1),
+  [132] = {.entry = {.count = 1, .reusable = true}}, SHIFT(26),
+  [134] = {.entry = {.count = 1, .reusable = true}}, SHIFT(29),
+  [136] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_arc, 7, 0, 8),
+  [138] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_line, 5, 0, 7),
+  [140] = {.entry = {.count = 1, .reusable = true}}, SHIFT(71),
+  [142] = {.entry = {.count = 1, .reusable = true}}, SHIFT(39),
+  [144] = {.entry = {.count = 1, .reusable = true}}, SHIFT(4),
+  [146] = {.entry = {.count = 1, .reusable = true}}, SHIFT(48),
+  [148] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_kind, 2, 0, 2),
+  [150] = {.entry = {.count = 1, .reusable = true}}, REDUCE(sym_kind, 2, 0, 0),
+  [152] = {.entry = {.count = 1, .reusable = true}}, SHIFT(9),
+  [154] = {.entry = {.count = 1, .reusable = true}}, SHIFT(60),
+  [156] = {.entry = {.count = 1, .reusable = true}}, SHIFT(67),
+  [158] = {.entry = {.count = 1, .reusable = true}}, SHIFT(72),
+  [160] = {.entry = {.count = 1, .reusable = true}}, SHIFT(73),
+  [162] = {.entry = {.count = 1, .reusable = true}}, SHIFT(64),
+  [164] = {.entry = {.count = 1, .reusable = true}}, SHIFT(52),
+  [166] = {.entry = {.count = 1, .reusable = true}}, SHIFT(3),
+  [168] = {.entry = {.count = 1, .reusable = true}}, SHIFT(16),
+  [170] = {.entry = {.count = 1, .reusable = true}}, SHIFT(55),
+  [172] = {.entry = {.count = 1, .reusable = true}}, SHIFT(7),
+  [174] = {.entry = {.count = 1, .reusable = true}}, SHIFT(54),
+  [176] = {.entry = {.count = 1, .reusable = true}}, SHIFT(56),
   [178] = {.entry = {.count = 1, .reusable = true}}, SHIFT(49),
-  [180] = {.entry = {.count = 1, .reusable = true}}, SHIFT(50),
-  [182] = {.entry = {.count = 1, .reusable = true}}, SHIFT(57),
-  [184] = {.entry = {.count = 1, .reusable = true}}, SHIFT(31),
-  [186] = {.entry = {.count = 1, .reusable = true}}, SHIFT(59),
-  [188] = {.entry = {.count = 1, .reusable = true}}, SHIFT(60),
-  [190] = {.entry = {.count = 1, .reusable = true}},  ACCEPT_INPUT(),
-  [192] = {.entry = {.count = 1, .reusable = true}}, SHIFT(62),
-  [194] = {.entry = {.count = 1, .reusable = true}}, SHIFT(43),
-  [196] = {.entry = {.count = 1, .reusable = true}}, SHIFT(64),
+  [180] = {.entry = {.count = 1, .reusable = true}}, SHIFT(57),
+  [182] = {.entry = {.count = 1, .reusable = true}}, SHIFT(50),
+  [184] = {.entry = {.count = 1, .reusable = true}}, SHIFT(32),
+  [186] = {.entry = {.count = 1, .reusable = true}},  ACCEPT_INPUT(),
+  [188] = {.entry = {.count = 1, .reusable = true}}, SHIFT(10),
+  [190] = {.entry = {.count = 1, .reusable = true}}, SHIFT(59),
+  [192] = {.entry = {.count = 1, .reusable = true}}, SHIFT(20),
+  [194] = {.entry = {.count = 1, .reusable = true}}, SHIFT(34),
+  [196] = {.entry = {.count = 1, .reusable = true}}, SHIFT(62),
+  [198] = {.entry = {.count = 1, .reusable = true}}, SHIFT(63),
+  [200] = {.entry = {.count = 1, .reusable = true}}, SHIFT(38),
+  [202] = {.entry = {.count = 1, .reusable = true}}, SHIFT(65),
+  [204] = {.entry = {.count = 1, .reusable = true}}, SHIFT(66),
+  [206] = {.entry = {.count = 1, .reusable = true}}, SHIFT(46),
+  [208] = {.entry = {.count = 1, .reusable = true}}, SHIFT(68),
+  [210] = {.entry = {.count = 1, .reusable = true}}, SHIFT(69),
+  [212] = {.entry = {.count = 1, .reusable = true}}, SHIFT(70),
 };
 
 #ifdef __cplusplus

@@ -4,6 +4,7 @@
 (path "path" @keyword)
 (path name: (_) @type)
 (arc ["arc" "from" "to"] @keyword)
+(turn) @keyword
 (number) @number
 (radius) @number
 (diameter) @number
