@@ -150,6 +150,16 @@ impl<'a> Emitter<'a> {
             source,
         });
     }
+    /// A horizontal rapid `G00 X Y` with its recorded length.
+    fn move_xy(&mut self, x: f64, y: f64, len: f64) {
+        self.push(
+            Kind::HSweep,
+            |_: &Emitter| format!("G00 X{} Y{}", f3(x), f3(y)),
+            len,
+            0.0,
+        );
+        self.to(Target::xy(x, y));
+    }
     /// Sets where the last move goes.
     fn to(&mut self, t: Target) {
         if let Some(it) = self.items.last_mut() {
@@ -212,13 +222,7 @@ impl<'a> Emitter<'a> {
     fn sweep_xy(&mut self, from: P3, to: P3) {
         let d = from.dist(to);
         if !near(d, 0.0) {
-            self.push(
-                Kind::HSweep,
-                |_: &Emitter| format!("G00 X{} Y{}", f3(to.x), f3(to.y)),
-                d,
-                0.0,
-            );
-            self.to(Target::xy(to.x, to.y));
+            self.move_xy(to.x, to.y, d);
         }
     }
 
@@ -419,13 +423,7 @@ impl<'a> Emitter<'a> {
             self.comment(4, || format!("Q:{q}"));
         }
         self.comment(2, || format!("MillHelix l={c} r={}", f3(hx.r)));
-        self.push(
-            Kind::HSweep,
-            |_: &Emitter| format!("G00 X{} Y{}", f3(c.x), f3(c.y - r1)),
-            r1,
-            0.0,
-        );
-        self.to(Target::xy(c.x, c.y - r1));
+        self.move_xy(c.x, c.y - r1, r1);
         let (mut d, mut done) = (th, th);
         let mut z = self.pos.z;
         let half = r1 * std::f64::consts::PI;
@@ -478,13 +476,7 @@ impl<'a> Emitter<'a> {
             }
         }
         if le(hx.r, p.o) {
-            self.push(
-                Kind::HSweep,
-                |_: &Emitter| format!("G00 X{} Y{}", f3(c.x), f3(c.y)),
-                r1,
-                0.0,
-            );
-            self.to(Target::xy(c.x, c.y));
+            self.move_xy(c.x, c.y, r1);
             self.pos = c.with_z(self.pos.z);
         } else {
             // deliberate difference: the pull-up height is raised by h as well
@@ -492,13 +484,7 @@ impl<'a> Emitter<'a> {
             let t = |e: &Emitter| format!("G00 Z{}", e.zexpr(s, c));
             self.push(Kind::VSweep, t, s - done, 0.0);
             self.to(Target::z(s));
-            self.push(
-                Kind::HSweep,
-                |_: &Emitter| format!("G00 X{} Y{}", f3(c.x), f3(c.y)),
-                r1,
-                0.0,
-            );
-            self.to(Target::xy(c.x, c.y));
+            self.move_xy(c.x, c.y, r1);
             self.pos = c.with_z(s);
         }
         Ok(())

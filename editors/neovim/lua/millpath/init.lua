@@ -91,6 +91,16 @@ local function path_at_cursor(bufnr)
   end
 end
 
+--- The current buffer, its millpath client (or a warning) and the path to work on.
+local function current(name)
+  local src = vim.api.nvim_get_current_buf()
+  local client = client_for(src)
+  if not client then
+    vim.notify('millpath: the language server is not running for this buffer', vim.log.levels.WARN)
+  end
+  return src, client, name or path_at_cursor(src)
+end
+
 local function show(buf, result, err)
   local text
   if err then
@@ -110,13 +120,11 @@ end
 --- Opens (or refreshes) the G-code preview of the path under the cursor in a split that
 --- follows every edit of the source buffer.
 function M.preview(name)
-  local src = vim.api.nvim_get_current_buf()
-  local client = client_for(src)
+  local src, client
+  src, client, name = current(name)
   if not client then
-    vim.notify('millpath: the language server is not running for this buffer', vim.log.levels.WARN)
     return
   end
-  name = name or path_at_cursor(src)
   local buf = vim.b[src].millpath_preview
   if not buf or not vim.api.nvim_buf_is_valid(buf) then
     buf = vim.api.nvim_create_buf(false, true)
@@ -170,13 +178,11 @@ end
 --- Opens the toolpath view of the path under the cursor in the browser (the page of
 --- editors/toolpath with the data of the language server's millpath/toolpath request).
 function M.toolpath(name)
-  local src = vim.api.nvim_get_current_buf()
-  local client = client_for(src)
+  local src, client
+  src, client, name = current(name)
   if not client then
-    vim.notify('millpath: the language server is not running for this buffer', vim.log.levels.WARN)
     return
   end
-  name = name or path_at_cursor(src)
   local page = plugin_root() .. '/../toolpath/toolpath.html'
   local ok, template = pcall(vim.fn.readfile, page)
   if not ok then
