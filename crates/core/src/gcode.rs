@@ -613,6 +613,8 @@ impl<'a> Emitter<'a> {
                 geoms[si].reversed()
             };
             self.drill_or_pull(self.pos.xy(), self.pos.z, z, th, seg.f);
+            // the tool is now at the entry depth: the segment's own DrillOrPullZ is a no-op
+            self.pos.z = z;
             self.segment_pass(fr, seg, &g, forward, z, th);
         }
         Ok(())
