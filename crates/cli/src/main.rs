@@ -632,9 +632,9 @@ fn run_adjustz(
 fn patterns_for(
     m: &MachineArgs,
     input: &Path,
-) -> Result<(millpath_core::names::Patterns, Lang), String> {
+) -> Result<(std::sync::Arc<millpath_core::names::Patterns>, Lang), String> {
     let s = settings_for(m, Some(input), false)?;
-    let p = millpath_core::names::Patterns::new(&s.path_pattern, &s.file_pattern)
+    let p = millpath_core::names::Patterns::shared(&s.path_pattern, &s.file_pattern)
         .map_err(|(c, p, e)| format!("invalid /{c} pattern '{p}': {e}"))?;
     Ok((p, s.lang))
 }
@@ -666,7 +666,14 @@ fn emit(output: Option<&Path>, content: &str, lang: Lang) -> u8 {
 fn conversion_input(
     file: &Path,
     m: &MachineArgs,
-) -> Result<(millpath_core::names::Patterns, Lang, Vec<u8>), u8> {
+) -> Result<
+    (
+        std::sync::Arc<millpath_core::names::Patterns>,
+        Lang,
+        Vec<u8>,
+    ),
+    u8,
+> {
     let (patterns, lang) = patterns_for(m, file).map_err(|e| {
         eprintln!("error: {e}");
         2

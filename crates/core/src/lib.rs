@@ -14,6 +14,8 @@ pub mod model;
 pub mod mtext;
 pub mod names;
 pub mod params;
+pub mod parse_cache;
+pub mod regex_cache;
 pub mod session;
 pub mod text_front;
 

@@ -5,7 +5,7 @@ use crate::diag::Origin;
 use crate::drawing::{RawPath, Style};
 use crate::geom::{Geom, Transform, P2};
 use crate::params::Vars;
-use std::rc::Rc;
+use std::sync::Arc;
 
 /// Effective values of a path start text.
 #[derive(Debug, Clone, PartialEq)]
@@ -95,7 +95,7 @@ pub struct Embedding {
     pub a: P2,
     pub b: P2,
     pub h: f64,
-    pub target: Option<Rc<Model>>,
+    pub target: Option<Arc<Model>>,
     pub origin: Origin,
 }
 
@@ -121,7 +121,7 @@ pub struct Probe {
 /// A built path.
 #[derive(Debug)]
 pub struct Model {
-    pub raw: Rc<RawPath>,
+    pub raw: Arc<RawPath>,
     pub vars: Vars,
     pub start: P2,
     pub end: P2,

@@ -1,7 +1,9 @@
 //! Path-name and file-name patterns: which file may contain which path (reference-input.md §3).
 
+use crate::regex_cache::Memo;
 use regex::{Captures, Regex};
 use std::cmp::Ordering;
+use std::sync::{Arc, OnceLock};
 
 pub const DEFAULT_PATH_PATTERN: &str = "([0-9]{4})[.]([0-9]+)([A-Z])";
 pub const DEFAULT_FILE_PATTERN: &str = "([0-9]{4})(?:[.]([0-9]+))?";
@@ -26,6 +28,17 @@ pub struct Patterns {
 }
 
 impl Patterns {
+    /// Both patterns compiled, shared by every file and analysis of the process;
+    /// `Err((which option, pattern, message))` for invalid ones.
+    pub fn shared(path: &str, file: &str) -> Result<Arc<Patterns>, (char, String, String)> {
+        type Compiled = Result<Arc<Patterns>, (char, String, String)>;
+        static MEMO: OnceLock<Memo<(String, String), Compiled>> = OnceLock::new();
+        MEMO.get_or_init(Memo::new)
+            .get_or(&(path.to_string(), file.to_string()), || {
+                Patterns::new(path, file).map(Arc::new)
+            })
+    }
+
     /// Compiles both patterns; `Err((which option, pattern, message))` for invalid ones.
     pub fn new(path: &str, file: &str) -> Result<Patterns, (char, String, String)> {
         fn bad(c: char, p: &str) -> impl Fn(regex::Error) -> (char, String, String) + '_ {

@@ -11,10 +11,11 @@ use crate::geom::{absnear, f3, ge, gt, le, near, Geom, Transform, P2};
 use crate::model::*;
 use crate::names::Patterns;
 use crate::params::{check_values, fmt_num, parse_definition, parse_number, ParamText, Vars};
+use crate::parse_cache::{self, FileStamp, ParseKey, ParsedFile};
+use crate::regex_cache::regex;
 use regex::Regex;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use std::rc::Rc;
 use std::sync::Arc;
 
 /// `*.mpath`: the text language.
@@ -29,6 +30,11 @@ pub trait FileSystem {
     /// The files of a directory (any order).
     fn list_dir(&self, dir: &Path) -> std::io::Result<Vec<PathBuf>>;
     fn is_dir(&self, dir: &Path) -> bool;
+    /// What identifies the current version of a file, so that its parse can be reused;
+    /// `None` (the default) parses it again every time.
+    fn stamp(&self, _path: &Path) -> Option<FileStamp> {
+        None
+    }
 }
 
 /// The real file system.
@@ -50,6 +56,9 @@ impl FileSystem for OsFileSystem {
     }
     fn is_dir(&self, dir: &Path) -> bool {
         dir.is_dir()
+    }
+    fn stamp(&self, path: &Path) -> Option<FileStamp> {
+        FileStamp::of_disk_file(path)
     }
 }
 
@@ -109,16 +118,16 @@ pub type Abort = Diagnostic;
 
 pub struct Session<'a> {
     pub settings: Settings,
-    pub patterns: Patterns,
-    restrictions: Vec<(Regex, Regex)>,
-    debug: Option<Regex>,
+    pub patterns: Arc<Patterns>,
+    restrictions: Vec<(Arc<Regex>, Arc<Regex>)>,
+    debug: Option<Arc<Regex>>,
     fs: &'a dyn FileSystem,
     pub diags: Diags,
     /// Progress lines (`---- Reading …`), in order.
     pub info: Vec<String>,
-    raw: HashMap<String, Rc<RawPath>>,
+    raw: HashMap<String, Arc<RawPath>>,
     loaded: HashMap<PathBuf, Vec<String>>,
-    models: HashMap<(String, Vars), Option<Rc<Model>>>,
+    models: HashMap<(String, Vars), Option<Arc<Model>>>,
 }
 
 struct BuildCtx {
@@ -130,7 +139,7 @@ impl<'a> Session<'a> {
     /// Creates a session; invalid patterns and restrictions are reported as option errors.
     pub fn new(settings: Settings, fs: &'a dyn FileSystem) -> Result<Session<'a>, Vec<Diagnostic>> {
         let mut errors = Vec::new();
-        let patterns = match Patterns::new(&settings.path_pattern, &settings.file_pattern) {
+        let patterns = match Patterns::shared(&settings.path_pattern, &settings.file_pattern) {
             Ok(p) => Some(p),
             Err((c, p, e)) => {
                 errors.push(Diagnostic::error(
@@ -143,7 +152,7 @@ impl<'a> Session<'a> {
         };
         let mut restrictions = Vec::new();
         for (parent, child) in &settings.restrictions {
-            match (Regex::new(parent), Regex::new(child)) {
+            match (regex(parent), regex(child)) {
                 (Ok(a), Ok(b)) => restrictions.push((a, b)),
                 (Err(e), _) | (_, Err(e)) => errors.push(Diagnostic::error(
                     Msg::EInvalid,
@@ -152,7 +161,7 @@ impl<'a> Session<'a> {
                 )),
             }
         }
-        let debug = match settings.debug_pattern.as_deref().map(Regex::new) {
+        let debug = match settings.debug_pattern.as_deref().map(regex) {
             None => None,
             Some(Ok(r)) => Some(r),
             Some(Err(e)) => {
@@ -191,32 +200,39 @@ impl<'a> Session<'a> {
             return names.clone();
         }
         self.loaded.insert(path.to_path_buf(), Vec::new());
-        let file = FileRef::new(path.to_path_buf());
-        let bytes = match self.fs.read(path) {
-            Ok(b) => b,
-            Err(e) => {
-                self.diags
-                    .error(Msg::CannotRead, Origin::Input, args![path.display(), e]);
-                return Vec::new();
+        let parsed = match self.fs.stamp(path) {
+            Some(stamp) => {
+                let key = ParseKey {
+                    path: path.to_path_buf(),
+                    stamp,
+                    path_pattern: self.settings.path_pattern.clone(),
+                    debug_pattern: self.settings.debug_pattern.clone(),
+                    lang: self.lang(),
+                };
+                parse_cache::parsed(key, || self.parse_file(path))
             }
+            None => Arc::new(self.parse_file(path)),
         };
-        let drawing = match self.parse_drawing(&bytes, &file) {
-            Ok(d) => d,
+        for d in &parsed.diags {
+            self.diags.push(d.clone());
+        }
+        self.info.extend(parsed.info.iter().cloned());
+        match &parsed.result {
+            Ok(paths) => self.register(path, paths.clone()),
             Err(d) => {
-                self.diags.push(d);
-                return Vec::new();
+                self.diags.push(d.clone());
+                Vec::new()
             }
-        };
-        self.register(path, drawing.paths)
+        }
     }
 
     /// Registers the paths of a file read elsewhere (an editor's parsed buffer), as if
     /// `load_file` had read it; returns their names in drawing order.
     pub fn add_paths(&mut self, path: &Path, paths: Vec<RawPath>) -> Vec<String> {
-        self.register(path, paths)
+        self.register(path, paths.into_iter().map(Arc::new).collect())
     }
 
-    fn register(&mut self, path: &Path, paths: Vec<RawPath>) -> Vec<String> {
+    fn register(&mut self, path: &Path, paths: Vec<Arc<RawPath>>) -> Vec<String> {
         let mut names = Vec::new();
         for p in paths {
             names.push(p.name.clone());
@@ -232,7 +248,7 @@ impl<'a> Session<'a> {
                 }
                 Some(_) => {}
                 None => {
-                    self.raw.insert(p.name.clone(), Rc::new(p));
+                    self.raw.insert(p.name.clone(), p);
                 }
             }
         }
@@ -240,10 +256,35 @@ impl<'a> Session<'a> {
         names
     }
 
+    /// Reads and parses one file, with its own diagnostics and progress lines.
+    fn parse_file(&self, path: &Path) -> ParsedFile {
+        let mut diags = Diags::default();
+        let mut info = Vec::new();
+        let result = match self.fs.read(path) {
+            Err(e) => Err(Diagnostic::error(
+                Msg::CannotRead,
+                Origin::Input,
+                args![path.display(), e],
+            )),
+            Ok(bytes) => {
+                let file = FileRef::new(path.to_path_buf());
+                self.parse_drawing(&bytes, &file, &mut diags, &mut info)
+                    .map(|d| d.paths.into_iter().map(Arc::new).collect())
+            }
+        };
+        ParsedFile {
+            result,
+            diags: diags.list,
+            info,
+        }
+    }
+
     fn parse_drawing(
-        &mut self,
+        &self,
         bytes: &[u8],
         file: &Arc<FileRef>,
+        diags: &mut Diags,
+        info: &mut Vec<String>,
     ) -> Result<crate::drawing::DrawingFile, Diagnostic> {
         let verb = if self.lang() == Lang::De {
             "Einlesen von"
@@ -251,22 +292,21 @@ impl<'a> Session<'a> {
             "Reading"
         };
         if is_text_file(&file.path) {
-            self.info
-                .push(format!("---- {verb} {}", file.path.display()));
+            info.push(format!("---- {verb} {}", file.path.display()));
             let src = String::from_utf8_lossy(bytes);
-            let text = crate::text_front::text_objects(&src, file, &mut self.diags)?;
+            let text = crate::text_front::text_objects(&src, file, diags)?;
             let objects = &text.objects;
             let paths = crate::drawing::build_paths(
                 objects,
                 file,
                 &self.patterns.path_cs,
                 &self.settings.path_pattern,
-                &mut self.diags,
+                diags,
             )?;
-            text.check_declared_kinds(&paths, &mut self.diags);
+            text.check_declared_kinds(&paths, diags);
             for p in &paths {
                 if !self.patterns.path_full.is_match(&p.name) {
-                    self.diags.error(
+                    diags.error(
                         Msg::PathNameNoMatch,
                         p.origin(),
                         args![p.name, self.settings.path_pattern],
@@ -286,7 +326,7 @@ impl<'a> Session<'a> {
                 args![file.path.display(), e],
             )
         })?;
-        self.info.push(format!(
+        info.push(format!(
             "---- {verb} {} (DXF-Version: {})",
             file.path.display(),
             dxf.version
@@ -295,14 +335,14 @@ impl<'a> Session<'a> {
             layer_pattern: &self.patterns.path_full,
             path_pattern: &self.patterns.path_cs,
             pattern_text: &self.settings.path_pattern,
-            debug: self.debug.as_ref(),
+            debug: self.debug.as_deref(),
         };
-        let drawing = dxf_to_drawing(&dxf, file, &opts, &mut self.diags)?;
-        self.info.extend(drawing.debug.iter().cloned());
+        let drawing = dxf_to_drawing(&dxf, file, &opts, diags)?;
+        info.extend(drawing.debug.iter().cloned());
         Ok(drawing)
     }
 
-    pub fn raw_path(&self, name: &str) -> Option<Rc<RawPath>> {
+    pub fn raw_path(&self, name: &str) -> Option<Arc<RawPath>> {
         self.raw.get(name).cloned()
     }
 
@@ -355,7 +395,7 @@ impl<'a> Session<'a> {
 
     /// The raw path of a name, searching the folder of `near_file` and the search directories
     /// when it is not known yet (editors: hover and go-to-definition of subpath names).
-    pub fn lookup(&mut self, name: &str, near_file: &Path) -> Option<Rc<RawPath>> {
+    pub fn lookup(&mut self, name: &str, near_file: &Path) -> Option<Arc<RawPath>> {
         if !self.raw.contains_key(name) {
             let _ = self.search(name, near_file);
         }
@@ -363,7 +403,7 @@ impl<'a> Session<'a> {
     }
 
     /// Builds (or fetches) the model of a top-level path.
-    pub fn build_top(&mut self, name: &str) -> Result<Option<Rc<Model>>, Abort> {
+    pub fn build_top(&mut self, name: &str) -> Result<Option<Arc<Model>>, Abort> {
         let vars = if self.settings.check {
             let defs = self
                 .raw
@@ -401,7 +441,7 @@ impl<'a> Session<'a> {
         name: &str,
         vars: &Vars,
         cx: &BuildCtx,
-    ) -> Result<Option<Rc<Model>>, Abort> {
+    ) -> Result<Option<Arc<Model>>, Abort> {
         let key = (name.to_string(), vars.clone());
         if let Some(m) = self.models.get(&key) {
             return Ok(m.clone());
@@ -416,10 +456,10 @@ impl<'a> Session<'a> {
 
     fn build_model(
         &mut self,
-        raw: Rc<RawPath>,
+        raw: Arc<RawPath>,
         vars: &Vars,
         cx: &BuildCtx,
-    ) -> Result<Option<Rc<Model>>, Abort> {
+    ) -> Result<Option<Arc<Model>>, Abort> {
         // 1. markers
         let (Some(start), Some(end)) = (raw.start.clone(), raw.end.clone()) else {
             if raw.start.is_none() {
@@ -630,7 +670,7 @@ impl<'a> Session<'a> {
             }
         }
 
-        Ok(Some(Rc::new(Model {
+        Ok(Some(Arc::new(Model {
             raw: raw.clone(),
             vars: vars.clone(),
             start: start.pos,
@@ -934,7 +974,7 @@ impl<'a> Session<'a> {
         params: &PathParams,
         ev: &Eval,
         cx: &BuildCtx,
-    ) -> Result<Option<Rc<Model>>, Abort> {
+    ) -> Result<Option<Arc<Model>>, Abort> {
         let text = seg.text.as_ref();
         let end_origin = with_pos(&seg.origin, seg.shape.end());
         let t_sub = ev.num(text, 'T').unwrap_or(params.t);
@@ -958,7 +998,7 @@ impl<'a> Session<'a> {
             ));
         };
         // restrictions: the path's E, else the first matching /e pair
-        let own_e = match params.e.as_deref().map(|e| (e, Regex::new(e))) {
+        let own_e = match params.e.as_deref().map(|e| (e, regex(e))) {
             Some((_, Ok(re))) => Some(re),
             Some((e, Err(err))) => {
                 self.diags

@@ -524,7 +524,7 @@ fn derived_facts(a: &Analysis, el: &Element, rows: &[Row], german: bool) -> Stri
     out
 }
 
-fn lookup(ws: &Workspace, from: &Path, name: &str) -> Option<std::rc::Rc<RawPath>> {
+fn lookup(ws: &Workspace, from: &Path, name: &str) -> Option<std::sync::Arc<RawPath>> {
     let fs = ws.fs();
     let settings = ws.settings_for(from).settings;
     let mut session = Session::new(settings, &fs).ok()?;
@@ -589,7 +589,7 @@ pub struct Preview {
 
 /// A path built as `millpath compile` builds it, with the errors of the build.
 struct TopModel {
-    model: std::rc::Rc<millpath_core::model::Model>,
+    model: std::sync::Arc<millpath_core::model::Model>,
     lang: Lang,
     sweep_speed: f64,
     errors: Vec<String>,
@@ -811,7 +811,7 @@ pub fn references(a: &Analysis, ws: &Workspace, offset: usize) -> Vec<Location> 
                 continue;
             };
             let s = ws.settings_for(&f).settings;
-            let Ok(p) = millpath_core::names::Patterns::new(&s.path_pattern, &s.file_pattern)
+            let Ok(p) = millpath_core::names::Patterns::shared(&s.path_pattern, &s.file_pattern)
             else {
                 continue;
             };

@@ -54,6 +54,13 @@ impl FileSystem for WorkspaceFs<'_> {
     fn is_dir(&self, dir: &Path) -> bool {
         dir.is_dir() || self.overlays.keys().any(|p| p.parent() == Some(dir))
     }
+    fn stamp(&self, path: &Path) -> Option<millpath_core::parse_cache::FileStamp> {
+        use millpath_core::parse_cache::FileStamp;
+        match self.overlays.get(path) {
+            Some(t) => Some(FileStamp::of_contents(t.as_bytes())),
+            None => FileStamp::of_disk_file(path),
+        }
+    }
 }
 
 /// Where a machine setting comes from.
@@ -180,7 +187,7 @@ pub fn analyze(ws: &Workspace, path: &Path) -> Analysis {
             Default::default()
         }
     };
-    let paths = match millpath_core::names::Patterns::new(&s.path_pattern, &s.file_pattern) {
+    let paths = match millpath_core::names::Patterns::shared(&s.path_pattern, &s.file_pattern) {
         Ok(p) => build_paths(
             &text.objects,
             &file,

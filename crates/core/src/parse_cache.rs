@@ -1,0 +1,73 @@
+//! Each drawing file is read and parsed once per process while it is unchanged: a subpath
+//! file embedded by many top-level files of a `check` run, or by the buffers an editor
+//! analyses again on every keystroke, is parsed the first time only. Entries are keyed by
+//! the file's stamp (modification time and length on disk, a content hash for an editor's
+//! buffer) and by the settings that change what parsing produces.
+
+use crate::diag::{Diagnostic, Lang};
+use crate::drawing::RawPath;
+use crate::regex_cache::Memo;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, OnceLock};
+
+/// What a file system says identifies one version of a file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct FileStamp {
+    /// Modification time in nanoseconds, or a content hash.
+    pub version: u128,
+    pub len: u64,
+}
+
+impl FileStamp {
+    /// The stamp of a file on disk; `None` when it cannot be had (then nothing is cached).
+    pub fn of_disk_file(path: &Path) -> Option<FileStamp> {
+        let meta = std::fs::metadata(path).ok()?;
+        let modified = meta.modified().ok()?;
+        let since = modified.duration_since(std::time::UNIX_EPOCH).ok()?;
+        Some(FileStamp {
+            version: since.as_nanos(),
+            len: meta.len(),
+        })
+    }
+    /// The stamp of contents held in memory (an unsaved buffer).
+    pub fn of_contents(bytes: &[u8]) -> FileStamp {
+        use std::hash::{Hash, Hasher};
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        bytes.hash(&mut h);
+        FileStamp {
+            version: u128::from(h.finish()) | 1 << 100,
+            len: bytes.len() as u64,
+        }
+    }
+}
+
+/// The outcome of parsing one file, replayed into every session that loads it.
+#[derive(Debug)]
+pub struct ParsedFile {
+    /// The file's paths, or the error that made it unreadable.
+    pub result: Result<Vec<Arc<RawPath>>, Diagnostic>,
+    /// Diagnostics found while parsing.
+    pub diags: Vec<Diagnostic>,
+    /// Progress lines (`---- Reading …`).
+    pub info: Vec<String>,
+}
+
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct ParseKey {
+    pub path: PathBuf,
+    pub stamp: FileStamp,
+    /// Settings that change the parse: path pattern, `/x` pattern, language of the info lines.
+    pub path_pattern: String,
+    pub debug_pattern: Option<String>,
+    pub lang: Lang,
+}
+
+/// Files kept at most; when full the table starts again.
+const CAPACITY: usize = 4096;
+
+/// The process-wide table of parsed files.
+pub fn parsed(key: ParseKey, parse: impl FnOnce() -> ParsedFile) -> Arc<ParsedFile> {
+    static MEMO: OnceLock<Memo<ParseKey, Arc<ParsedFile>>> = OnceLock::new();
+    MEMO.get_or_init(|| Memo::with_capacity(CAPACITY))
+        .get_or(&key, || Arc::new(parse()))
+}
