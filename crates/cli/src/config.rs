@@ -1,6 +1,6 @@
 //! Finding and reading `millpath.toml` (walking up from the input file).
 
-pub use millpath_core::config::{FileConfig, Have, FILE_NAME};
+pub use millpath_core::load::config::{FileConfig, Have, FILE_NAME};
 use std::path::{Path, PathBuf};
 
 /// The nearest `millpath.toml` at or above the directory of `input`.
@@ -22,7 +22,7 @@ pub fn find(input: &Path) -> Option<PathBuf> {
 /// Reads and parses a settings file; the error text names the file and the line.
 pub fn load(path: &Path) -> Result<FileConfig, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    millpath_core::config::parse(&text, path.parent().unwrap_or(Path::new(".")))
+    millpath_core::load::config::parse(&text, path.parent().unwrap_or(Path::new(".")))
         .map_err(|e| format!("{}: {e}", path.display()))
 }
 

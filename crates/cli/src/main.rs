@@ -6,8 +6,8 @@ mod report;
 mod write;
 
 use clap::{Parser, Subcommand, ValueEnum};
-use millpath_core::adjustz;
 use millpath_core::diag::{Diagnostic, Diags, Msg, Origin, Severity};
+use millpath_core::probe::adjustz;
 use millpath_core::{compile_file, complete_input, Lang, OsFileSystem, Session, Settings};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -446,7 +446,7 @@ fn collect_files(paths: &[PathBuf], accept: fn(&Path) -> bool, out: &mut Vec<Pat
 
 fn is_drawing(f: &Path) -> bool {
     f.extension().is_some_and(|e| e.eq_ignore_ascii_case("dxf"))
-        || millpath_core::session::is_text_file(f)
+        || millpath_core::load::fs::is_text_file(f)
 }
 
 fn run_check(m: &MachineArgs, format: Format, paths: &[PathBuf]) -> u8 {
@@ -632,9 +632,9 @@ fn run_adjustz(
 fn patterns_for(
     m: &MachineArgs,
     input: &Path,
-) -> Result<(std::sync::Arc<millpath_core::names::Patterns>, Lang), String> {
+) -> Result<(std::sync::Arc<millpath_core::load::names::Patterns>, Lang), String> {
     let s = settings_for(m, Some(input), false)?;
-    let p = millpath_core::names::Patterns::shared(&s.path_pattern, &s.file_pattern)
+    let p = millpath_core::load::names::Patterns::shared(&s.path_pattern, &s.file_pattern)
         .map_err(|(c, p, e)| format!("invalid /{c} pattern '{p}': {e}"))?;
     Ok((p, s.lang))
 }
@@ -668,7 +668,7 @@ fn conversion_input(
     m: &MachineArgs,
 ) -> Result<
     (
-        std::sync::Arc<millpath_core::names::Patterns>,
+        std::sync::Arc<millpath_core::load::names::Patterns>,
         Lang,
         Vec<u8>,
     ),
@@ -732,7 +732,7 @@ fn run_text2dxf(file: &Path, output: Option<&Path>, m: &MachineArgs) -> u8 {
 
 fn run_fmt(check: bool, paths: &[PathBuf]) -> u8 {
     let mut files = Vec::new();
-    collect_files(paths, millpath_core::session::is_text_file, &mut files);
+    collect_files(paths, millpath_core::load::fs::is_text_file, &mut files);
     let mut status = 0;
     for f in files {
         let src = match std::fs::read_to_string(&f) {

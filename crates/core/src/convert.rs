@@ -2,13 +2,13 @@
 //! canonical text, `text2dxf` writes an AutoCAD 2000 DXF whose texts the reference's
 //! assignment rule gives back to their own elements.
 
+use crate::build::traverse::traverse;
 use crate::diag::{Diags, FileRef};
-use crate::drawing::{build_paths, DrawnObject, RawPath, Shape};
-use crate::dxf_front::{dxf_objects, FrontOptions};
+use crate::front::drawing::{build_paths, DrawnObject, RawPath, Shape};
+use crate::front::dxf::{dxf_objects, FrontOptions};
 use crate::geom::{near, Geom};
-use crate::names::Patterns;
+use crate::load::names::Patterns;
 use crate::params::parse_number;
-use crate::session::traverse;
 use millpath_dxf::writer::DxfWriter;
 use millpath_syntax::ast::{Element, Geometry, Kind, Point, Spanned, Style};
 use millpath_syntax::format;
@@ -337,7 +337,7 @@ pub fn text_to_dxf(
     patterns: &Patterns,
 ) -> Result<String, Vec<crate::Diagnostic>> {
     let mut diags = Diags::default();
-    let objects = crate::text_front::text_objects(src, file, &mut diags)
+    let objects = crate::front::text::text_objects(src, file, &mut diags)
         .map_err(|d| vec![d])?
         .objects;
     if diags.has_errors() {
@@ -355,7 +355,7 @@ pub fn format_text(src: &str, file: &Arc<FileRef>) -> Result<String, Vec<crate::
             .map(|e| {
                 crate::Diagnostic::error(
                     crate::Msg::SyntaxError,
-                    crate::text_front::span_origin(src, file, &e.span),
+                    crate::front::text::span_origin(src, file, &e.span),
                     crate::args![e.message],
                 )
             })

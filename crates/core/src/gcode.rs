@@ -3,7 +3,7 @@
 
 use crate::args;
 use crate::diag::{Diagnostic, Lang, Msg, Origin};
-use crate::drawing::Style;
+use crate::front::drawing::Style;
 use crate::geom::{f3, ge, gt, le, lt, near, Geom, Transform, P2, P3};
 use crate::model::*;
 

@@ -2,25 +2,21 @@
 //! and adjust-z. No file-system I/O of its own: files are read through [`FileSystem`] and
 //! outputs are returned to the caller, which writes them.
 
-pub mod adjustz;
-pub mod config;
+pub mod build;
 pub mod convert;
 pub mod diag;
-pub mod drawing;
-pub mod dxf_front;
+pub mod front;
 pub mod gcode;
 pub mod geom;
+pub mod load;
 pub mod model;
-pub mod mtext;
-pub mod names;
 pub mod params;
-pub mod parse_cache;
-pub mod regex_cache;
-pub mod session;
-pub mod text_front;
+pub mod probe;
 
 pub use diag::{Diagnostic, Diags, Lang, Msg, Origin, Severity};
-pub use session::{FileSystem, MemFileSystem, OsFileSystem, Session, Settings};
+pub use load::fs::{FileSystem, MemFileSystem, OsFileSystem};
+pub use load::session::Session;
+pub use load::settings::Settings;
 
 use gcode::{generate, Output, Stats};
 use std::path::{Path, PathBuf};

@@ -2,7 +2,7 @@
 //! geometry and subpath connections (reference-input.md §4–§6).
 
 use crate::diag::Origin;
-use crate::drawing::{RawPath, Style};
+use crate::front::drawing::{RawPath, Style};
 use crate::geom::{Geom, Transform, P2};
 use crate::params::Vars;
 use std::sync::Arc;

@@ -3,7 +3,7 @@
 
 mod support;
 
-use millpath_core::parse_cache::FileStamp;
+use millpath_core::load::parse_cache::FileStamp;
 use millpath_core::{compile_file, FileSystem, OsFileSystem, Session, Settings};
 use std::cell::RefCell;
 use std::collections::HashMap;

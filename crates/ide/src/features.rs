@@ -1,13 +1,13 @@
 //! The answers to editor questions.
 
 use crate::{analyze, file_ref, workspace_files, Analysis, Pos, Workspace};
+use millpath_core::build::traverse::traverse;
 use millpath_core::diag::{Msg, Origin};
-use millpath_core::drawing::{
+use millpath_core::front::drawing::{
     RawPath, RawSegment, SegKind, Style as CoreStyle, PATH_KEYS, PROBE_KEYS,
 };
 use millpath_core::gcode::{generate, pass_depths, Output};
 use millpath_core::params::{fmt_num, parse_number, ParamText};
-use millpath_core::session::traverse;
 use millpath_core::{Lang, Session};
 use millpath_syntax::Style;
 use millpath_syntax::{Element, Geometry, Item, Kind, PathBlock, PathItem};
@@ -228,7 +228,7 @@ fn allowed_in(key: char) -> Vec<&'static str> {
         ("mill/mark/bars", SegKind::Mill(CoreStyle::Mill)),
         (
             "sweep",
-            SegKind::Sweep(millpath_core::drawing::SweepKind::Dashed),
+            SegKind::Sweep(millpath_core::front::drawing::SweepKind::Dashed),
         ),
         ("drill", SegKind::Drill(CoreStyle::Mill)),
         ("helix", SegKind::Helix(CoreStyle::Support)),
@@ -797,10 +797,10 @@ pub fn references(a: &Analysis, ws: &Workspace, offset: usize) -> Vec<Location> 
     let mut out = Vec::new();
     for f in workspace_files(ws) {
         let fref = file_ref(&f);
-        let objects = if millpath_core::session::is_text_file(&f) {
+        let objects = if millpath_core::load::fs::is_text_file(&f) {
             let Some(text) = ws.text(&f) else { continue };
             let mut d = millpath_core::Diags::default();
-            millpath_core::text_front::text_objects(&text, &fref, &mut d)
+            millpath_core::front::text::text_objects(&text, &fref, &mut d)
                 .map(|t| t.objects)
                 .unwrap_or_default()
         } else {
@@ -811,18 +811,19 @@ pub fn references(a: &Analysis, ws: &Workspace, offset: usize) -> Vec<Location> 
                 continue;
             };
             let s = ws.settings_for(&f).settings;
-            let Ok(p) = millpath_core::names::Patterns::shared(&s.path_pattern, &s.file_pattern)
+            let Ok(p) =
+                millpath_core::load::names::Patterns::shared(&s.path_pattern, &s.file_pattern)
             else {
                 continue;
             };
-            let opts = millpath_core::dxf_front::FrontOptions {
+            let opts = millpath_core::front::dxf::FrontOptions {
                 layer_pattern: &p.path_full,
                 path_pattern: &p.path_cs,
                 pattern_text: &p.path_text,
                 debug: None,
             };
             let mut d = millpath_core::Diags::default();
-            millpath_core::dxf_front::dxf_objects(&dxf, &fref, &opts, &mut d)
+            millpath_core::front::dxf::dxf_objects(&dxf, &fref, &opts, &mut d)
                 .map(|x| x.0)
                 .unwrap_or_default()
         };

@@ -5,11 +5,11 @@
 pub mod features;
 pub mod line_index;
 
-use millpath_core::config::{self, FileConfig, Have};
 use millpath_core::diag::{Diagnostic, FileRef, Origin};
-use millpath_core::drawing::{build_paths, DrawnObject, RawPath};
-use millpath_core::session::{is_text_file, FileSystem};
-use millpath_core::text_front::objects_of;
+use millpath_core::front::drawing::{build_paths, DrawnObject, RawPath};
+use millpath_core::front::text::objects_of;
+use millpath_core::load::config::{self, FileConfig, Have};
+use millpath_core::load::fs::{is_text_file, FileSystem};
 use millpath_core::{compile_file, Diags, Session, Settings};
 use millpath_syntax::{parse, File};
 use std::collections::HashMap;
@@ -54,8 +54,8 @@ impl FileSystem for WorkspaceFs<'_> {
     fn is_dir(&self, dir: &Path) -> bool {
         dir.is_dir() || self.overlays.keys().any(|p| p.parent() == Some(dir))
     }
-    fn stamp(&self, path: &Path) -> Option<millpath_core::parse_cache::FileStamp> {
-        use millpath_core::parse_cache::FileStamp;
+    fn stamp(&self, path: &Path) -> Option<millpath_core::load::parse_cache::FileStamp> {
+        use millpath_core::load::parse_cache::FileStamp;
         match self.overlays.get(path) {
             Some(t) => Some(FileStamp::of_contents(t.as_bytes())),
             None => FileStamp::of_disk_file(path),
@@ -187,7 +187,8 @@ pub fn analyze(ws: &Workspace, path: &Path) -> Analysis {
             Default::default()
         }
     };
-    let paths = match millpath_core::names::Patterns::shared(&s.path_pattern, &s.file_pattern) {
+    let paths = match millpath_core::load::names::Patterns::shared(&s.path_pattern, &s.file_pattern)
+    {
         Ok(p) => build_paths(
             &text.objects,
             &file,

@@ -2,8 +2,8 @@
 //! All answers come from `millpath-ide`; this crate converts between LSP types and plain
 //! data, debounces analyses, drops stale ones and keeps running when a handler fails.
 
-use millpath_core::config::FileConfig;
 use millpath_core::diag::{Diagnostic as CoreDiagnostic, Origin, Severity};
+use millpath_core::load::config::FileConfig;
 use millpath_ide::features;
 use millpath_ide::{analyze, Analysis, LineIndex, Pos, Workspace};
 use serde::{Deserialize, Serialize};

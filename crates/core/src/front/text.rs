@@ -3,7 +3,7 @@
 
 use crate::args;
 use crate::diag::{Diagnostic, Diags, FileRef, Msg, Origin};
-use crate::drawing::{DrawnObject, Shape};
+use crate::front::drawing::{DrawnObject, Shape};
 use crate::geom::{normalize_angle, Geom, P2};
 use crate::params::ParamText;
 use millpath_syntax::{parse, Geometry, Kind, Span};
@@ -165,7 +165,11 @@ pub struct TextDrawing {
 
 impl TextDrawing {
     /// A warning where the declared kind is not what the path's O makes of the circle.
-    pub fn check_declared_kinds(&self, paths: &[crate::drawing::RawPath], diags: &mut Diags) {
+    pub fn check_declared_kinds(
+        &self,
+        paths: &[crate::front::drawing::RawPath],
+        diags: &mut Diags,
+    ) {
         for (i, drill) in &self.declared {
             let o = &self.objects[*i];
             let Shape::Circle { r, .. } = o.shape else {

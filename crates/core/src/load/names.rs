@@ -1,6 +1,6 @@
 //! Path-name and file-name patterns: which file may contain which path (reference-input.md §3).
 
-use crate::regex_cache::Memo;
+use crate::load::regex_cache::Memo;
 use regex::{Captures, Regex};
 use std::cmp::Ordering;
 use std::sync::{Arc, OnceLock};

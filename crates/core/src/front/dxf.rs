@@ -3,9 +3,9 @@
 
 use crate::args;
 use crate::diag::{Diagnostic, Diags, EntityOrigin, FileRef, Msg, Origin};
-use crate::drawing::{build_paths, DrawingFile, DrawnObject, Shape};
+use crate::front::drawing::{build_paths, DrawingFile, DrawnObject, Shape};
+use crate::front::mtext::{mtext_plain, replace_percent_codes};
 use crate::geom::{f3, near, normalize_angle, Geom, P2};
-use crate::mtext::{mtext_plain, replace_percent_codes};
 use crate::params::ParamText;
 use millpath_dxf::{Drawing, Entity, EntityKind, Point3};
 use regex::Regex;

@@ -5,8 +5,8 @@
 //! buffer) and by the settings that change what parsing produces.
 
 use crate::diag::{Diagnostic, Lang};
-use crate::drawing::RawPath;
-use crate::regex_cache::Memo;
+use crate::front::drawing::RawPath;
+use crate::load::regex_cache::Memo;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, OnceLock};
 

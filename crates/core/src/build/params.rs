@@ -1,0 +1,183 @@
+//! Effective parameters of a path, a chain and a chain segment, and the checks of a parameter text (reference-input.md §4.1–§4.2).
+
+use crate::args;
+use crate::build::bars::support_bars;
+use crate::build::{BuildCtx, Eval};
+use crate::diag::{Diagnostic, Diags, Msg, Origin};
+use crate::front::drawing::{RawPath, RawSegment, Style, CHAIN_KEYS};
+use crate::geom::{le, Geom};
+use crate::load::session::{Abort, Session};
+use crate::model::*;
+use crate::params::{fmt_num, parse_number, ParamText};
+
+impl Session<'_> {
+    pub(crate) fn path_params(&mut self, raw: &RawPath, ev: &Eval, cx: &BuildCtx) -> PathParams {
+        let t_ = raw.start_text.as_ref();
+        let missing = |key: &str, diags: &mut Diags| {
+            diags.error(Msg::ValueMissing, raw.start_origin(), args![key]);
+            f64::NAN
+        };
+        let t = match ev.num(t_, 'T') {
+            Some(v) => v,
+            None => missing("T", &mut self.diags),
+        };
+        let o = match ev.num(t_, 'O') {
+            Some(v) => v,
+            None => missing("O", &mut self.diags),
+        };
+        let s = ev
+            .num(t_, 'S')
+            .unwrap_or(if cx.top && !self.settings.check {
+                self.settings.sweep_height
+            } else {
+                t + o
+            });
+        PathParams {
+            f: ev.num(t_, 'F').unwrap_or(self.settings.feed),
+            t,
+            o,
+            s,
+            a: ev.num(t_, 'A').unwrap_or(4.0 * o),
+            z: ev.num(t_, 'Z').unwrap_or(self.settings.probe_feed()),
+            v: self.settings.sweep_speed,
+            b: ev.num(t_, 'B'),
+            d: ev.num(t_, 'D'),
+            i: ev.num(t_, 'I'),
+            w: ev.num(t_, 'W'),
+            p: ev.num(t_, 'P'),
+            u: ev.num(t_, 'U'),
+            c: ev.num(t_, 'C').map(|c| c.trunc() as i64),
+            m: ev.string(t_, 'M'),
+            e: ev.string(t_, 'E'),
+            r: ev.string(t_, 'R').unwrap_or_default(),
+        }
+    }
+
+    pub(crate) fn chain_params(
+        &mut self,
+        first: &RawSegment,
+        params: &PathParams,
+        ev: &Eval,
+    ) -> (Option<f64>, Option<f64>) {
+        let text = first.text.as_ref();
+        if let Some(t) = text {
+            for (k, _) in &t.params {
+                if !CHAIN_KEYS.contains(*k) {
+                    self.diags.error(
+                        Msg::Unsupported,
+                        first.origin.clone(),
+                        args![k, text_context(t)],
+                    );
+                }
+            }
+        }
+        let i = ev.num(text, 'I').or(params.i);
+        let w = ev.num(text, 'W').or(params.w);
+        if text.is_some_and(|t| t.has('I')) && i.is_some_and(|i| le(i, 0.0)) {
+            self.diags.error(
+                Msg::MustBePositive,
+                first.origin.clone(),
+                args!["I", fmt_num(i.unwrap_or(0.0))],
+            );
+        }
+        if text.is_some_and(|t| t.has('W')) && w.is_some_and(|w| le(w, 0.0)) {
+            self.diags.error(
+                Msg::MustBePositive,
+                first.origin.clone(),
+                args!["W", fmt_num(w.unwrap_or(0.0))],
+            );
+        }
+        if let Some(c) = ev.num(text, 'C') {
+            if c.trunc() <= 0.0 {
+                self.diags.error(
+                    Msg::MustBePositive,
+                    first.origin.clone(),
+                    args!["C", fmt_num(c.trunc())],
+                );
+            }
+        }
+        (i, w)
+    }
+
+    pub(crate) fn chain_seg(
+        &mut self,
+        seg: &RawSegment,
+        style: Style,
+        geom: Geom,
+        params: &PathParams,
+        ev: &Eval,
+        _first: bool,
+    ) -> Result<ChainSeg, Abort> {
+        let text = seg.text.as_ref();
+        if let Some(t) = text {
+            self.check_text(t, seg.kind.allowed_keys(), &seg.origin, ev);
+            if t.has('S') {
+                let s = ev.num(text, 'S').unwrap_or(params.s);
+                if le(s, params.t) {
+                    self.diags.error(
+                        Msg::SNotAboveT,
+                        seg.origin.clone(),
+                        args![fmt_num(s), fmt_num(params.t)],
+                    );
+                }
+            }
+        }
+        self.validate_child(&seg.origin, text, params, ev);
+        let b = ev.num(text, 'B').or(params.b);
+        let d = ev.num(text, 'D').or(params.d);
+        let bars = if style == Style::Support {
+            let p = ev.num(text, 'P').or(params.p);
+            let u = ev.num(text, 'U').or(params.u);
+            support_bars(&geom, params.o, p, u, b, d, &seg.origin)?
+        } else {
+            None
+        };
+        Ok(ChainSeg {
+            geom,
+            style,
+            f: ev.num(text, 'F').unwrap_or(params.f),
+            b,
+            d,
+            q: ev.string(text, 'Q'),
+            bt: seg.backtrack(),
+            bars,
+            origin: seg.origin.clone(),
+        })
+    }
+
+    /// Unsupported keys and values that are not numbers.
+    pub(crate) fn check_text(&mut self, t: &ParamText, allowed: &str, origin: &Origin, ev: &Eval) {
+        for (k, raw) in &t.params {
+            if !allowed.contains(*k) {
+                self.diags
+                    .error(Msg::Unsupported, origin.clone(), args![k, text_context(t)]);
+                continue;
+            }
+            if "ABCDFHIOPSTUWZ".contains(*k) {
+                let v = ev.vars.interpolate(raw).unwrap_or_else(|_| raw.clone());
+                if parse_number(&v).is_none() {
+                    self.diags.push(Diagnostic::warning(
+                        Msg::NotANumber,
+                        origin.clone(),
+                        args![k, v],
+                    ));
+                }
+            }
+            if *k == 'N' && raw.trim().parse::<i64>().is_err() {
+                self.diags.push(Diagnostic::warning(
+                    Msg::NotANumber,
+                    origin.clone(),
+                    args![k, raw],
+                ));
+            }
+        }
+    }
+}
+
+/// `<CODE> @ [x y]` of a text, used in "Unsupported" messages.
+pub(crate) fn text_context(t: &ParamText) -> String {
+    match &t.origin {
+        Origin::Entity(e) => format!("{} @ {}", e.code_name, e.pos),
+        o => o.context(),
+    }
+}

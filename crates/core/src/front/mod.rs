@@ -1,0 +1,7 @@
+//! Front-ends: drawn objects from a DXF drawing or a `.mpath` text, and the paths built from
+//! them (reference-input.md §1–§2).
+
+pub mod drawing;
+pub mod dxf;
+pub mod mtext;
+pub mod text;

@@ -1,0 +1,257 @@
+//! A compilation session: settings, loading files through a [`FileSystem`] (each parse
+//! shared through the process-wide parse cache), the registry of known paths and the
+//! models built so far (reference-input.md §3, §7.5).
+
+use crate::args;
+use crate::diag::{Diagnostic, Diags, FileRef, Lang, Msg, Origin};
+use crate::front::drawing::RawPath;
+use crate::front::dxf::{dxf_to_drawing, FrontOptions};
+use crate::load::fs::{is_text_file, FileSystem};
+use crate::load::names::Patterns;
+use crate::load::parse_cache::{self, ParseKey, ParsedFile};
+use crate::load::regex_cache::regex;
+use crate::load::settings::Settings;
+use crate::model::*;
+use crate::params::Vars;
+use regex::Regex;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// An error that aborts the current top-level file.
+pub type Abort = Diagnostic;
+
+pub struct Session<'a> {
+    pub settings: Settings,
+    pub patterns: Arc<Patterns>,
+    pub(crate) restrictions: Vec<(Arc<Regex>, Arc<Regex>)>,
+    pub(crate) debug: Option<Arc<Regex>>,
+    pub(crate) fs: &'a dyn FileSystem,
+    pub diags: Diags,
+    /// Progress lines (`---- Reading …`), in order.
+    pub info: Vec<String>,
+    pub(crate) raw: HashMap<String, Arc<RawPath>>,
+    pub(crate) loaded: HashMap<PathBuf, Vec<String>>,
+    pub(crate) models: HashMap<(String, Vars), Option<Arc<Model>>>,
+}
+
+impl<'a> Session<'a> {
+    /// Creates a session; invalid patterns and restrictions are reported as option errors.
+    pub fn new(settings: Settings, fs: &'a dyn FileSystem) -> Result<Session<'a>, Vec<Diagnostic>> {
+        let mut errors = Vec::new();
+        let patterns = match Patterns::shared(&settings.path_pattern, &settings.file_pattern) {
+            Ok(p) => Some(p),
+            Err((c, p, e)) => {
+                errors.push(Diagnostic::error(
+                    Msg::BadRegex,
+                    Origin::Options,
+                    args![format!("/{c}"), p, e],
+                ));
+                None
+            }
+        };
+        let mut restrictions = Vec::new();
+        for (parent, child) in &settings.restrictions {
+            match (regex(parent), regex(child)) {
+                (Ok(a), Ok(b)) => restrictions.push((a, b)),
+                (Err(e), _) | (_, Err(e)) => errors.push(Diagnostic::error(
+                    Msg::EInvalid,
+                    Origin::Options,
+                    args![format!("{parent}:{child}"), e],
+                )),
+            }
+        }
+        let debug = match settings.debug_pattern.as_deref().map(regex) {
+            None => None,
+            Some(Ok(r)) => Some(r),
+            Some(Err(e)) => {
+                errors.push(Diagnostic::error(
+                    Msg::BadRegex,
+                    Origin::Options,
+                    args!["/x", settings.debug_pattern.clone().unwrap_or_default(), e],
+                ));
+                None
+            }
+        };
+        match patterns {
+            Some(patterns) if errors.is_empty() => Ok(Session {
+                settings,
+                patterns,
+                restrictions,
+                debug,
+                fs,
+                diags: Diags::default(),
+                info: Vec::new(),
+                raw: HashMap::new(),
+                loaded: HashMap::new(),
+                models: HashMap::new(),
+            }),
+            _ => Err(errors),
+        }
+    }
+
+    pub fn lang(&self) -> Lang {
+        self.settings.lang
+    }
+
+    /// Loads a file (once) and registers its paths; returns their names in drawing order.
+    pub fn load_file(&mut self, path: &Path) -> Vec<String> {
+        if let Some(names) = self.loaded.get(path) {
+            return names.clone();
+        }
+        self.loaded.insert(path.to_path_buf(), Vec::new());
+        let parsed = match self.fs.stamp(path) {
+            Some(stamp) => {
+                let key = ParseKey {
+                    path: path.to_path_buf(),
+                    stamp,
+                    path_pattern: self.settings.path_pattern.clone(),
+                    debug_pattern: self.settings.debug_pattern.clone(),
+                    lang: self.lang(),
+                };
+                parse_cache::parsed(key, || self.parse_file(path))
+            }
+            None => Arc::new(self.parse_file(path)),
+        };
+        for d in &parsed.diags {
+            self.diags.push(d.clone());
+        }
+        self.info.extend(parsed.info.iter().cloned());
+        match &parsed.result {
+            Ok(paths) => self.register(path, paths.clone()),
+            Err(d) => {
+                self.diags.push(d.clone());
+                Vec::new()
+            }
+        }
+    }
+
+    /// Registers the paths of a file read elsewhere (an editor's parsed buffer), as if
+    /// `load_file` had read it; returns their names in drawing order.
+    pub fn add_paths(&mut self, path: &Path, paths: Vec<RawPath>) -> Vec<String> {
+        self.register(path, paths.into_iter().map(Arc::new).collect())
+    }
+
+    pub(crate) fn register(&mut self, path: &Path, paths: Vec<Arc<RawPath>>) -> Vec<String> {
+        let mut names = Vec::new();
+        for p in paths {
+            names.push(p.name.clone());
+            match self.raw.get(&p.name) {
+                Some(existing) if existing.file.path != p.file.path => {
+                    let d = Diagnostic::error(
+                        Msg::AlreadyDefined,
+                        p.start_origin(),
+                        args![p.name, existing.file.path.display()],
+                    )
+                    .with_related(existing.start_origin(), "first definition");
+                    self.diags.push(d);
+                }
+                Some(_) => {}
+                None => {
+                    self.raw.insert(p.name.clone(), p);
+                }
+            }
+        }
+        self.loaded.insert(path.to_path_buf(), names.clone());
+        names
+    }
+
+    /// Reads and parses one file, with its own diagnostics and progress lines.
+    pub(crate) fn parse_file(&self, path: &Path) -> ParsedFile {
+        let mut diags = Diags::default();
+        let mut info = Vec::new();
+        let result = match self.fs.read(path) {
+            Err(e) => Err(Diagnostic::error(
+                Msg::CannotRead,
+                Origin::Input,
+                args![path.display(), e],
+            )),
+            Ok(bytes) => {
+                let file = FileRef::new(path.to_path_buf());
+                self.parse_drawing(&bytes, &file, &mut diags, &mut info)
+                    .map(|d| d.paths.into_iter().map(Arc::new).collect())
+            }
+        };
+        ParsedFile {
+            result,
+            diags: diags.list,
+            info,
+        }
+    }
+
+    pub(crate) fn parse_drawing(
+        &self,
+        bytes: &[u8],
+        file: &Arc<FileRef>,
+        diags: &mut Diags,
+        info: &mut Vec<String>,
+    ) -> Result<crate::front::drawing::DrawingFile, Diagnostic> {
+        let verb = if self.lang() == Lang::De {
+            "Einlesen von"
+        } else {
+            "Reading"
+        };
+        if is_text_file(&file.path) {
+            info.push(format!("---- {verb} {}", file.path.display()));
+            let src = String::from_utf8_lossy(bytes);
+            let text = crate::front::text::text_objects(&src, file, diags)?;
+            let objects = &text.objects;
+            let paths = crate::front::drawing::build_paths(
+                objects,
+                file,
+                &self.patterns.path_cs,
+                &self.settings.path_pattern,
+                diags,
+            )?;
+            text.check_declared_kinds(&paths, diags);
+            for p in &paths {
+                if !self.patterns.path_full.is_match(&p.name) {
+                    diags.error(
+                        Msg::PathNameNoMatch,
+                        p.origin(),
+                        args![p.name, self.settings.path_pattern],
+                    );
+                }
+            }
+            return Ok(crate::front::drawing::DrawingFile {
+                paths,
+                debug: Vec::new(),
+                version: String::new(),
+            });
+        }
+        let dxf = millpath_dxf::read_dxf(bytes).map_err(|e| {
+            Diagnostic::error(
+                Msg::CannotLoadDxf,
+                Origin::File(file.clone()),
+                args![file.path.display(), e],
+            )
+        })?;
+        info.push(format!(
+            "---- {verb} {} (DXF-Version: {})",
+            file.path.display(),
+            dxf.version
+        ));
+        let opts = FrontOptions {
+            layer_pattern: &self.patterns.path_full,
+            path_pattern: &self.patterns.path_cs,
+            pattern_text: &self.settings.path_pattern,
+            debug: self.debug.as_deref(),
+        };
+        let drawing = dxf_to_drawing(&dxf, file, &opts, diags)?;
+        info.extend(drawing.debug.iter().cloned());
+        Ok(drawing)
+    }
+
+    pub fn raw_path(&self, name: &str) -> Option<Arc<RawPath>> {
+        self.raw.get(name).cloned()
+    }
+
+    /// The raw path of a name, searching the folder of `near_file` and the search directories
+    /// when it is not known yet (editors: hover and go-to-definition of subpath names).
+    pub fn lookup(&mut self, name: &str, near_file: &Path) -> Option<Arc<RawPath>> {
+        if !self.raw.contains_key(name) {
+            let _ = self.search(name, near_file);
+        }
+        self.raw.get(name).cloned()
+    }
+}
