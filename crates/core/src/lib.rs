@@ -5,8 +5,8 @@
 pub mod build;
 pub mod convert;
 pub mod diag;
+pub mod emit;
 pub mod front;
-pub mod gcode;
 pub mod geom;
 pub mod load;
 pub mod model;
@@ -18,7 +18,7 @@ pub use load::fs::{FileSystem, MemFileSystem, OsFileSystem};
 pub use load::session::Session;
 pub use load::settings::Settings;
 
-use gcode::{generate, Output, Stats};
+use emit::{generate, stats::Stats, Output};
 use std::path::{Path, PathBuf};
 
 /// The program banner written as line 2 of every G-code file.
@@ -83,7 +83,7 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
             match session.build_top(&name) {
                 Err(abort) => session.diags.push(abort),
                 Ok(None) => {}
-                Ok(Some(model)) => match gcode::check(&model, session.settings.sweep_speed) {
+                Ok(Some(model)) => match emit::check(&model, session.settings.sweep_speed) {
                     Ok(stats) => outcome.stats.push((name.clone(), stats)),
                     Err(errs) => errs.into_iter().for_each(|e| session.diags.push(e)),
                 },

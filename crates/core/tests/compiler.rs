@@ -973,7 +973,7 @@ fn toolpath_moves_follow_the_gcode() {
     .unwrap();
     s.load_file(std::path::Path::new("1000.1P.dxf"));
     let model = s.build_top("1000.1P").unwrap().unwrap();
-    let tp = millpath_core::gcode::toolpath(&model).unwrap();
+    let tp = millpath_core::emit::toolpath(&model).unwrap();
     let kinds: Vec<&str> = tp.moves.iter().map(|m| m.kind).collect();
     assert_eq!(
         kinds,

@@ -6,7 +6,7 @@
 //! in review as a changed line per drawing.
 
 use millpath_core::diag::Lang;
-use millpath_core::gcode::{generate, Output};
+use millpath_core::emit::{generate, Output};
 use millpath_core::{compile_file, OsFileSystem, Session, Settings};
 use std::collections::BTreeMap;
 use std::fmt::Write;

@@ -3,10 +3,11 @@
 use crate::{analyze, file_ref, workspace_files, Analysis, Pos, Workspace};
 use millpath_core::build::traverse::traverse;
 use millpath_core::diag::{Msg, Origin};
+use millpath_core::emit::chain::pass_depths;
+use millpath_core::emit::{generate, Output};
 use millpath_core::front::drawing::{
     RawPath, RawSegment, SegKind, Style as CoreStyle, PATH_KEYS, PROBE_KEYS,
 };
-use millpath_core::gcode::{generate, pass_depths, Output};
 use millpath_core::params::{fmt_num, parse_number, ParamText};
 use millpath_core::{Lang, Session};
 use millpath_syntax::Style;
@@ -1328,7 +1329,7 @@ pub fn toolpath(
     use serde_json::json;
     let TopModel { model, lang, .. } = top_model(ws, path, name)?;
     let name = model.name().to_string();
-    let tp = millpath_core::gcode::toolpath(&model).map_err(|e| {
+    let tp = millpath_core::emit::toolpath(&model).map_err(|e| {
         e.iter()
             .map(|d| d.message(lang))
             .collect::<Vec<_>>()

@@ -1,0 +1,93 @@
+//! Helixes: semicircles down to the bottom, bars, pull-up and return to the centre (reference-output.md §9.2).
+
+use crate::emit::{missing, Emitter, Frame, Kind, Skip, Target};
+use crate::front::drawing::Style;
+use crate::geom::{f3, gt, le, Geom, P2, P3};
+use crate::model::*;
+
+impl Emitter<'_> {
+    pub(crate) fn helix(&mut self, fr: Frame, hx: &Helix) -> Result<(), Skip> {
+        let p = &fr.model.params;
+        let h = fr.h;
+        let c = fr.t.apply(hx.c);
+        let th = h + p.t;
+        let (key, depth) = if hx.style == Style::Mill {
+            ("B", hx.b)
+        } else {
+            ("D", hx.d)
+        };
+        let bottom = h + depth.ok_or_else(|| missing(key, &hx.origin))?;
+        let infeed = hx.i.ok_or_else(|| missing("I", &hx.origin))?;
+        let r1 = hx.r - p.o / 2.0;
+        self.drill_or_pull(self.pos.xy(), self.pos.z, th + p.o, th, hx.f);
+        if let Some(q) = &hx.q {
+            self.comment(4, || format!("Q:{q}"));
+        }
+        self.comment(2, || format!("MillHelix l={c} r={}", f3(hx.r)));
+        self.move_xy(c.x, c.y - r1, r1);
+        let (mut d, mut done) = (th, th);
+        let mut z = self.pos.z;
+        let half = r1 * std::f64::consts::PI;
+        while gt(done, bottom) {
+            self.comment(4, || format!("MillSemiCircle l={}", f3(d)));
+            let b1 = (d - infeed / 2.0).max(bottom);
+            let t = |e: &Emitter| {
+                format!(
+                    "G02 F{} I0 J{} X{} Y{} Z{}",
+                    f3(hx.f),
+                    f3(r1),
+                    f3(c.x),
+                    f3(c.y + r1),
+                    e.zexpr(b1, c)
+                )
+            };
+            self.push(Kind::Mill, t, half, hx.f);
+            self.to(Target::arc(P2::new(c.x, c.y + r1), b1, c, false));
+            let b0 = (b1 - infeed / 2.0).max(bottom);
+            let t = |e: &Emitter| {
+                format!(
+                    "G02 F{} I0 J{} X{} Y{} Z{}",
+                    f3(hx.f),
+                    f3(-r1),
+                    f3(c.x),
+                    f3(c.y - r1),
+                    e.zexpr(b0, c)
+                )
+            };
+            self.push(Kind::Mill, t, half, hx.f);
+            self.to(Target::arc(P2::new(c.x, c.y - r1), b0, c, false));
+            z = b0;
+            done = d;
+            d -= infeed;
+        }
+        self.pos = P3 {
+            x: c.x,
+            y: c.y - r1,
+            z,
+        };
+        if let (Style::Support, Some(pieces)) = (hx.style, &hx.bars) {
+            let b = hx.b.ok_or_else(|| missing("B", &hx.origin))?;
+            let dd = hx.d.ok_or_else(|| missing("D", &hx.origin))?;
+            let pieces: Vec<Geom> = pieces.iter().map(|g| g.transform(&fr.t)).collect();
+            while gt(done, h + b) {
+                let z = (done - infeed).max(h + b);
+                // deliberate difference: bar depths are raised by h like everything else
+                self.profile(&pieces, true, z, h + b, h + dd, th, hx.f, false);
+                done = z;
+            }
+        }
+        if le(hx.r, p.o) {
+            self.move_xy(c.x, c.y, r1);
+            self.pos = c.with_z(self.pos.z);
+        } else {
+            // deliberate difference: the pull-up height is raised by h as well
+            let s = h + p.s;
+            let t = |e: &Emitter| format!("G00 Z{}", e.zexpr(s, c));
+            self.push(Kind::VSweep, t, s - done, 0.0);
+            self.to(Target::z(s));
+            self.move_xy(c.x, c.y, r1);
+            self.pos = c.with_z(s);
+        }
+        Ok(())
+    }
+}

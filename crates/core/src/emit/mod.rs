@@ -1,0 +1,302 @@
+//! G-code emission (reference-output.md §4–§14): the emitter walks a model's elements in
+//! traversal order and makes a list of items (moves with their texts, lengths, feeds,
+//! targets and source elements); the optimizer, the statistics and the file layouts work on
+//! that list. One file per kind of element and per stage.
+
+use crate::args;
+use crate::diag::{Diagnostic, Msg, Origin};
+use crate::emit::optimize::optimize;
+use crate::geom::{f3, Transform, P2, P3};
+use crate::model::*;
+
+pub mod bars;
+pub mod chain;
+pub mod elements;
+pub mod helix;
+pub mod motion;
+pub mod optimize;
+pub mod program;
+pub mod stats;
+pub mod toolpath;
+
+pub use program::{check, generate, Generated, Output};
+pub use toolpath::{toolpath, Move, Toolpath};
+
+/// Relative epsilon factor of the start height: guarantees that the first Z move is emitted.
+pub(crate) const START_OFFSET: f64 = 1.0 + 2.0 * 1e-6;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// `G00 X… Y…`
+    HSweep,
+    /// `G00 Z…`
+    VSweep,
+    Mill,
+    Drill,
+    Comment,
+}
+
+#[derive(Debug, Clone)]
+pub struct Item {
+    pub kind: Kind,
+    pub text: String,
+    pub len: f64,
+    pub feed: f64,
+    /// Where a move goes (axes it does not name stay); for the toolpath view.
+    pub target: Target,
+    /// Index into the emitter's element origins.
+    pub source: Option<u32>,
+}
+
+/// The end of a move: the axes it sets, and for arcs the centre and direction.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Target {
+    pub x: Option<f64>,
+    pub y: Option<f64>,
+    pub z: Option<f64>,
+    pub arc: Option<(P2, bool)>,
+}
+
+impl Target {
+    pub(crate) fn z(z: f64) -> Target {
+        Target {
+            z: Some(z),
+            ..Default::default()
+        }
+    }
+    pub(crate) fn xy(x: f64, y: f64) -> Target {
+        Target {
+            x: Some(x),
+            y: Some(y),
+            ..Default::default()
+        }
+    }
+    pub(crate) fn xyz(p: P2, z: f64) -> Target {
+        Target {
+            x: Some(p.x),
+            y: Some(p.y),
+            z: Some(z),
+            arc: None,
+        }
+    }
+    pub(crate) fn arc(p: P2, z: f64, c: P2, ccw: bool) -> Target {
+        Target {
+            arc: Some((c, ccw)),
+            ..Target::xyz(p, z)
+        }
+    }
+}
+
+/// A probe with its name, for Z expressions.
+#[derive(Debug, Clone)]
+pub struct NamedProbe {
+    pub placed: PlacedProbe,
+    pub name: String,
+}
+/// What gets emitted where: transformation into output coordinates and the extra height.
+#[derive(Clone, Copy)]
+pub(crate) struct Frame<'m> {
+    pub(crate) model: &'m Model,
+    pub(crate) t: Transform,
+    pub(crate) h: f64,
+}
+
+pub(crate) struct Emitter<'a> {
+    pub(crate) items: Vec<Item>,
+    pub(crate) pos: P3,
+    pub(crate) probes: &'a [NamedProbe],
+    pub(crate) errors: Vec<Diagnostic>,
+    /// Set after a skipped element: the position is no longer trustworthy.
+    pub(crate) lost: bool,
+    /// Check only: no texts are made.
+    pub(crate) dry: bool,
+    /// Origins of the elements emitted so far, and the current one.
+    pub(crate) sources: Vec<Origin>,
+    pub(crate) source: Option<u32>,
+}
+
+/// Trace comment text: trimmed, `)` → `]`, `\` → `/`.
+pub fn as_comment(indent: usize, text: &str) -> String {
+    format!(
+        "{}({})",
+        " ".repeat(indent),
+        text.trim().replace(')', "]").replace('\\', "/")
+    )
+}
+
+pub(crate) fn bt(b: bool) -> &'static str {
+    if b {
+        "True"
+    } else {
+        "False"
+    }
+}
+
+pub(crate) type Skip = Diagnostic;
+
+impl<'a> Emitter<'a> {
+    /// Texts are only made when they are written: a check needs the moves, not the words.
+    pub(crate) fn comment(&mut self, indent: usize, text: impl FnOnce() -> String) {
+        let text = if self.dry {
+            String::new()
+        } else {
+            as_comment(indent, &text())
+        };
+        let source = self.source;
+        self.items.push(Item {
+            kind: Kind::Comment,
+            text,
+            len: 0.0,
+            feed: 0.0,
+            target: Target::default(),
+            source,
+        });
+    }
+    pub(crate) fn push(
+        &mut self,
+        kind: Kind,
+        text: impl FnOnce(&Self) -> String,
+        len: f64,
+        feed: f64,
+    ) {
+        let text = if self.dry { String::new() } else { text(self) };
+        let source = self.source;
+        self.items.push(Item {
+            kind,
+            text,
+            len,
+            feed,
+            target: Target::default(),
+            source,
+        });
+    }
+    /// A horizontal rapid `G00 X Y` with its recorded length.
+    pub(crate) fn move_xy(&mut self, x: f64, y: f64, len: f64) {
+        self.push(
+            Kind::HSweep,
+            |_: &Emitter| format!("G00 X{} Y{}", f3(x), f3(y)),
+            len,
+            0.0,
+        );
+        self.to(Target::xy(x, y));
+    }
+    /// Sets where the last move goes.
+    pub(crate) fn to(&mut self, t: Target) {
+        if let Some(it) = self.items.last_mut() {
+            it.target = t;
+        }
+    }
+
+    pub(crate) fn emit_model(&mut self, fr: Frame) {
+        for e in &fr.model.elements {
+            self.sources.push(element_origin(e).clone());
+            self.source = Some(self.sources.len() as u32 - 1);
+            let r = match e {
+                Element::Chain(c) => self.chain(fr, c),
+                Element::Drill(d) => self.drill(fr, d),
+                Element::Helix(h) => self.helix(fr, h),
+                Element::Sweep(s) => self.sweep(fr, s),
+                Element::Subpath(s) => {
+                    self.subpath(fr, s);
+                    Ok(())
+                }
+            };
+            if let Err(d) = r {
+                self.errors.push(d);
+                self.lost = true;
+            }
+        }
+    }
+}
+
+pub(crate) fn element_origin(e: &Element) -> &Origin {
+    match e {
+        Element::Chain(c) => &c.origin,
+        Element::Drill(d) => &d.origin,
+        Element::Helix(h) => &h.origin,
+        Element::Sweep(s) => &s.origin,
+        Element::Subpath(s) => &s.origin,
+    }
+}
+
+pub(crate) fn missing(key: &str, origin: &Origin) -> Diagnostic {
+    Diagnostic::error(Msg::ValueMissing, origin.clone(), args![key])
+}
+
+/// The body moves of a model (dry: without texts), its probes and start height.
+pub(crate) fn emit(model: &Model, dry: bool) -> Result<Emitted, Vec<Diagnostic>> {
+    if model.elements.is_empty() {
+        return Err(vec![Diagnostic::error(
+            Msg::NoSegments,
+            model.raw.start_origin(),
+            vec![],
+        )]);
+    }
+    let top = Transform::top_level(model.start, model.end);
+    let mut placed = Vec::new();
+    collect_probes(model, &top, 0.0, &mut placed);
+    let probes: Vec<NamedProbe> = probe_tour(placed)
+        .into_iter()
+        .enumerate()
+        .map(|(i, p)| NamedProbe {
+            placed: p,
+            name: format!("#{}", 51 + i),
+        })
+        .collect();
+    let sx = model.params.s * START_OFFSET;
+    let mut em = Emitter {
+        items: Vec::new(),
+        pos: P3 {
+            x: 0.0,
+            y: 0.0,
+            z: sx,
+        },
+        probes: &probes,
+        errors: Vec::new(),
+        lost: false,
+        dry,
+        sources: Vec::new(),
+        source: None,
+    };
+    em.comment(2, || format!("Model {}", model.label()));
+    em.emit_model(Frame {
+        model,
+        t: top,
+        h: 0.0,
+    });
+    let last_z = em.pos.z;
+    em.push(
+        Kind::VSweep,
+        |_: &Emitter| format!("G00 Z{}", f3(sx)),
+        (last_z - sx).abs(),
+        0.0,
+    );
+    if !em.errors.is_empty() {
+        return Err(em.errors);
+    }
+    let mut items = em.items;
+    optimize(&mut items);
+    Ok(Emitted {
+        items,
+        sources: em.sources,
+        probes,
+        sx,
+    })
+}
+
+pub(crate) struct Emitted {
+    pub(crate) items: Vec<Item>,
+    pub(crate) sources: Vec<Origin>,
+    pub(crate) probes: Vec<NamedProbe>,
+    pub(crate) sx: f64,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn comments_are_sanitised() {
+        assert_eq!(as_comment(2, " a)b\\c "), "  (a]b/c)");
+    }
+}

@@ -1,0 +1,156 @@
+//! Motion primitives (reference-output.md §5): DrillOrPullZ, sweeps, SafeSweep, MillLine and MillArc, and the probe-weighted Z expressions (§12.4).
+
+use crate::emit::{bt, Emitter, Kind, Target};
+use crate::geom::{f3, near, Geom, P2, P3};
+
+impl Emitter<'_> {
+    /// `F3(z)`, or with probes `F3(z)(=F3(z)+w*[#n-TH]…)` weighted by the 4 nearest probes.
+    pub(crate) fn zexpr(&self, z: f64, xy: P2) -> String {
+        if self.probes.is_empty() {
+            return f3(z);
+        }
+        let mut weights: Vec<(f64, usize)> = self
+            .probes
+            .iter()
+            .enumerate()
+            .map(|(i, p)| (1.0 / (p.placed.pos.dist(xy) + 0.001), i))
+            .collect();
+        // descending, ties keep tour order (stable sort)
+        weights.sort_by(|a, b| b.0.partial_cmp(&a.0).unwrap_or(std::cmp::Ordering::Equal));
+        weights.truncate(4);
+        let sum: f64 = weights.iter().map(|w| w.0).sum();
+        let mut s = format!("{}(={}", f3(z), f3(z));
+        for (w, i) in weights {
+            let p = &self.probes[i];
+            s.push_str(&format!(
+                "+{}*[{}-{}]",
+                f3(w / sum),
+                p.name,
+                f3(p.placed.height())
+            ));
+        }
+        s.push(')');
+        s
+    }
+
+    pub(crate) fn drill_or_pull(&mut self, xy: P2, from: f64, to: f64, th: f64, feed: f64) {
+        if near(to, from) {
+            return;
+        }
+        self.comment(4, || format!("DrillOrPullZFromTo {} {}", f3(from), f3(to)));
+        if to > th || to > from {
+            let t = |e: &Emitter| format!("G00 Z{}", e.zexpr(to, xy));
+            self.push(Kind::VSweep, t, (from - to).abs(), 0.0);
+            self.to(Target::z(to));
+        } else {
+            if from > th {
+                let t = |e: &Emitter| format!("G00 Z{}", e.zexpr(th, xy));
+                self.push(Kind::VSweep, t, (from - th).abs(), 0.0);
+                self.to(Target::z(th));
+            }
+            if !near(to, th) {
+                let t = |e: &Emitter| format!("G01 Z{}", e.zexpr(to, xy));
+                self.push(Kind::Drill, t, (th - to).abs(), feed);
+                self.to(Target::z(to));
+            }
+        }
+    }
+
+    pub(crate) fn sweep_xy(&mut self, from: P3, to: P3) {
+        let d = from.dist(to);
+        if !near(d, 0.0) {
+            self.move_xy(to.x, to.y, d);
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn safe_sweep(
+        &mut self,
+        from: P3,
+        to: P3,
+        th: f64,
+        s: f64,
+        feed: f64,
+        backtrack: bool,
+    ) {
+        self.comment(2, || {
+            format!(
+                "SweepAndDrillSafelyFromTo {from} {to} s={} bt={}",
+                f3(s),
+                bt(backtrack)
+            )
+        });
+        if from.xy().near(to.xy()) {
+            self.drill_or_pull(from.xy(), from.z, to.z, th, feed);
+        } else {
+            self.drill_or_pull(from.xy(), from.z, s, th, feed);
+            self.sweep_xy(from.xy().with_z(s), to);
+            self.drill_or_pull(to.xy(), s, to.z, th, feed);
+        }
+        self.pos = to;
+    }
+
+    pub(crate) fn mill(
+        &mut self,
+        g: &Geom,
+        from_z: f64,
+        to_z: f64,
+        th: f64,
+        feed: f64,
+        backtrack: bool,
+    ) {
+        self.drill_or_pull(self.pos.xy(), self.pos.z, from_z, th, feed);
+        let (a, b) = (g.start(), g.end());
+        match *g {
+            Geom::Line { .. } => {
+                self.comment(2, || {
+                    format!(
+                        "MillLine s={a} e={b} fr={} to={} bt={}",
+                        f3(from_z),
+                        f3(to_z),
+                        bt(backtrack)
+                    )
+                });
+                let t = |e: &Emitter| {
+                    format!(
+                        "G01 F{} X{} Y{} Z{}",
+                        f3(feed),
+                        f3(b.x),
+                        f3(b.y),
+                        e.zexpr(to_z, a)
+                    )
+                };
+                self.push(Kind::Mill, t, a.dist(b), feed);
+                self.to(Target::xyz(b, to_z));
+            }
+            Geom::Arc { c, r, a0, a1, ccw } => {
+                self.comment(2, || {
+                    format!(
+                        "MillArc l={c} r={} a0={} a1={} fr={} to={} p0={a} p1={b} bt={}",
+                        f3(r),
+                        f3(a0),
+                        f3(a1),
+                        f3(from_z),
+                        f3(to_z),
+                        bt(backtrack)
+                    )
+                });
+                let t = |e: &Emitter| {
+                    format!(
+                        "{} F{} I{} J{} X{} Y{} Z{}",
+                        if ccw { "G03" } else { "G02" },
+                        f3(feed),
+                        f3(c.x - a.x),
+                        f3(c.y - a.y),
+                        f3(b.x),
+                        f3(b.y),
+                        e.zexpr(to_z, a)
+                    )
+                };
+                self.push(Kind::Mill, t, g.length(), feed);
+                self.to(Target::arc(b, to_z, c, ccw));
+            }
+        }
+        self.pos = b.with_z(to_z);
+    }
+}

@@ -1,0 +1,138 @@
+//! File layouts (reference-output.md §4, §12.2, §12.3): the milling program, the probing program and `_Z.txt`.
+
+use crate::diag::{Diagnostic, Lang};
+use crate::emit::as_comment;
+use crate::emit::stats::Stats;
+use crate::emit::{emit, Emitted};
+use crate::geom::{f3, near, P2, P3};
+use crate::model::*;
+
+/// The files of one compiled path.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Output {
+    Milling(String),
+    Probing {
+        probing: String,
+        z_txt: String,
+        clean: String,
+    },
+}
+
+#[derive(Debug, Clone)]
+pub struct Generated {
+    pub output: Output,
+    pub stats: Stats,
+}
+
+pub(crate) fn prologue(banner: &str, file_name: &str, start: f64) -> Vec<String> {
+    vec![
+        "%".into(),
+        as_comment(0, banner),
+        as_comment(0, file_name),
+        "F150".into(),
+        "G17 G21 G40 G49 G54 G80 G90 G94".into(),
+        "T1".into(),
+        as_comment(
+            0,
+            &format!(
+                "SweepSafelyTo {}",
+                P3 {
+                    x: 0.0,
+                    y: 0.0,
+                    z: start
+                }
+            ),
+        ),
+        format!("G00 Z{}", f3(start)),
+        "G00 X0.000 Y0.000".into(),
+    ]
+}
+
+/// What a check needs: the emission errors and the statistics, without any text.
+pub fn check(model: &Model, sweep_speed: f64) -> Result<Stats, Vec<Diagnostic>> {
+    Ok(Stats::of(&emit(model, true)?.items, sweep_speed))
+}
+
+/// Generates the G-code of a top-level model. `Err` holds the errors that make the output
+/// unusable (the caller writes nothing then).
+pub fn generate(
+    model: &Model,
+    file_name: &str,
+    banner: &str,
+    sweep_speed: f64,
+    lang: Lang,
+) -> Result<Generated, Vec<Diagnostic>> {
+    let Emitted {
+        items, probes, sx, ..
+    } = emit(model, false)?;
+    let s = model.params.s;
+
+    let stats = Stats::of(&items, sweep_speed);
+    let mut lines = prologue(banner, file_name, sx);
+    lines.extend(items.into_iter().map(|i| i.text));
+    lines.extend(stats.lines(lang).iter().map(|l| format!("  ({l})")));
+    lines.push("M30".into());
+    lines.push("%".into());
+    let body = join(&lines);
+    if probes.is_empty() {
+        return Ok(Generated {
+            output: Output::Milling(body),
+            stats,
+        });
+    }
+    // probing program and Z file
+    let mut pl = prologue(banner, file_name, s);
+    let mut cur = P2::default();
+    for p in &probes {
+        if !near(p.placed.pos.dist(cur), 0.0) {
+            pl.push(format!(
+                "G00 X{} Y{}",
+                f3(p.placed.pos.x),
+                f3(p.placed.pos.y)
+            ));
+        }
+        cur = p.placed.pos;
+        pl.push(format!("G00 Z{}", f3(p.placed.height() + model.params.o)));
+        pl.push(format!("G38.3 Z0 F{}", f3(p.placed.probe.z)));
+        pl.push("G04 P4".into());
+        pl.push(format!("G00 Z{}", f3(s)));
+    }
+    if !near(cur.dist(P2::default()), 0.0) {
+        pl.push("G00 X0.000 Y0.000".into());
+    }
+    pl.push(format!("G00 Z{}", f3(s)));
+    pl.push("M30".into());
+    pl.push("%".into());
+    let z_lines: Vec<String> = probes
+        .iter()
+        .map(|p| {
+            let label = p
+                .placed
+                .probe
+                .l
+                .as_ref()
+                .map(|l| format!("/L:{l}"))
+                .unwrap_or_default();
+            let inner = format!(
+                "{}{label}/T={}",
+                p.placed.probe.center,
+                f3(p.placed.height())
+            );
+            format!("{} {}=", as_comment(0, &inner), p.name)
+        })
+        .collect();
+    Ok(Generated {
+        output: Output::Probing {
+            probing: join(&pl),
+            z_txt: join(&z_lines),
+            clean: body,
+        },
+        stats,
+    })
+}
+
+fn join(lines: &[String]) -> String {
+    let mut s = lines.join("\n");
+    s.push('\n');
+    s
+}
