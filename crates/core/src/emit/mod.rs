@@ -8,6 +8,7 @@ use crate::diag::{Diagnostic, Msg, Origin};
 use crate::emit::optimize::optimize;
 use crate::geom::{f3, Transform, P2, P3};
 use crate::model::*;
+use crate::probe::tour::{collect_probes, probe_tour, PlacedProbe};
 
 pub mod bars;
 pub mod chain;

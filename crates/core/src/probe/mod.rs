@@ -1,3 +1,5 @@
-//! Z probes after the machine has measured them: `_Z.txt` and adjust-z (reference-output.md §15).
+//! Z probes: collection and tour (reference-output.md §12.1), and after the machine has
+//! measured them, `_Z.txt` and adjust-z (§15).
 
 pub mod adjustz;
+pub mod tour;
