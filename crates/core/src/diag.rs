@@ -258,6 +258,15 @@ messages! {
     SyntaxError = "{0}", "Syntaxfehler: {0}";
     KindMismatch = "Declared as {0}, but with O={1} this circle is a {2}", "Als {0} angegeben, aber mit O={1} ist dieser Kreis ein {2}";
     PathNameNoMatch = "Path name {0} does not match the path-name pattern /{1}/", "Pfadname {0} passt nicht auf das Pfadmuster /{1}/";
+    // hostile input: every number finite and sane, every loop bounded
+    NumberNotFinite = "{0} value '{1}' is not a finite number", "{0}-Wert '{1}' ist keine endliche Zahl";
+    NumberOutOfRange = "{0} value '{1}' is outside ±{2}", "{0}-Wert '{1}' liegt außerhalb von ±{2}";
+    CoordinateOutOfRange = "A coordinate or radius of this element is not finite or outside ±{0} mm", "Eine Koordinate oder ein Radius dieses Elements ist nicht endlich oder liegt außerhalb von ±{0} mm";
+    TooManyPasses = "{0} passes from {1} down to {2} with I={3}: more than {4}", "{0} Durchgänge von {1} bis {2} mit I={3}: mehr als {4}";
+    TooManyBars = "{0} support bars along this element: more than {1}", "{0} Stege entlang dieses Elements: mehr als {1}";
+    TooManyMoves = "The program would have more than {0} moves", "Das Programm hätte mehr als {0} Bewegungen";
+    MoveOutOfRange = "The program would move to {0}, outside ±{1} mm (values add up: T, O, S, H, subpath placement)", "Das Programm würde nach {0} fahren, außerhalb von ±{1} mm (Werte addieren sich: T, O, S, H, Teilpfad-Lage)";
+    SettingNotFinite = "Setting {0}={1} must be a finite number within ±{2}", "Einstellung {0}={1} muss eine endliche Zahl innerhalb von ±{2} sein";
 }
 
 impl Msg {
@@ -363,10 +372,15 @@ macro_rules! args {
 pub struct Diags {
     pub list: Vec<Diagnostic>,
     seen: HashSet<String>,
+    /// Errors pushed so far, repeats included (the list drops repeats).
+    errors_reported: usize,
 }
 
 impl Diags {
     pub fn push(&mut self, d: Diagnostic) {
+        if d.severity == Severity::Error {
+            self.errors_reported += 1;
+        }
         let key = d.reference_line(Lang::En);
         if self.seen.insert(key) {
             self.list.push(d);
@@ -383,6 +397,11 @@ impl Diags {
     }
     pub fn has_errors(&self) -> bool {
         self.error_count() > 0
+    }
+    /// Errors pushed so far, counting repeats: compare two readings to learn whether a step
+    /// reported any error, even one already in the list.
+    pub fn errors_reported(&self) -> usize {
+        self.errors_reported
     }
 }
 

@@ -128,6 +128,9 @@ pub struct Model {
     pub params: PathParams,
     pub elements: Vec<Element>,
     pub probes: Vec<Probe>,
+    /// Errors were reported while building it or a path it embeds: `compile` refuses it, and
+    /// so nothing runs its emitter (its values may be missing, negative or absurd).
+    pub has_errors: bool,
 }
 
 impl Model {

@@ -136,25 +136,52 @@ impl ParamText {
     }
 }
 
-/// Parses a number the way the reference does: `,` → `.`, trimmed, invariant.
-pub fn parse_number(value: &str) -> Option<f64> {
+/// The largest magnitude of any number a drawing, a text or a setting may hold (mm, mm/min):
+/// one kilometre. Beyond it a value is a typing error, and nothing downstream (pass counts,
+/// bar pieces, the traversal grid, G-code text) has to cope with absurd magnitudes.
+pub const MAX_MAGNITUDE: f64 = 1e6;
+
+/// Why a value is not a usable number.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NumberError {
+    /// Not numeric at all (a word, a variable reference left over).
+    NotANumber,
+    /// `NaN`, `Infinity`, or a literal too large for a float (`1e999`).
+    NotFinite,
+    /// Finite but beyond ±[`MAX_MAGNITUDE`].
+    OutOfRange,
+}
+
+/// Parses a number the way the reference does (`,` → `.`, trimmed, invariant), but accepts
+/// only finite values within ±[`MAX_MAGNITUDE`]: a `NaN` passes every range check (all
+/// comparisons are false) and would reach the G-code.
+pub fn parse_number_checked(value: &str) -> Result<f64, NumberError> {
     let s = value.replace(',', ".");
     let s = s.trim();
-    if s.is_empty() {
-        return None;
+    let lower = s.to_ascii_lowercase();
+    let word = lower.trim_start_matches(['+', '-']);
+    if matches!(word, "nan" | "inf" | "infinity") {
+        return Err(NumberError::NotFinite);
     }
-    match s {
-        "Infinity" | "+Infinity" => Some(f64::INFINITY),
-        "-Infinity" => Some(f64::NEG_INFINITY),
-        "NaN" => Some(f64::NAN),
-        _ if s
-            .chars()
-            .all(|c| c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e' | 'E')) =>
-        {
-            s.parse().ok()
-        }
-        _ => None,
+    let numeric = !s.is_empty()
+        && s.chars()
+            .all(|c| c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e' | 'E'));
+    let v: f64 = match numeric.then(|| s.parse().ok()).flatten() {
+        Some(v) => v,
+        None => return Err(NumberError::NotANumber),
+    };
+    if !v.is_finite() {
+        Err(NumberError::NotFinite)
+    } else if v.abs() > MAX_MAGNITUDE {
+        Err(NumberError::OutOfRange)
+    } else {
+        Ok(v)
     }
+}
+
+/// [`parse_number_checked`] for callers that only need the value.
+pub fn parse_number(value: &str) -> Option<f64> {
+    parse_number_checked(value).ok()
 }
 
 /// An assignment of variable values (for one build of a path).
@@ -327,6 +354,31 @@ mod tests {
         assert_eq!(parse_number("=B"), None);
         assert_eq!(parse_number("2x20"), None);
         assert_eq!(parse_number(""), None);
+        for bad in [
+            "NaN",
+            "nan",
+            "-NaN",
+            "inf",
+            "-Infinity",
+            "+Infinity",
+            "1e999",
+            "-1e400",
+        ] {
+            assert_eq!(
+                parse_number_checked(bad),
+                Err(NumberError::NotFinite),
+                "{bad}"
+            );
+        }
+        for bad in ["1e300", "-99999999999999999999", "1000000,001"] {
+            assert_eq!(
+                parse_number_checked(bad),
+                Err(NumberError::OutOfRange),
+                "{bad}"
+            );
+        }
+        assert_eq!(parse_number_checked("-1000000"), Ok(-1e6));
+        assert_eq!(parse_number_checked("x"), Err(NumberError::NotANumber));
     }
 
     #[test]

@@ -5,6 +5,9 @@ use crate::diag::{Diagnostic, Msg, Origin};
 use crate::geom::Geom;
 use crate::load::session::Abort;
 
+/// Bars along one element: far beyond any real part, a bound on what a hostile drawing allocates.
+const MAX_BARS: f64 = 10_000.0;
+
 /// Support-bar pieces along a geometry (reference-output.md §8.1); `None` when it is too short.
 pub(crate) fn support_bars(
     g: &Geom,
@@ -26,6 +29,13 @@ pub(crate) fn support_bars(
     let n = (len / (u + p)).floor();
     if n.is_nan() || n < 1.0 || !n.is_finite() {
         return Ok(None);
+    }
+    if n > MAX_BARS {
+        return Err(Diagnostic::error(
+            Msg::TooManyBars,
+            origin.clone(),
+            args![n, MAX_BARS],
+        ));
     }
     let delta = d - b;
     let i = delta.min(p / 2.0);

@@ -114,6 +114,7 @@ impl Session<'_> {
         vars: &Vars,
         cx: &BuildCtx,
     ) -> Result<Option<Arc<Model>>, Abort> {
+        let errors_before = self.diags.errors_reported();
         // 1. markers
         let (Some(start), Some(end)) = (raw.start.clone(), raw.end.clone()) else {
             if raw.start.is_none() {
@@ -324,6 +325,10 @@ impl Session<'_> {
             }
         }
 
+        let embeds_errors = elements.iter().any(|e| match e {
+            Element::Subpath(emb) => emb.target.as_ref().is_some_and(|t| t.has_errors),
+            _ => false,
+        });
         Ok(Some(Arc::new(Model {
             raw: raw.clone(),
             vars: vars.clone(),
@@ -332,6 +337,7 @@ impl Session<'_> {
             params,
             elements,
             probes,
+            has_errors: embeds_errors || self.diags.errors_reported() > errors_before,
         })))
     }
 }

@@ -8,7 +8,7 @@ use crate::front::drawing::{RawPath, RawSegment, Style, CHAIN_KEYS};
 use crate::geom::{le, Geom};
 use crate::load::session::{Abort, Session};
 use crate::model::*;
-use crate::params::{fmt_num, parse_number, ParamText};
+use crate::params::{fmt_num, parse_number_checked, NumberError, ParamText, MAX_MAGNITUDE};
 
 impl Session<'_> {
     pub(crate) fn path_params(&mut self, raw: &RawPath, ev: &Eval, cx: &BuildCtx) -> PathParams {
@@ -155,12 +155,23 @@ impl Session<'_> {
             }
             if "ABCDFHIOPSTUWZ".contains(*k) {
                 let v = ev.vars.interpolate(raw).unwrap_or_else(|_| raw.clone());
-                if parse_number(&v).is_none() {
-                    self.diags.push(Diagnostic::warning(
+                match parse_number_checked(&v) {
+                    Ok(_) => {}
+                    Err(NumberError::NotANumber) => self.diags.push(Diagnostic::warning(
                         Msg::NotANumber,
                         origin.clone(),
                         args![k, v],
-                    ));
+                    )),
+                    // an error, not a warning: ignoring it would mill with another value
+                    Err(NumberError::NotFinite) => {
+                        self.diags
+                            .error(Msg::NumberNotFinite, origin.clone(), args![k, v])
+                    }
+                    Err(NumberError::OutOfRange) => self.diags.error(
+                        Msg::NumberOutOfRange,
+                        origin.clone(),
+                        args![k, v, MAX_MAGNITUDE],
+                    ),
                 }
             }
             if *k == 'N' && raw.trim().parse::<i64>().is_err() {

@@ -38,7 +38,7 @@ pub fn traverse(raw: &RawPath, start: P2, end: P2, diags: &mut Diags) -> Vec<Ste
         let mut v: Vec<usize> = Vec::new();
         for dx in -1..=1 {
             for dy in -1..=1 {
-                if let Some(list) = grid.get(&(cx + dx, cy + dy)) {
+                if let Some(list) = grid.get(&(cx.saturating_add(dx), cy.saturating_add(dy))) {
                     v.extend(
                         list.iter()
                             .copied()

@@ -24,6 +24,9 @@ impl Emitter<'_> {
             pieces.iter().rev().map(Geom::reversed).collect()
         };
         for (k, piece) in ordered.iter().enumerate() {
+            if self.full {
+                break;
+            }
             let step = STEPS[k % 4];
             self.comment(2, || format!("Support.{step}"));
             let (fr, to) = match step {

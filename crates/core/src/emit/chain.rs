@@ -2,7 +2,7 @@
 
 use crate::args;
 use crate::diag::{Diagnostic, Msg};
-use crate::emit::{missing, Emitter, Frame, Skip};
+use crate::emit::{bounded_passes, missing, Emitter, Frame, Skip, MAX_ITEMS};
 use crate::front::drawing::Style;
 use crate::geom::{ge, lt, near, Geom};
 use crate::model::*;
@@ -18,6 +18,7 @@ impl Emitter<'_> {
         };
         let mut passes: Vec<Vec<f64>> = Vec::with_capacity(ch.segs.len());
         let mut geoms = Vec::with_capacity(ch.segs.len());
+        let mut total = 0.0;
         for s in &ch.segs {
             let (key, depth) = if s.style == Style::Mark {
                 ("D", s.d)
@@ -25,6 +26,11 @@ impl Emitter<'_> {
                 ("B", s.b)
             };
             let bottom = h + depth.ok_or_else(|| missing(key, &s.origin))?;
+            total += bounded_passes(first, bottom, infeed, &s.origin)?;
+            if total > MAX_ITEMS as f64 {
+                self.full = true;
+                return Ok(());
+            }
             passes.push(pass_depths(first, bottom, infeed));
             geoms.push(s.geom.transform(&fr.t));
         }
@@ -50,6 +56,9 @@ impl Emitter<'_> {
         let mut head = geoms[0].start().with_z(passes[0][0]);
         let s = fr.h + p.s;
         for _ in 0..total {
+            if self.full {
+                break;
+            }
             let mut best: Option<(usize, bool, f64)> = None;
             for (si, g) in geoms.iter().enumerate() {
                 let k = done_count[si];
@@ -124,6 +133,9 @@ impl Emitter<'_> {
             }
         }
         for (si, z, forward) in edges {
+            if self.full {
+                break;
+            }
             let seg = &ch.segs[si];
             let g = if forward {
                 geoms[si]

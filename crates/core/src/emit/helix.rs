@@ -1,6 +1,6 @@
 //! Helixes: semicircles down to the bottom, bars, pull-up and return to the centre (reference-output.md §9.2).
 
-use crate::emit::{missing, Emitter, Frame, Kind, Skip, Target};
+use crate::emit::{bounded_passes, missing, Emitter, Frame, Kind, Skip, Target};
 use crate::front::drawing::Style;
 use crate::geom::{f3, gt, le, Geom, P2, P3};
 use crate::model::*;
@@ -18,6 +18,7 @@ impl Emitter<'_> {
         };
         let bottom = h + depth.ok_or_else(|| missing(key, &hx.origin))?;
         let infeed = hx.i.ok_or_else(|| missing("I", &hx.origin))?;
+        bounded_passes(th, bottom, infeed, &hx.origin)?;
         let r1 = hx.r - p.o / 2.0;
         self.drill_or_pull(self.pos.xy(), self.pos.z, th + p.o, th, hx.f);
         if let Some(q) = &hx.q {
@@ -28,7 +29,7 @@ impl Emitter<'_> {
         let (mut d, mut done) = (th, th);
         let mut z = self.pos.z;
         let half = r1 * std::f64::consts::PI;
-        while gt(done, bottom) {
+        while gt(done, bottom) && !self.full {
             self.comment(4, || format!("MillSemiCircle l={}", f3(d)));
             let b1 = (d - infeed / 2.0).max(bottom);
             let t = |e: &Emitter| {
@@ -69,7 +70,7 @@ impl Emitter<'_> {
             let b = hx.b.ok_or_else(|| missing("B", &hx.origin))?;
             let dd = hx.d.ok_or_else(|| missing("D", &hx.origin))?;
             let pieces: Vec<Geom> = pieces.iter().map(|g| g.transform(&fr.t)).collect();
-            while gt(done, h + b) {
+            while gt(done, h + b) && !self.full {
                 let z = (done - infeed).max(h + b);
                 // deliberate difference: bar depths are raised by h like everything else
                 self.profile(&pieces, true, z, h + b, h + dd, th, hx.f, false);

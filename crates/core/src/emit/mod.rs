@@ -6,8 +6,10 @@
 use crate::args;
 use crate::diag::{Diagnostic, Msg, Origin};
 use crate::emit::optimize::optimize;
+use crate::front::drawing::Style;
 use crate::geom::{f3, Transform, P2, P3};
 use crate::model::*;
+use crate::params::MAX_MAGNITUDE;
 use crate::probe::tour::{collect_probes, probe_tour, PlacedProbe};
 
 pub mod bars;
@@ -22,6 +24,38 @@ pub mod toolpath;
 
 pub use program::{check, generate, Generated, Output};
 pub use toolpath::{toolpath, Move, Toolpath};
+
+/// Items (moves and comments) one program may hold: far beyond any real part, and a bound on
+/// the memory a hostile drawing can make the emitter take.
+pub(crate) const MAX_ITEMS: usize = 2_000_000;
+/// Passes of one chain segment or helix.
+pub(crate) const MAX_PASSES: f64 = 10_000.0;
+
+/// Checks that going from `first` down to `bottom` in steps of `infeed` takes a bounded
+/// number of passes, before anything is allocated for them.
+pub(crate) fn bounded_passes(
+    first: f64,
+    bottom: f64,
+    infeed: f64,
+    origin: &Origin,
+) -> Result<f64, Skip> {
+    if !(infeed > 0.0 && infeed.is_finite()) {
+        return Err(Diagnostic::error(
+            Msg::MustBePositive,
+            origin.clone(),
+            args!["I", crate::params::fmt_num(infeed)],
+        ));
+    }
+    let n = ((first - bottom) / infeed).max(0.0).floor() + 2.0;
+    if n.is_nan() || n > MAX_PASSES {
+        return Err(Diagnostic::error(
+            Msg::TooManyPasses,
+            origin.clone(),
+            args![n, f3(first), f3(bottom), f3(infeed), MAX_PASSES],
+        ));
+    }
+    Ok(n)
+}
 
 /// Relative epsilon factor of the start height: guarantees that the first Z move is emitted.
 pub(crate) const START_OFFSET: f64 = 1.0 + 2.0 * 1e-6;
@@ -109,6 +143,8 @@ pub(crate) struct Emitter<'a> {
     pub(crate) errors: Vec<Diagnostic>,
     /// Set after a skipped element: the position is no longer trustworthy.
     pub(crate) lost: bool,
+    /// [`MAX_ITEMS`] reached: nothing more is recorded and every loop stops.
+    pub(crate) full: bool,
     /// Check only: no texts are made.
     pub(crate) dry: bool,
     /// Origins of the elements emitted so far, and the current one.
@@ -138,6 +174,9 @@ pub(crate) type Skip = Diagnostic;
 impl<'a> Emitter<'a> {
     /// Texts are only made when they are written: a check needs the moves, not the words.
     pub(crate) fn comment(&mut self, indent: usize, text: impl FnOnce() -> String) {
+        if self.at_capacity() {
+            return;
+        }
         let text = if self.dry {
             String::new()
         } else {
@@ -160,6 +199,9 @@ impl<'a> Emitter<'a> {
         len: f64,
         feed: f64,
     ) {
+        if self.at_capacity() {
+            return;
+        }
         let text = if self.dry { String::new() } else { text(self) };
         let source = self.source;
         self.items.push(Item {
@@ -170,6 +212,12 @@ impl<'a> Emitter<'a> {
             target: Target::default(),
             source,
         });
+    }
+    fn at_capacity(&mut self) -> bool {
+        if self.items.len() >= MAX_ITEMS {
+            self.full = true;
+        }
+        self.full
     }
     /// A horizontal rapid `G00 X Y` with its recorded length.
     pub(crate) fn move_xy(&mut self, x: f64, y: f64, len: f64) {
@@ -224,6 +272,54 @@ pub(crate) fn missing(key: &str, origin: &Origin) -> Diagnostic {
     Diagnostic::error(Msg::ValueMissing, origin.clone(), args![key])
 }
 
+/// The "value missing" errors the emitter reports, in its order, without emitting: one per
+/// element at most, as the emitter skips an element at its first missing value.
+fn missing_values(model: &Model, out: &mut Vec<Diagnostic>, depth: usize) {
+    let key_of = |mark: bool| if mark { "D" } else { "B" };
+    for e in &model.elements {
+        let first_missing = match e {
+            Element::Chain(ch) => match ch.i {
+                None => Some(("I", &ch.origin)),
+                Some(_) => ch.segs.iter().find_map(|s| {
+                    let mark = s.style == Style::Mark;
+                    let v = if mark { s.d } else { s.b };
+                    v.is_none().then(|| (key_of(mark), &s.origin))
+                }),
+            },
+            Element::Drill(d) => {
+                let mark = d.style == Style::Mark;
+                let v = if mark { d.d } else { d.b };
+                v.is_none().then(|| (key_of(mark), &d.origin))
+            }
+            Element::Helix(hx) => {
+                let mill = hx.style == Style::Mill;
+                let v = if mill { hx.b } else { hx.d };
+                if v.is_none() {
+                    Some((if mill { "B" } else { "D" }, &hx.origin))
+                } else if hx.i.is_none() {
+                    Some(("I", &hx.origin))
+                } else if hx.style == Style::Support && hx.bars.is_some() && hx.b.is_none() {
+                    Some(("B", &hx.origin))
+                } else {
+                    None
+                }
+            }
+            Element::Subpath(emb) => {
+                if let Some(t) = &emb.target {
+                    if depth < 10 {
+                        missing_values(t, out, depth + 1);
+                    }
+                }
+                None
+            }
+            Element::Sweep(_) => None,
+        };
+        if let Some((key, origin)) = first_missing {
+            out.push(missing(key, origin));
+        }
+    }
+}
+
 /// The body moves of a model (dry: without texts), its probes and start height.
 pub(crate) fn emit(model: &Model, dry: bool) -> Result<Emitted, Vec<Diagnostic>> {
     if model.elements.is_empty() {
@@ -232,6 +328,13 @@ pub(crate) fn emit(model: &Model, dry: bool) -> Result<Emitted, Vec<Diagnostic>>
             model.raw.start_origin(),
             vec![],
         )]);
+    }
+    if model.has_errors {
+        // its errors are reported already and its values may be absurd: the emitter does not
+        // run, but the values it would find missing are reported as it would report them
+        let mut missing = Vec::new();
+        missing_values(model, &mut missing, 0);
+        return Err(missing);
     }
     let top = Transform::top_level(model.start, model.end);
     let mut placed = Vec::new();
@@ -255,6 +358,7 @@ pub(crate) fn emit(model: &Model, dry: bool) -> Result<Emitted, Vec<Diagnostic>>
         probes: &probes,
         errors: Vec::new(),
         lost: false,
+        full: false,
         dry,
         sources: Vec::new(),
         source: None,
@@ -272,6 +376,35 @@ pub(crate) fn emit(model: &Model, dry: bool) -> Result<Emitted, Vec<Diagnostic>>
         (last_z - sx).abs(),
         0.0,
     );
+    // each value was in range, but sums of them (T + O, S·(1 + 2e-6), h + depth, placed
+    // subpaths) may not be: no program leaves the sane range
+    let out_of_range = em.items.iter().find_map(|it| {
+        let t = it.target;
+        let centre = t.arc.map(|(c, _)| c);
+        [t.x, t.y, t.z, centre.map(|c| c.x), centre.map(|c| c.y)]
+            .into_iter()
+            .flatten()
+            .find(|v| !(v.is_finite() && v.abs() <= MAX_MAGNITUDE))
+            .map(|v| (v, it.source))
+    });
+    let sx_bad = !(sx.is_finite() && sx.abs() <= MAX_MAGNITUDE);
+    if let Some((v, source)) = out_of_range.or(sx_bad.then_some((sx, None))) {
+        let origin = source
+            .and_then(|i| em.sources.get(i as usize).cloned())
+            .unwrap_or_else(|| model.raw.start_origin());
+        em.errors.push(Diagnostic::error(
+            Msg::MoveOutOfRange,
+            origin,
+            args![f3(v), MAX_MAGNITUDE],
+        ));
+    }
+    if em.full {
+        em.errors.push(Diagnostic::error(
+            Msg::TooManyMoves,
+            model.raw.start_origin(),
+            args![MAX_ITEMS],
+        ));
+    }
     if !em.errors.is_empty() {
         return Err(em.errors);
     }

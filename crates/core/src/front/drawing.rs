@@ -5,8 +5,8 @@ use crate::args;
 use crate::diag::{Diagnostic, Diags, FileRef, Msg, Origin};
 use crate::geom::{f3, near};
 use crate::geom::{Geom, P2};
-use crate::params::parse_number;
 use crate::params::ParamText;
+use crate::params::{parse_number, MAX_MAGNITUDE};
 use regex::Regex;
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -81,6 +81,17 @@ pub enum Shape {
 }
 
 impl Shape {
+    /// Every coordinate and radius finite and within ±[`MAX_MAGNITUDE`] (radius > 0 is
+    /// checked where circles are classified).
+    pub fn is_sane(&self) -> bool {
+        let ok = |v: f64| v.is_finite() && v.abs() <= MAX_MAGNITUDE;
+        let p = |q: P2| ok(q.x) && ok(q.y);
+        match *self {
+            Shape::Circle { c, r } => p(c) && ok(r),
+            Shape::Path(Geom::Line { a, b }) => p(a) && p(b),
+            Shape::Path(Geom::Arc { c, r, a0, a1, .. }) => p(c) && ok(r) && ok(a0) && ok(a1),
+        }
+    }
     pub fn start(&self) -> P2 {
         match self {
             Shape::Circle { c, .. } => *c,
@@ -272,11 +283,29 @@ pub fn build_paths(
             paths.len() - 1
         })
     };
+    // elements with absurd numbers are reported and take no further part
+    let insane: Vec<bool> = objs
+        .iter()
+        .map(|o| {
+            let bad = !o.shape.is_sane();
+            if bad {
+                diags.error(
+                    Msg::CoordinateOutOfRange,
+                    o.origin.clone(),
+                    args![MAX_MAGNITUDE],
+                );
+            }
+            bad
+        })
+        .collect();
     let mut special = vec![false; objs.len()];
     for (i, o) in objs.iter().enumerate() {
         let Shape::Circle { c, r } = o.shape else {
             continue;
         };
+        if insane[i] {
+            continue;
+        }
         let lt = o.linetype.as_str();
         if !matches!(lt, "PHANTOM" | "DOT" | "DASHDOT") {
             continue;
@@ -343,7 +372,7 @@ pub fn build_paths(
         let Shape::Circle { r, .. } = o.shape else {
             continue;
         };
-        if special[i] {
+        if special[i] || insane[i] {
             continue;
         }
         let pi = find(&paths, o)?;
@@ -397,7 +426,7 @@ pub fn build_paths(
     for want_line in [true, false] {
         for (i, o) in objs.iter().enumerate() {
             let Shape::Path(g) = &o.shape else { continue };
-            if matches!(g, Geom::Line { .. }) != want_line {
+            if matches!(g, Geom::Line { .. }) != want_line || insane[i] {
                 continue;
             }
             let pi = find(&paths, o)?;

@@ -38,7 +38,7 @@ pub struct Session<'a> {
 impl<'a> Session<'a> {
     /// Creates a session; invalid patterns and restrictions are reported as option errors.
     pub fn new(settings: Settings, fs: &'a dyn FileSystem) -> Result<Session<'a>, Vec<Diagnostic>> {
-        let mut errors = Vec::new();
+        let mut errors = settings.number_errors();
         let patterns = match Patterns::shared(&settings.path_pattern, &settings.file_pattern) {
             Ok(p) => Some(p),
             Err((c, p, e)) => {

@@ -1,6 +1,9 @@
 //! Machine settings and options of a run.
 
+use crate::args;
 use crate::diag::Lang;
+use crate::diag::{Diagnostic, Msg, Origin};
+use crate::params::MAX_MAGNITUDE;
 use std::path::PathBuf;
 
 /// Machine settings and options of a run.
@@ -46,6 +49,27 @@ impl Default for Settings {
 }
 
 impl Settings {
+    /// Machine values that are not finite or beyond ±[`MAX_MAGNITUDE`], whichever way they
+    /// came (options, `millpath.toml` where `nan` and `inf` are valid floats, an editor).
+    pub fn number_errors(&self) -> Vec<Diagnostic> {
+        let mut values = vec![
+            ("feed", self.feed),
+            ("sweep_speed", self.sweep_speed),
+            ("sweep_height", self.sweep_height),
+        ];
+        values.extend(self.probe_feed.map(|z| ("probe_feed", z)));
+        values
+            .into_iter()
+            .filter(|(_, v)| !(v.is_finite() && v.abs() <= MAX_MAGNITUDE))
+            .map(|(name, v)| {
+                Diagnostic::error(
+                    Msg::SettingNotFinite,
+                    Origin::Options,
+                    args![name, v, MAX_MAGNITUDE],
+                )
+            })
+            .collect()
+    }
     pub fn probe_feed(&self) -> f64 {
         match self.probe_feed {
             Some(z) if z > 0.0 => z,
