@@ -133,3 +133,52 @@ fn the_server_survives_bad_requests() {
     assert!(sym.get("result").is_some());
     assert!(c.shutdown().success());
 }
+
+/// Typing, keystroke by keystroke, values that once killed the server (a minus in front of a
+/// helix's I looped the emitter until the memory ran out): it answers every one.
+#[test]
+fn hostile_keystrokes_leave_the_server_answering() {
+    let (dir, mut c) = setup();
+    let path = dir.path().join("3001.mpath");
+    let doc = uri(&path);
+    let text = |i: &str| {
+        format!("path 3001.1P {{\n  start (0, 0)  M10x3 O2 T3 I1,5 B-0,2\n  end (40, 0)\n  sweep (0, 0) -> (10, 0)\n  helix (10, 0) d8  {i}\n  sweep (10, 0) -> (40, 0)\n}}\n")
+    };
+    c.notify("textDocument/didOpen", json!({ "textDocument": { "uri": doc, "languageId": "millpath", "version": 1, "text": text("I1") } }));
+    c.wait_notification("textDocument/publishDiagnostics", Duration::from_secs(10))
+        .expect("diagnostics");
+    let keystrokes = [
+        "I-1",
+        "I0",
+        "I-",
+        "INaN",
+        "Iinf",
+        "I1e999",
+        "I0,0000001",
+        "I-99999999999999999999",
+    ];
+    for (v, i) in keystrokes.iter().enumerate() {
+        c.notify("textDocument/didChange", json!({ "textDocument": { "uri": doc, "version": v + 2 }, "contentChanges": [{ "text": text(i) }] }));
+        let d = c
+            .wait_notification("textDocument/publishDiagnostics", Duration::from_secs(20))
+            .unwrap_or_else(|| panic!("no diagnostics after typing {i}"));
+        assert!(
+            !d["params"]["diagnostics"].as_array().unwrap().is_empty(),
+            "{i}: an error expected"
+        );
+        let pv = c.request(
+            "millpath/gcodePreview",
+            json!({ "textDocument": { "uri": doc }, "path": "3001.1P" }),
+        );
+        assert!(
+            pv.get("result").is_some() || pv.get("error").is_some(),
+            "{i}: {pv}"
+        );
+    }
+    // still alive and right after all that
+    c.notify("textDocument/didChange", json!({ "textDocument": { "uri": doc, "version": 99 }, "contentChanges": [{ "text": text("I1") }] }));
+    let d = c
+        .wait_notification("textDocument/publishDiagnostics", Duration::from_secs(20))
+        .expect("diagnostics");
+    assert_eq!(d["params"]["diagnostics"], json!([]));
+}
