@@ -3,6 +3,7 @@
 mod compat;
 mod config;
 mod report;
+mod verify;
 mod write;
 
 use clap::{Parser, Subcommand, ValueEnum};
@@ -79,6 +80,21 @@ enum Format {
     Sarif,
 }
 
+#[derive(Clone, Copy, ValueEnum, Default, PartialEq)]
+enum DialectArg {
+    #[default]
+    Reference,
+    Linuxcnc,
+    Grbl,
+}
+
+#[derive(Clone, Copy, ValueEnum, Default, PartialEq)]
+enum VerifyFormat {
+    #[default]
+    Human,
+    Json,
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Compile DXF path drawings to G-code (one path per file)
@@ -96,6 +112,28 @@ enum Command {
         format: Format,
         #[arg(required = true)]
         paths: Vec<PathBuf>,
+    },
+    /// Check G-code programs independently of the compiler: rapids into material, feeds,
+    /// arcs, numbers (exit 1 on any error)
+    Verify {
+        /// Whose feed-rate rules apply
+        #[arg(long, value_enum, default_value = "reference")]
+        dialect: DialectArg,
+        /// Material top T, mm (default: the program's (MILLPATH-STOCK …) comment)
+        #[arg(long, allow_hyphen_values = true)]
+        top: Option<f64>,
+        /// Tool diameter O, mm
+        #[arg(long)]
+        tool: Option<f64>,
+        /// Deepest drawn depth, mm: cuts below it are errors
+        #[arg(long, allow_hyphen_values = true)]
+        bottom: Option<f64>,
+        #[arg(long, value_enum)]
+        lang: Option<LangArg>,
+        #[arg(long, value_enum, default_value = "human")]
+        format: VerifyFormat,
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
     },
     /// Turn NAME_Clean.gcode and the measured NAME_Z.txt into NAME_Milling.gcode
     AdjustZ {
@@ -182,6 +220,30 @@ fn main() -> ExitCode {
             format,
             paths,
         } => run_check(&machine, format, &paths),
+        Command::Verify {
+            dialect,
+            top,
+            tool,
+            bottom,
+            lang,
+            format,
+            files,
+        } => verify::run(&verify::Args {
+            dialect: match dialect {
+                DialectArg::Reference => millpath_verify::Dialect::Reference,
+                DialectArg::Linuxcnc => millpath_verify::Dialect::LinuxCnc,
+                DialectArg::Grbl => millpath_verify::Dialect::Grbl,
+            },
+            top,
+            tool,
+            bottom,
+            lang: match lang {
+                Some(LangArg::De) => millpath_verify::Lang::De,
+                _ => millpath_verify::Lang::En,
+            },
+            json: format == VerifyFormat::Json,
+            files,
+        }),
         Command::AdjustZ { max, lang, files } => {
             let lang = lang.map_or(Lang::En, to_lang);
             run_adjustz(max, None, lang, &files, false)

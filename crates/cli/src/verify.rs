@@ -1,0 +1,176 @@
+//! `millpath verify`: the independent G-code checker (crates/verify) over files.
+
+use millpath_verify::{verify, Dialect, Lang, Options, Report, Severity};
+use serde_json::json;
+use std::path::PathBuf;
+
+/// Larger files are refused unread.
+const MAX_FILE_BYTES: u64 = 256 << 20;
+
+pub struct Args {
+    pub dialect: Dialect,
+    pub top: Option<f64>,
+    pub tool: Option<f64>,
+    pub bottom: Option<f64>,
+    pub lang: Lang,
+    pub json: bool,
+    pub files: Vec<PathBuf>,
+}
+
+fn read(path: &PathBuf, lang: Lang) -> Result<String, String> {
+    let de = lang == Lang::De;
+    let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
+    if meta.len() > MAX_FILE_BYTES {
+        return Err(if de {
+            format!("größer als {} MiB", MAX_FILE_BYTES >> 20)
+        } else {
+            format!("larger than {} MiB", MAX_FILE_BYTES >> 20)
+        });
+    }
+    let bytes = std::fs::read(path).map_err(|e| e.to_string())?;
+    Ok(String::from_utf8_lossy(&bytes).into_owned())
+}
+
+fn summary(report: &Report, lang: Lang) -> String {
+    let e = report.count(Severity::Error);
+    let w = report.count(Severity::Warning);
+    let stock = match &report.stock {
+        Some(s) => match lang {
+            Lang::En => format!(
+                "; removed volume {:.1} mm³ (T={:.3}, O={:.3}, grid {}×{} of {:.3} mm)",
+                report.removed_volume_mm3, s.top, s.tool_diameter, s.nx, s.ny, s.cell
+            ),
+            Lang::De => format!(
+                "; abgetragenes Volumen {:.1} mm³ (T={:.3}, O={:.3}, Raster {}×{} zu {:.3} mm)",
+                report.removed_volume_mm3, s.top, s.tool_diameter, s.nx, s.ny, s.cell
+            ),
+        },
+        None => String::new(),
+    };
+    match lang {
+        Lang::En => format!(
+            "{} lines, {} moves: {e} error(s), {w} warning(s){stock}",
+            report.lines, report.moves
+        ),
+        Lang::De => format!(
+            "{} Zeilen, {} Bewegungen: {e} Fehler, {w} Warnung(en){stock}",
+            report.lines, report.moves
+        ),
+    }
+}
+
+/// Exit status 1 when any finding is an error (or a file cannot be read).
+pub fn run(a: &Args) -> u8 {
+    let options = Options {
+        dialect: a.dialect,
+        top: a.top,
+        tool: a.tool,
+        bottom: a.bottom,
+        ..Default::default()
+    };
+    for (name, v) in [("--top", a.top), ("--tool", a.tool), ("--bottom", a.bottom)] {
+        if let Some(v) = v {
+            if !v.is_finite() || v.abs() > millpath_verify::MAX_MAGNITUDE {
+                eprintln!("error: {name} {v}: not a usable number");
+                return 2;
+            }
+        }
+    }
+    if a.tool.is_some_and(|o| o <= 0.0) {
+        eprintln!("error: --tool must be > 0");
+        return 2;
+    }
+    let mut failed = false;
+    let mut errors = 0;
+    let mut warnings = 0;
+    let mut files_json = Vec::new();
+    for path in &a.files {
+        let shown = path.display().to_string();
+        let text = match read(path, a.lang) {
+            Ok(t) => t,
+            Err(e) => {
+                failed = true;
+                errors += 1;
+                if a.json {
+                    files_json.push(json!({ "file": shown, "error": e }));
+                } else {
+                    let verb = match a.lang {
+                        Lang::En => "cannot read",
+                        Lang::De => "kann nicht gelesen werden",
+                    };
+                    println!("{shown}: {}: {verb}: {e}", Severity::Error.word(a.lang));
+                }
+                continue;
+            }
+        };
+        let report = verify(&text, &options);
+        failed |= report.has_errors();
+        errors += report.count(Severity::Error);
+        warnings += report.count(Severity::Warning);
+        if a.json {
+            files_json.push(json!({
+                "file": shown,
+                "lines": report.lines,
+                "moves": report.moves,
+                "errors": report.count(Severity::Error),
+                "warnings": report.count(Severity::Warning),
+                "removed_volume_mm3": report.stock.map(|_| report.removed_volume_mm3),
+                "stock": report.stock.map(|s| json!({
+                    "top": s.top, "tool_diameter": s.tool_diameter, "cell": s.cell,
+                    "nx": s.nx, "ny": s.ny, "x0": s.x0, "y0": s.y0,
+                })),
+                "bottom": report.params.bottom,
+                "findings": report.findings.iter().map(|f| json!({
+                    "line": f.line,
+                    "severity": f.severity.word(Lang::En),
+                    "code": f.code(),
+                    "message": f.message(a.lang),
+                    "text": f.text,
+                })).collect::<Vec<_>>(),
+            }));
+            continue;
+        }
+        for f in &report.findings {
+            let place = match f.line {
+                Some(l) => format!("{shown}:{l}"),
+                None => shown.clone(),
+            };
+            println!(
+                "{place}: {}: {}",
+                f.severity.word(a.lang),
+                f.message(a.lang)
+            );
+            if !f.text.is_empty() {
+                println!("    | {}", f.text);
+            }
+        }
+        eprintln!("{shown}: {}", summary(&report, a.lang));
+    }
+    if a.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&json!({
+                "dialect": a.dialect.name(),
+                "files": files_json,
+                "errors": errors,
+                "warnings": warnings,
+            }))
+            .unwrap_or_default()
+        );
+    } else if a.files.len() > 1 {
+        eprintln!(
+            "{}",
+            match a.lang {
+                Lang::En => format!(
+                    "verified {} file(s): {errors} error(s), {warnings} warning(s)",
+                    a.files.len()
+                ),
+                Lang::De => format!(
+                    "{} Datei(en) geprüft: {errors} Fehler, {warnings} Warnung(en)",
+                    a.files.len()
+                ),
+            }
+        );
+    }
+    u8::from(failed)
+}

@@ -1,0 +1,431 @@
+//! What the checker reports: a small enum of findings, each with its message in English and
+//! German. Rendering happens late (`message(lang)`), so a caller can show the same finding in
+//! the language of its user.
+
+use crate::Dialect;
+
+/// Message language.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Lang {
+    #[default]
+    En,
+    De,
+}
+
+/// How bad a finding is. `Error` means the program must not run as it is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Severity {
+    Error,
+    Warning,
+    Note,
+}
+
+impl Severity {
+    pub fn word(self, lang: Lang) -> &'static str {
+        match (self, lang) {
+            (Severity::Error, Lang::En) => "error",
+            (Severity::Error, Lang::De) => "Fehler",
+            (Severity::Warning, Lang::En) => "warning",
+            (Severity::Warning, Lang::De) => "Warnung",
+            (Severity::Note, Lang::En) => "note",
+            (Severity::Note, Lang::De) => "Hinweis",
+        }
+    }
+}
+
+/// One finding: where (1-based G-code line and its text) and what.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Finding {
+    /// 1-based line of the G-code program; `None` for findings about the program as a whole
+    /// (e.g. "stock checks skipped").
+    pub line: Option<usize>,
+    /// The text of that line (trimmed, at most 200 characters); empty without a line.
+    pub text: String,
+    pub kind: FindingKind,
+    pub severity: Severity,
+}
+
+impl Finding {
+    pub fn message(&self, lang: Lang) -> String {
+        self.kind.message(lang)
+    }
+    /// A stable machine-readable name of the kind, e.g. `rapid-into-material`.
+    pub fn code(&self) -> &'static str {
+        self.kind.code()
+    }
+}
+
+/// Lexical and grammatical problems of a line; the line is not executed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SyntaxError {
+    UnclosedComment,
+    /// `(` inside a parenthesised comment (LinuxCNC rejects it; not fatal for the line).
+    NestedComment,
+    UnexpectedChar(char),
+    MissingNumber(char),
+    DuplicateWord(char),
+    /// Two codes of one modal group on one line, e.g. `G00 G01`.
+    SameModalGroup(String, String),
+    /// X/Y/Z with no motion mode in effect (G80 or none yet).
+    AxesWithoutMotion,
+    LineTooLong(usize),
+    TextAfterPercent,
+    /// G04 without P, or a negative P.
+    BadDwell,
+    /// A G or M code no controller knows, e.g. `G07.5`, `M1234`.
+    UnknownCode(String),
+}
+
+/// Why a number is not acceptable.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NumberProblem {
+    /// NaN or infinite.
+    NonFinite,
+    /// |value| > 1e6.
+    Absurd,
+    /// `1e3`: not G-code (controllers read it differently or reject it).
+    Exponent,
+}
+
+/// Why a cutting move has no feed rate.
+#[derive(Debug, Clone, PartialEq)]
+pub enum NoFeedReason {
+    /// No F was given before it.
+    NeverSet,
+    /// The feed mode word `code` on line `line` reset the feed rate (LinuxCNC: G93/G94/G95;
+    /// grbl: leaving G93).
+    ResetBy {
+        code: String,
+        line: usize,
+        dialect: Dialect,
+    },
+    /// Inverse time mode (G93) needs F on every cutting line.
+    InverseTime,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ArcProblem {
+    /// Neither I/J nor R.
+    NoCentre,
+    /// The centre is the start point.
+    ZeroRadius,
+    /// R shorter than half the chord.
+    RadiusTooSmall,
+}
+
+/// Why the stock model did not run (or stopped).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum StockSkip {
+    /// T and/or O unknown (no option, no `(MILLPATH-STOCK …)` comment).
+    MissingParams { top: bool, tool: bool },
+    /// The moves span an area too large for a grid fine enough for the tool.
+    AreaTooLarge { cell: f64 },
+    /// The stock model stopped at this line: the program needs too much work.
+    WorkLimit { line: usize },
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum StockCommentProblem {
+    /// `KEY=TEXT` is not a usable number.
+    BadValue { key: String, text: String },
+    /// A later `(MILLPATH-STOCK …)` comment with other values; the first one counts.
+    Conflicting,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Limit {
+    /// More lines than the checker reads; the rest is not checked.
+    Lines(usize),
+    /// More findings than are listed.
+    Findings(usize),
+}
+
+/// Every kind of finding.
+#[derive(Debug, Clone, PartialEq)]
+pub enum FindingKind {
+    Syntax(SyntaxError),
+    BadNumber {
+        letter: char,
+        text: String,
+        problem: NumberProblem,
+    },
+    /// A code or word the controller knows but the checker does not model (`G41`, `G28`, an A
+    /// axis …): the simulation may be off after it.
+    Unsupported {
+        what: String,
+    },
+    /// A G02/G03 in plane G18 or G19: not simulated.
+    ArcPlane {
+        plane: String,
+    },
+    /// A G00 whose tool passes through stock higher than its tip; `depth` is how far the tip
+    /// is below the stock surface at (x, y).
+    RapidIntoMaterial {
+        depth: f64,
+        x: f64,
+        y: f64,
+    },
+    /// A cutting (or probing) move without a positive feed rate.
+    NoFeed {
+        motion: String,
+        reason: NoFeedReason,
+    },
+    /// `F0` or a negative F.
+    FeedNotPositive {
+        value: f64,
+    },
+    /// A cutting move below the deepest drawn depth.
+    BelowBottom {
+        z: f64,
+        bottom: f64,
+    },
+    /// The arc's radius at the start and at the end differ by more than 0.002 mm.
+    ArcRadiusMismatch {
+        start: f64,
+        end: f64,
+    },
+    ArcInvalid(ArcProblem),
+    /// A cutting move whose start is unknown (no earlier move set X, Y and Z).
+    UnknownPosition {
+        motion: String,
+    },
+    /// No M2/M30 and no closing `%`: the program is probably truncated.
+    MissingProgramEnd,
+    /// Code after M2/M30: the controller ignores it.
+    AfterProgramEnd,
+    StockSkipped(StockSkip),
+    StockComment(StockCommentProblem),
+    Limit(Limit),
+}
+
+fn f3(v: f64) -> String {
+    format!("{v:.3}")
+}
+
+impl FindingKind {
+    pub fn code(&self) -> &'static str {
+        match self {
+            FindingKind::Syntax(_) => "syntax",
+            FindingKind::BadNumber { .. } => "bad-number",
+            FindingKind::Unsupported { .. } => "unsupported",
+            FindingKind::ArcPlane { .. } => "arc-plane",
+            FindingKind::RapidIntoMaterial { .. } => "rapid-into-material",
+            FindingKind::NoFeed { .. } => "no-feed",
+            FindingKind::FeedNotPositive { .. } => "feed-not-positive",
+            FindingKind::BelowBottom { .. } => "below-bottom",
+            FindingKind::ArcRadiusMismatch { .. } => "arc-radius-mismatch",
+            FindingKind::ArcInvalid(_) => "arc-invalid",
+            FindingKind::UnknownPosition { .. } => "unknown-position",
+            FindingKind::MissingProgramEnd => "missing-program-end",
+            FindingKind::AfterProgramEnd => "after-program-end",
+            FindingKind::StockSkipped(_) => "stock-skipped",
+            FindingKind::StockComment(_) => "stock-comment",
+            FindingKind::Limit(_) => "limit",
+        }
+    }
+
+    pub fn message(&self, lang: Lang) -> String {
+        let de = lang == Lang::De;
+        let pick = |en: String, de_text: String| if de { de_text } else { en };
+        match self {
+            FindingKind::Syntax(s) => s.message(lang),
+            FindingKind::BadNumber {
+                letter,
+                text,
+                problem,
+            } => match problem {
+                NumberProblem::NonFinite => pick(
+                    format!("{letter}{text}: not a finite number"),
+                    format!("{letter}{text}: keine endliche Zahl"),
+                ),
+                NumberProblem::Absurd => pick(
+                    format!("{letter}{text}: the magnitude exceeds 1000000 (absurd)"),
+                    format!("{letter}{text}: der Betrag übersteigt 1000000 (unsinnig)"),
+                ),
+                NumberProblem::Exponent => pick(
+                    format!("{letter}{text}: exponent notation is not G-code"),
+                    format!("{letter}{text}: Exponentenschreibweise ist kein G-Code"),
+                ),
+            },
+            FindingKind::Unsupported { what } => pick(
+                format!("{what} is not modelled by the checker; the simulation may be off after this line"),
+                format!("{what} wird von der Prüfung nicht nachgebildet; die Simulation kann danach abweichen"),
+            ),
+            FindingKind::ArcPlane { plane } => pick(
+                format!("arc in plane {plane}: only G17 (XY) arcs are simulated"),
+                format!("Bogen in der Ebene {plane}: nur G17-Bögen (XY) werden simuliert"),
+            ),
+            FindingKind::RapidIntoMaterial { depth, x, y } => pick(
+                format!(
+                    "rapid move (G00) into material: the tool tip passes {} mm below the stock surface at X{} Y{}",
+                    f3(*depth), f3(*x), f3(*y)
+                ),
+                format!(
+                    "Eilgang (G00) ins Material: die Werkzeugspitze fährt {} mm unter der Materialoberfläche bei X{} Y{}",
+                    f3(*depth), f3(*x), f3(*y)
+                ),
+            ),
+            FindingKind::NoFeed { motion, reason } => {
+                let why = match reason {
+                    NoFeedReason::NeverSet => pick("no F before it".into(), "kein F davor".into()),
+                    NoFeedReason::ResetBy {
+                        code,
+                        line,
+                        dialect,
+                    } => pick(
+                        format!(
+                            "{code} on line {line} resets the feed rate in {}: give F after it",
+                            dialect.controller()
+                        ),
+                        format!(
+                            "{code} in Zeile {line} setzt den Vorschub in {} zurück: F danach angeben",
+                            dialect.controller()
+                        ),
+                    ),
+                    NoFeedReason::InverseTime => pick(
+                        "inverse time mode G93 needs F on every cutting line".into(),
+                        "der Inverse-Zeit-Modus G93 braucht F in jeder Fräszeile".into(),
+                    ),
+                };
+                pick(
+                    format!("{motion} without a feed rate ({why})"),
+                    format!("{motion} ohne Vorschub ({why})"),
+                )
+            }
+            FindingKind::FeedNotPositive { value } => pick(
+                format!("feed rate F{} is not positive: cutting moves after it fail", f3(*value)),
+                format!("Vorschub F{} ist nicht positiv: Fräsbewegungen danach scheitern", f3(*value)),
+            ),
+            FindingKind::BelowBottom { z, bottom } => pick(
+                format!("cut at Z{}, below the deepest drawn depth {}", f3(*z), f3(*bottom)),
+                format!("Schnitt bei Z{}, unter der tiefsten gezeichneten Tiefe {}", f3(*z), f3(*bottom)),
+            ),
+            FindingKind::ArcRadiusMismatch { start, end } => pick(
+                format!(
+                    "arc radius differs at start and end: {} / {} mm (more than 0.002 mm apart)",
+                    f3(*start), f3(*end)
+                ),
+                format!(
+                    "Bogenradius an Anfang und Ende verschieden: {} / {} mm (mehr als 0,002 mm Unterschied)",
+                    f3(*start), f3(*end)
+                ),
+            ),
+            FindingKind::ArcInvalid(p) => match p {
+                ArcProblem::NoCentre => pick("arc without I/J or R".into(), "Bogen ohne I/J oder R".into()),
+                ArcProblem::ZeroRadius => pick(
+                    "arc of radius zero (the centre is the start point)".into(),
+                    "Bogen mit Radius null (der Mittelpunkt ist der Anfangspunkt)".into(),
+                ),
+                ArcProblem::RadiusTooSmall => pick(
+                    "arc radius R is smaller than half the distance from start to end".into(),
+                    "Bogenradius R ist kleiner als der halbe Abstand von Anfang zu Ende".into(),
+                ),
+            },
+            FindingKind::UnknownPosition { motion } => pick(
+                format!("{motion} from an unknown position (no earlier move set X, Y and Z): not simulated"),
+                format!("{motion} von unbekannter Position (keine frühere Bewegung setzte X, Y und Z): nicht simuliert"),
+            ),
+            FindingKind::MissingProgramEnd => pick(
+                "the program has no end (M30, M2 or a closing %): is it truncated?".into(),
+                "das Programm hat kein Ende (M30, M2 oder abschließendes %): ist es abgeschnitten?".into(),
+            ),
+            FindingKind::AfterProgramEnd => pick(
+                "code after the program end (M2/M30) is ignored by the controller".into(),
+                "Code nach dem Programmende (M2/M30) wird von der Steuerung ignoriert".into(),
+            ),
+            FindingKind::StockSkipped(s) => match s {
+                StockSkip::MissingParams { top, tool } => {
+                    let (en, de_t) = match (top, tool) {
+                        (true, true) => ("material top and tool diameter", "Materialoberkante und Werkzeugdurchmesser"),
+                        (true, false) => ("material top", "Materialoberkante"),
+                        _ => ("tool diameter", "Werkzeugdurchmesser"),
+                    };
+                    pick(
+                        format!("stock checks skipped: {en} unknown (give --top/--tool or a (MILLPATH-STOCK T=… O=…) comment); feed, arc and number checks ran"),
+                        format!("Materialprüfungen übersprungen: {de_t} unbekannt (--top/--tool oder einen Kommentar (MILLPATH-STOCK T=… O=…) angeben); Vorschub, Bögen und Zahlen wurden geprüft"),
+                    )
+                }
+                StockSkip::AreaTooLarge { cell } => pick(
+                    format!("stock checks skipped: the moves span too large an area for a grid fine enough for the tool (cell {} mm)", f3(*cell)),
+                    format!("Materialprüfungen übersprungen: die Bewegungen überdecken eine zu große Fläche für ein Raster, das fein genug für das Werkzeug ist (Zelle {} mm)", f3(*cell)),
+                ),
+                StockSkip::WorkLimit { line } => pick(
+                    format!("stock model stopped at line {line}: the program is too large for it; later moves are not checked against the stock"),
+                    format!("Materialmodell bei Zeile {line} angehalten: das Programm ist zu groß; spätere Bewegungen werden nicht gegen das Material geprüft"),
+                ),
+            },
+            FindingKind::StockComment(p) => match p {
+                StockCommentProblem::BadValue { key, text } => pick(
+                    format!("(MILLPATH-STOCK …): {key}={text} is not a usable value"),
+                    format!("(MILLPATH-STOCK …): {key}={text} ist kein brauchbarer Wert"),
+                ),
+                StockCommentProblem::Conflicting => pick(
+                    "a second (MILLPATH-STOCK …) comment with other values: the first one counts".into(),
+                    "ein zweiter Kommentar (MILLPATH-STOCK …) mit anderen Werten: der erste gilt".into(),
+                ),
+            },
+            FindingKind::Limit(l) => match l {
+                Limit::Lines(n) => pick(
+                    format!("more than {n} lines: the rest is not checked"),
+                    format!("mehr als {n} Zeilen: der Rest wird nicht geprüft"),
+                ),
+                Limit::Findings(n) => pick(
+                    format!("more than {n} findings: the rest are not listed"),
+                    format!("mehr als {n} Befunde: die weiteren werden nicht aufgeführt"),
+                ),
+            },
+        }
+    }
+}
+
+impl SyntaxError {
+    pub fn message(&self, lang: Lang) -> String {
+        let de = lang == Lang::De;
+        let pick = |en: String, de_text: String| if de { de_text } else { en };
+        match self {
+            SyntaxError::UnclosedComment => pick(
+                "comment not closed: `(` without `)`".into(),
+                "Kommentar nicht geschlossen: `(` ohne `)`".into(),
+            ),
+            SyntaxError::NestedComment => pick(
+                "`(` inside a comment: LinuxCNC rejects nested comments".into(),
+                "`(` in einem Kommentar: LinuxCNC lehnt verschachtelte Kommentare ab".into(),
+            ),
+            SyntaxError::UnexpectedChar(c) => pick(
+                format!("unexpected character {c:?}; the line is not executed"),
+                format!("unerwartetes Zeichen {c:?}; die Zeile wird nicht ausgeführt"),
+            ),
+            SyntaxError::MissingNumber(l) => pick(
+                format!("word {l} without a number"),
+                format!("Wort {l} ohne Zahl"),
+            ),
+            SyntaxError::DuplicateWord(l) => pick(
+                format!("two {l} words on one line"),
+                format!("zwei {l}-Wörter in einer Zeile"),
+            ),
+            SyntaxError::SameModalGroup(a, b) => pick(
+                format!("{a} and {b} belong to the same modal group"),
+                format!("{a} und {b} gehören zur selben modalen Gruppe"),
+            ),
+            SyntaxError::AxesWithoutMotion => pick(
+                "axis words without a motion mode (G00/G01/G02/G03) in effect".into(),
+                "Achsenwörter ohne geltende Bewegungsart (G00/G01/G02/G03)".into(),
+            ),
+            SyntaxError::LineTooLong(n) => pick(
+                format!("line longer than {n} characters: not read"),
+                format!("Zeile länger als {n} Zeichen: nicht gelesen"),
+            ),
+            SyntaxError::TextAfterPercent => pick(
+                "text after `%` on its line".into(),
+                "Text nach `%` in derselben Zeile".into(),
+            ),
+            SyntaxError::BadDwell => pick(
+                "G04 needs a dwell time P ≥ 0".into(),
+                "G04 braucht eine Verweilzeit P ≥ 0".into(),
+            ),
+            SyntaxError::UnknownCode(c) => {
+                pick(format!("unknown code {c}"), format!("unbekannter Code {c}"))
+            }
+        }
+    }
+}

@@ -1,0 +1,466 @@
+//! `millpath-verify`: a second opinion on a G-code program, written from G-code semantics
+//! alone (it knows nothing of the compiler that wrote the program).
+//!
+//! [`verify`] parses every line (garbage becomes a finding, never a panic), simulates the
+//! controller's modal state (motion mode, position, feed and feed mode, units, plane,
+//! distance modes) and, when the material top T and the tool diameter O are known, a 2.5-D
+//! stock model: a height field over the program's XY extent, initialised to T and lowered by
+//! every cutting move with a cylindrical tool of diameter O. It reports
+//!
+//! * rapid moves (G00) through stock higher than the tool tip, and G00 plunges into stock;
+//! * cutting moves without a positive feed rate, by the rules of the chosen [`Dialect`];
+//! * cuts below the deepest drawn depth (when known);
+//! * arcs whose start and end radius differ by more than 0.002 mm, arcs outside G17;
+//! * non-finite or absurd numbers (|v| > 1e6), unknown codes, syntax errors, a missing
+//!   program end (a truncated file).
+//!
+//! Every [`Finding`] carries the 1-based line and its text, so a caller that knows which
+//! source element wrote which line can map findings back to the drawing.
+//!
+//! Memory and time are bounded for any input: at most [`Limits::max_lines`] lines are read,
+//! the grid has at most [`Limits::max_cells`] cells, and the stock model stops after
+//! [`Limits::max_work`] cell visits (each with a finding saying so).
+
+mod finding;
+mod machine;
+mod parse;
+mod stock;
+
+pub use finding::{
+    ArcProblem, Finding, FindingKind, Lang, Limit, NoFeedReason, NumberProblem, Severity,
+    StockCommentProblem, StockSkip, SyntaxError,
+};
+pub use parse::MAX_MAGNITUDE;
+
+use machine::{Machine, MoveKind, Raw};
+use stock::{GridGeom, Stock};
+
+/// Whose rules decide the feed-rate checks (and a few strictness details).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+pub enum Dialect {
+    /// F is modal and never reset (what the reference tool's programs assume).
+    #[default]
+    Reference,
+    /// LinuxCNC's rs274ngc: G93/G94/G95 reset the feed rate (executed before F on the same
+    /// line); nested comments are errors; axis words need a motion mode.
+    LinuxCnc,
+    /// grbl 1.1: F is kept across G94; leaving G93 resets it; starts in G00.
+    Grbl,
+}
+
+impl Dialect {
+    pub fn name(self) -> &'static str {
+        match self {
+            Dialect::Reference => "reference",
+            Dialect::LinuxCnc => "linuxcnc",
+            Dialect::Grbl => "grbl",
+        }
+    }
+    /// The controller's name as shown in messages.
+    pub fn controller(self) -> &'static str {
+        match self {
+            Dialect::Reference => "the reference controller",
+            Dialect::LinuxCnc => "LinuxCNC",
+            Dialect::Grbl => "grbl",
+        }
+    }
+}
+
+impl std::str::FromStr for Dialect {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Dialect, String> {
+        match s.to_ascii_lowercase().as_str() {
+            "reference" => Ok(Dialect::Reference),
+            "linuxcnc" => Ok(Dialect::LinuxCnc),
+            "grbl" => Ok(Dialect::Grbl),
+            other => Err(format!(
+                "unknown dialect {other:?} (reference, linuxcnc or grbl)"
+            )),
+        }
+    }
+}
+
+/// The data the stock checks need; from options or a `(MILLPATH-STOCK …)` comment.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StockParams {
+    /// Material top T, mm.
+    pub top: Option<f64>,
+    /// Tool diameter O, mm.
+    pub tool: Option<f64>,
+    /// The deepest drawn depth, mm.
+    pub bottom: Option<f64>,
+}
+
+/// Bounds on the work done for one program.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Limits {
+    pub max_lines: usize,
+    pub max_line_len: usize,
+    pub max_cells: usize,
+    /// Cell visits of the stock model.
+    pub max_work: u64,
+    pub max_findings: usize,
+}
+
+impl Default for Limits {
+    fn default() -> Limits {
+        Limits {
+            max_lines: 1_000_000,
+            max_line_len: 4096,
+            max_cells: 4_000_000,
+            max_work: 100_000_000,
+            max_findings: 10_000,
+        }
+    }
+}
+
+/// What to check against. `top`/`tool`/`bottom` override a `(MILLPATH-STOCK …)` comment.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Options {
+    pub dialect: Dialect,
+    pub top: Option<f64>,
+    pub tool: Option<f64>,
+    pub bottom: Option<f64>,
+    pub limits: Limits,
+}
+
+/// The grid the stock model used.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StockInfo {
+    pub top: f64,
+    pub tool_diameter: f64,
+    /// Cell edge, mm.
+    pub cell: f64,
+    pub nx: usize,
+    pub ny: usize,
+    /// Lower left corner of the grid.
+    pub x0: f64,
+    pub y0: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Report {
+    /// Sorted by line (findings about the whole program first).
+    pub findings: Vec<Finding>,
+    /// ∫ (T − height) over the grid, mm³; 0 when the stock model did not run.
+    pub removed_volume_mm3: f64,
+    /// The grid, when the stock model ran.
+    pub stock: Option<StockInfo>,
+    /// The values used (options over the program's comment).
+    pub params: StockParams,
+    /// Lines read.
+    pub lines: usize,
+    /// Moves executed (G00/G01/G02/G03/G38.x with known start or end).
+    pub moves: usize,
+}
+
+impl Report {
+    pub fn count(&self, severity: Severity) -> usize {
+        self.findings
+            .iter()
+            .filter(|f| f.severity == severity)
+            .count()
+    }
+    pub fn has_errors(&self) -> bool {
+        self.findings.iter().any(|f| f.severity == Severity::Error)
+    }
+}
+
+/// How far (mm) the tool tip may be below the stock before a rapid counts as a collision.
+pub const Z_TOLERANCE: f64 = 0.001;
+/// Extra tolerance (mm) on the footprint radius of rapids, besides one grid cell.
+pub const XY_TOLERANCE: f64 = 0.01;
+
+/// The structured comment our compiler writes:
+/// `(MILLPATH-STOCK T=2.000 O=2.000 BOTTOM=-0.300)` (BOTTOM only when known).
+pub fn stock_comment(top: f64, tool: f64, bottom: Option<f64>) -> String {
+    match bottom {
+        Some(b) => format!("(MILLPATH-STOCK T={top:.3} O={tool:.3} BOTTOM={b:.3})"),
+        None => format!("(MILLPATH-STOCK T={top:.3} O={tool:.3})"),
+    }
+}
+
+/// Reads the text of a comment (without parentheses). `None`: not a stock comment. Keys are
+/// T, O and BOTTOM; unknown keys are ignored (for later additions).
+pub fn parse_stock_comment(text: &str) -> Option<Result<StockParams, StockCommentProblem>> {
+    let rest = text.trim().strip_prefix("MILLPATH-STOCK")?;
+    if !rest.is_empty() && !rest.starts_with(char::is_whitespace) {
+        return None;
+    }
+    let mut p = StockParams::default();
+    for tok in rest.split_whitespace() {
+        let (key, value) = tok.split_once('=').unwrap_or((tok, ""));
+        let key = key.to_ascii_uppercase();
+        let plain = !value.is_empty()
+            && value
+                .chars()
+                .all(|c| c.is_ascii_digit() || matches!(c, '.' | '-' | '+'));
+        let v = value
+            .parse::<f64>()
+            .ok()
+            .filter(|v| plain && v.is_finite() && v.abs() <= MAX_MAGNITUDE);
+        let slot = match key.as_str() {
+            "T" => &mut p.top,
+            "O" => &mut p.tool,
+            "BOTTOM" => &mut p.bottom,
+            _ => continue,
+        };
+        match v {
+            Some(v) if key != "O" || v > 0.0 => *slot = Some(v),
+            _ => {
+                return Some(Err(StockCommentProblem::BadValue {
+                    key,
+                    text: value.to_string(),
+                }))
+            }
+        }
+    }
+    Some(Ok(p))
+}
+
+/// Checks one program.
+pub fn verify(program: &str, options: &Options) -> Report {
+    let limits = options.limits;
+    let mut m = Machine::new(options.dialect);
+    let mut lines: Vec<&str> = Vec::new();
+    let mut extra: Vec<Raw> = Vec::new();
+    let body = program.strip_suffix('\n').unwrap_or(program);
+    for (idx, raw) in body.split('\n').enumerate() {
+        let no = idx + 1;
+        if idx >= limits.max_lines {
+            extra.push(Raw {
+                line: Some(no),
+                kind: FindingKind::Limit(Limit::Lines(limits.max_lines)),
+                severity: Severity::Error,
+            });
+            break;
+        }
+        let l = raw.strip_suffix('\r').unwrap_or(raw);
+        lines.push(l);
+        let parsed = if l.len() > limits.max_line_len {
+            Err(FindingKind::Syntax(SyntaxError::LineTooLong(
+                limits.max_line_len,
+            )))
+        } else {
+            parse::parse_line(l)
+        };
+        match parsed {
+            Ok(b) => m.exec(no, &b),
+            Err(kind) => {
+                if m.ended {
+                    // the controller does not read past the end
+                    m.after_end(no);
+                } else {
+                    m.findings.push(Raw {
+                        line: Some(no),
+                        kind,
+                        severity: Severity::Error,
+                    });
+                }
+            }
+        }
+        if m.findings.len() > limits.max_findings {
+            break;
+        }
+    }
+    if !m.ended && !m.percent_closed && m.findings.len() <= limits.max_findings {
+        let last = lines.iter().rposition(|l| !l.trim().is_empty());
+        m.findings.push(Raw {
+            line: last.map(|i| i + 1),
+            kind: FindingKind::MissingProgramEnd,
+            severity: Severity::Error,
+        });
+    }
+
+    // the values: options over the comment
+    let comment = m.stock.unwrap_or_default();
+    let params = StockParams {
+        top: options.top.or(comment.top).filter(|v| v.is_finite()),
+        tool: options
+            .tool
+            .or(comment.tool)
+            .filter(|v| v.is_finite() && *v > 0.0),
+        bottom: options.bottom.or(comment.bottom).filter(|v| v.is_finite()),
+    };
+    let mut findings = std::mem::take(&mut m.findings);
+    findings.extend(extra);
+    if let Some(bottom) = params.bottom {
+        for mv in m.moves.iter().filter(|mv| mv.kind == MoveKind::Cut) {
+            let z = mv.from[2].min(mv.to[2]);
+            if z < bottom - Z_TOLERANCE {
+                findings.push(Raw {
+                    line: Some(mv.line),
+                    kind: FindingKind::BelowBottom { z, bottom },
+                    severity: Severity::Error,
+                });
+            }
+        }
+    }
+    let mut report = Report {
+        params,
+        lines: lines.len(),
+        moves: m.moves.len(),
+        ..Default::default()
+    };
+    match (params.top, params.tool) {
+        (Some(top), Some(tool)) => {
+            run_stock(&m.moves, top, tool, &limits, &mut findings, &mut report);
+        }
+        (top, tool) => findings.push(Raw {
+            line: None,
+            kind: FindingKind::StockSkipped(StockSkip::MissingParams {
+                top: top.is_none(),
+                tool: tool.is_none(),
+            }),
+            severity: Severity::Note,
+        }),
+    }
+
+    findings.sort_by_key(|f| f.line.unwrap_or(0));
+    if findings.len() > limits.max_findings {
+        findings.truncate(limits.max_findings);
+        findings.push(Raw {
+            line: None,
+            kind: FindingKind::Limit(Limit::Findings(limits.max_findings)),
+            severity: Severity::Note,
+        });
+    }
+    report.findings = findings
+        .into_iter()
+        .map(|f| Finding {
+            text: f
+                .line
+                .and_then(|l| lines.get(l - 1))
+                .map(|t| t.trim().chars().take(200).collect())
+                .unwrap_or_default(),
+            line: f.line,
+            kind: f.kind,
+            severity: f.severity,
+        })
+        .collect();
+    report
+}
+
+/// The stock model over all moves: rapids checked against it, cuts lowering it.
+fn run_stock(
+    moves: &[machine::Move],
+    top: f64,
+    tool: f64,
+    limits: &Limits,
+    findings: &mut Vec<Raw>,
+    report: &mut Report,
+) {
+    let r = tool / 2.0;
+    // XY extent of every known position and arc
+    let mut bb: Option<(f64, f64, f64, f64)> = None;
+    let mut add = |x: f64, y: f64| {
+        if x.is_finite() && y.is_finite() {
+            bb = Some(match bb {
+                None => (x, y, x, y),
+                Some(b) => (b.0.min(x), b.1.min(y), b.2.max(x), b.3.max(y)),
+            });
+        }
+    };
+    for mv in moves {
+        add(mv.from[0], mv.from[1]);
+        add(mv.to[0], mv.to[1]);
+        if let Some(a) = &mv.arc {
+            let b = a.bbox();
+            add(b.0, b.1);
+            add(b.2, b.3);
+        }
+    }
+    let Some((bx0, by0, bx1, by1)) = bb else {
+        return;
+    };
+    let (w, h) = (bx1 - bx0 + 2.0 * r, by1 - by0 + 2.0 * r);
+    let cells = |c: f64| ((w / c).ceil() + 4.0) * ((h / c).ceil() + 4.0);
+    let max_cells = limits.max_cells.max(1) as f64;
+    // O/8 when the area allows (finer volumes, a tighter rapid tolerance), up to O/2
+    let mut cell = (tool / 8.0).max((w * h / max_cells).sqrt());
+    for _ in 0..1000 {
+        if cells(cell) <= max_cells {
+            break;
+        }
+        cell *= 1.05;
+    }
+    if !(cell <= tool / 2.0 && cells(cell) <= max_cells) {
+        findings.push(Raw {
+            line: None,
+            kind: FindingKind::StockSkipped(StockSkip::AreaTooLarge { cell }),
+            severity: Severity::Warning,
+        });
+        return;
+    }
+    let geom = GridGeom {
+        x0: bx0 - r - 2.0 * cell,
+        y0: by0 - r - 2.0 * cell,
+        cell,
+        nx: (w / cell).ceil() as usize + 4,
+        ny: (h / cell).ceil() as usize + 4,
+    };
+    let mut stock = Stock::new(geom, top);
+    let r_check = (r - cell - XY_TOLERANCE).max(0.0);
+    let mut work = 0u64;
+    for mv in moves {
+        if work > limits.max_work {
+            findings.push(Raw {
+                line: None,
+                kind: FindingKind::StockSkipped(StockSkip::WorkLimit { line: mv.line }),
+                severity: Severity::Warning,
+            });
+            break;
+        }
+        let (from, to) = (mv.from, mv.to);
+        match mv.kind {
+            MoveKind::Probe => {}
+            MoveKind::Rapid => {
+                if to.iter().any(|v| v.is_nan()) {
+                    continue;
+                }
+                let xy_moves = (to[0] - from[0]).hypot(to[1] - from[1]) > 1e-9;
+                let (a, b) = if from.iter().any(|v| v.is_nan()) {
+                    // from an unknown place: at least the destination must be free
+                    (to, to)
+                } else if xy_moves || to[2] < from[2] {
+                    (from, to)
+                } else {
+                    continue;
+                };
+                if a[2].min(b[2]) >= top - Z_TOLERANCE {
+                    continue;
+                }
+                let (hit, w) = stock.intrusion(a, b, r_check);
+                work += w;
+                if let Some((depth, x, y)) = hit.filter(|h| h.0 > Z_TOLERANCE) {
+                    findings.push(Raw {
+                        line: Some(mv.line),
+                        kind: FindingKind::RapidIntoMaterial { depth, x, y },
+                        severity: Severity::Error,
+                    });
+                    // the model goes on as if the tool had cut its way (no cascades)
+                    work += stock.cut_line(a, b, r);
+                }
+            }
+            MoveKind::Cut => {
+                if from[2].min(to[2]) >= top {
+                    continue;
+                }
+                work += match &mv.arc {
+                    Some(arc) => stock.cut_arc(arc, from[2], to[2], r),
+                    None => stock.cut_line(from, to, r),
+                };
+            }
+        }
+    }
+    report.removed_volume_mm3 = stock.removed_volume();
+    report.stock = Some(StockInfo {
+        top,
+        tool_diameter: tool,
+        cell,
+        nx: geom.nx,
+        ny: geom.ny,
+        x0: geom.x0,
+        y0: geom.y0,
+    });
+}
