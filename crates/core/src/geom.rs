@@ -34,41 +34,102 @@ pub fn lt(a: f64, b: f64) -> bool {
 }
 
 /// Fixed-point text with three decimals; `-0.000` keeps its sign like the reference.
-/// Rounds the exact binary value half to even, exactly like `format!("{x:.3}")` (and .NET),
-/// but with integer arithmetic: the standard formatter's exact path is the hot spot of
-/// G-code generation.
+/// Exactly `format!("{x:.3}")` (and .NET): see [`F3`]. For new code, [`F3`] and [`write_f3`]
+/// write the same text without a `String` of its own.
 pub fn f3(x: f64) -> String {
-    if !x.is_finite() || x.abs() >= 1e15 {
-        return format!("{x:.3}");
+    let mut s = String::new();
+    write_f3(&mut s, x);
+    s
+}
+
+/// Appends [`f3`]`(x)` to `out`.
+pub fn write_f3(out: &mut String, x: f64) {
+    let mut buf = [0; F3_LEN];
+    match f3_text(x, &mut buf) {
+        Some(s) => out.push_str(s),
+        None => {
+            use std::fmt::Write;
+            // writing into a String cannot fail
+            let _ = write!(out, "{x:.3}");
+        }
     }
-    let bits = x.abs().to_bits();
-    let exp_bits = ((bits >> 52) & 0x7ff) as i32;
+}
+
+/// A number shown with three decimals, exactly as `format!("{x:.3}")` shows it: the exact
+/// binary value rounded half to even, `-0.000` with its sign, `NaN`, `inf`. The usual values
+/// (|x| < 10¹⁵) are written from integer arithmetic without allocating; the standard
+/// formatter's exact path, which this replaces, is the hot spot of G-code generation.
+/// Width, fill and alignment apply as to a string.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct F3(pub f64);
+
+impl fmt::Display for F3 {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut buf = [0; F3_LEN];
+        match f3_text(self.0, &mut buf) {
+            Some(s) => f.pad(s),
+            None if f.width().is_none() && f.precision().is_none() => write!(f, "{:.3}", self.0),
+            None => f.pad(&format!("{:.3}", self.0)),
+        }
+    }
+}
+
+/// Room for the longest text of [`f3_text`]: sign, 15 digits, point, 3 decimals.
+const F3_LEN: usize = 20;
+
+/// The text of [`F3`] for finite |x| < 10¹⁵, written at the end of `buf`; `None` otherwise.
+///
+/// With |x| = m·2⁻ˢ (m < 2⁵³ the significand), x·1000 = m·1000·2⁻ˢ, and m·1000 < 2⁶³ fits a
+/// `u64`. |x| < 10¹⁵ < 2⁵⁰ makes s ≥ 3. For s < 64 the shift splits m·1000 exactly into the
+/// integer part q and the remainder, compared with the half 2ˢ⁻¹ for the rounding; for
+/// s ≥ 64, m·1000 < 2⁶³ ≤ 2ˢ⁻¹ so x·1000 is below one half and rounds to 0.
+fn f3_text(x: f64, buf: &mut [u8; F3_LEN]) -> Option<&str> {
+    if !x.is_finite() || x.abs() >= 1e15 {
+        return None;
+    }
+    let bits = x.to_bits();
+    let exp_bits = ((bits >> 52) & 0x7ff) as u32;
     let frac = bits & ((1u64 << 52) - 1);
-    let (mant, exp) = if exp_bits == 0 {
-        (frac, -1074)
+    let (mant, sh) = if exp_bits == 0 {
+        (frac, 1074)
     } else {
-        (frac | (1u64 << 52), exp_bits - 1075)
+        (frac | (1u64 << 52), 1075 - exp_bits)
     };
-    let num = mant as u128 * 1000;
-    let q: u128 = if exp >= 0 {
-        num << exp
+    debug_assert!(sh >= 3);
+    let num = mant * 1000;
+    let q = if sh >= 64 {
+        0
     } else {
-        let sh = (-exp) as u32;
-        if sh >= 127 {
-            0
+        let q = num >> sh;
+        let rem = num & ((1u64 << sh) - 1);
+        let half = 1u64 << (sh - 1);
+        if rem > half || (rem == half && q & 1 == 1) {
+            q + 1
         } else {
-            let q = num >> sh;
-            let rem = num - (q << sh);
-            let half = 1u128 << (sh - 1);
-            if rem > half || (rem == half && q & 1 == 1) {
-                q + 1
-            } else {
-                q
-            }
+            q
         }
     };
-    let sign = if x.is_sign_negative() { "-" } else { "" };
-    format!("{sign}{}.{:03}", q / 1000, q % 1000)
+    // q < 10¹⁸: at most 15 integer digits
+    let (mut int, dec) = (q / 1000, q % 1000);
+    let dec = dec as u32;
+    buf[F3_LEN - 3] = b'0' + (dec / 100) as u8;
+    buf[F3_LEN - 2] = b'0' + (dec / 10 % 10) as u8;
+    buf[F3_LEN - 1] = b'0' + (dec % 10) as u8;
+    buf[F3_LEN - 4] = b'.';
+    let mut i = F3_LEN - 4;
+    loop {
+        i -= 1;
+        buf[i] = b'0' + (int % 10) as u8;
+        int /= 10;
+        if int == 0 {
+            break;
+        }
+    }
+    if x.is_sign_negative() {
+        i -= 1;
+        buf[i] = b'-';
+    }
+    std::str::from_utf8(&buf[i..]).ok()
 }
 
 /// Normalises an angle in degrees into [0, 360).
@@ -141,7 +202,7 @@ impl P2 {
 /// `[x y]` with three decimals.
 impl fmt::Display for P2 {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "[{} {}]", f3(self.x), f3(self.y))
+        write!(f, "[{} {}]", F3(self.x), F3(self.y))
     }
 }
 
@@ -164,7 +225,7 @@ impl P3 {
 
 impl fmt::Display for P3 {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "[{} {} {}]", f3(self.x), f3(self.y), f3(self.z))
+        write!(f, "[{} {} {}]", F3(self.x), F3(self.y), F3(self.z))
     }
 }
 
@@ -356,6 +417,19 @@ mod tests {
         assert!(!near(f64::NAN, 1.0) && !ge(f64::NAN, 1.0) && !gt(f64::NAN, 1.0));
     }
 
+    /// `x` moved by `n` units in the last place (through zero and into infinities alike).
+    fn ulps(x: f64, n: i64) -> f64 {
+        // order the bit patterns as integers: negative numbers mirrored below zero
+        let b = x.to_bits() as i64;
+        let key = if b < 0 { i64::MIN - b } else { b };
+        let key = key.saturating_add(n);
+        f64::from_bits(if key < 0 { i64::MIN - key } else { key } as u64)
+    }
+
+    /// `write_f3` (so `F3` and `f3`) against the standard formatter, on 3.9 million values:
+    /// arbitrary bit patterns, the exponents that matter, values a few ulps around every
+    /// kind of rounding boundary k/1000 and tie (k + ½)/1000, the exact ties (odd multiples
+    /// of 1/16), integers, the 10¹⁵ limit, subnormals and zeros.
     #[test]
     fn fast_f3_equals_the_standard_formatter() {
         let mut seed: u64 = 0x9E3779B97F4A7C15;
@@ -365,17 +439,58 @@ mod tests {
             seed ^= seed << 17;
             seed
         };
-        for _ in 0..200_000 {
+        let (mut ours, mut std_text) = (String::new(), String::new());
+        let mut check = |x: f64| {
+            use std::fmt::Write;
+            ours.clear();
+            std_text.clear();
+            write_f3(&mut ours, x);
+            write!(std_text, "{x:.3}").unwrap();
+            assert_eq!(ours, std_text, "{x:e} ({:#x})", x.to_bits());
+        };
+        let mut count = 0usize;
+        for _ in 0..3_000_000 {
             let r = next();
-            let x = match r % 4 {
+            let sign = if r & 1 == 0 { 1.0 } else { -1.0 };
+            let x = match (r >> 1) % 8 {
+                // any bit pattern: NaN, infinities, huge, subnormal
                 0 => f64::from_bits(next()),
-                1 => (next() % 2_000_000) as f64 / 1000.0 - 1000.0 + (next() % 3) as f64 * 0.0005,
-                2 => ((next() % 100_000) as f64 - 50_000.0) / 16.0,
-                _ => (next() as i64 as f64) * 1e-12,
+                // exponents from 2⁻³⁰ to 2⁵⁰: random significand
+                1 => {
+                    let e = 1023 - 30 + next() % 81;
+                    f64::from_bits((e << 52) | (next() >> 12)) * sign
+                }
+                // k/1000 ± a few ulps, k of up to 18 digits
+                2 => {
+                    let k = next() % 10u64.pow(1 + (next() % 18) as u32);
+                    ulps(k as f64 / 1000.0, (next() % 9) as i64 - 4) * sign
+                }
+                // near ties (k + ½)/1000
+                3 => {
+                    let k = next() % 10u64.pow(1 + (next() % 15) as u32);
+                    ulps((k as f64 + 0.5) / 1000.0, (next() % 9) as i64 - 4) * sign
+                }
+                // exact ties: odd multiples of 1/16, and their neighbours
+                4 => {
+                    let m = (next() % 10u64.pow(1 + (next() % 16) as u32)) | 1;
+                    ulps(m as f64 / 16.0, (next() % 3) as i64 - 1) * sign
+                }
+                // integers and halves
+                5 => (next() % 2_000_000_000_000_000) as f64 / 2.0 * sign,
+                // around the 10¹⁵ limit and the tiny end
+                6 => match next() % 4 {
+                    0 => ulps(1e15, (next() % 64) as i64 - 32) * sign,
+                    1 => ulps(0.0005, (next() % 64) as i64 - 32) * sign,
+                    2 => f64::from_bits(next() % (1 << 52)) * sign,
+                    _ => ulps(0.0, (next() % 64) as i64 - 32),
+                },
+                // drawing coordinates: millimetres with three decimals, computed
+                _ => ((next() % 2_000_000) as f64 / 1000.0 - 1000.0) * 1.1 * sign,
             };
-            assert_eq!(f3(x), format!("{x:.3}"), "{x:e}");
+            check(x);
+            count += 1;
         }
-        for x in [
+        let fixed = [
             0.0625,
             0.1875,
             -0.0625,
@@ -383,15 +498,75 @@ mod tests {
             2.0005,
             0.0005,
             -0.0005,
+            2.5e-4,
+            -2.5e-4,
+            0.0015,
             1e-300,
             -1e-300,
             5e-324,
+            -5e-324,
+            f64::MIN_POSITIVE,
+            999_999_999_999_999.9,
+            -999_999_999_999_999.9,
             999_999_999_999.999_5,
+            1e15,
+            -1e15,
+            1e300,
+            f64::MAX,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
             0.0,
             -0.0,
-        ] {
-            assert_eq!(f3(x), format!("{x:.3}"), "{x:e}");
+            1.0,
+            -1.0,
+            0.9995,
+            9.9995,
+            99.9995,
+        ];
+        for x in fixed {
+            check(x);
+            for n in -3..=3 {
+                check(ulps(x, n));
+                count += 1;
+            }
         }
+        // every k/1000 up to 300 and its neighbours
+        for k in 0..300_000u64 {
+            let x = k as f64 / 1000.0;
+            check(x);
+            check(ulps(x, 1));
+            check(ulps(x, -1));
+            count += 3;
+        }
+        assert!(count > 3_000_000);
+    }
+
+    #[test]
+    fn f3_display_and_writer() {
+        assert_eq!(F3(-0.0).to_string(), "-0.000");
+        assert_eq!(format!("[{}]", F3(12.3456)), "[12.346]");
+        assert_eq!(
+            format!("{:>9}|{:<8}|{:^9}", F3(1.5), F3(-2.0), F3(0.25)),
+            "    1.500|-2.000  |  0.250  "
+        );
+        assert_eq!(format!("{:>6}", F3(f64::NAN)), "   NaN");
+        assert_eq!(format!("{}", F3(1e20)), format!("{:.3}", 1e20));
+        let mut s = String::from("X");
+        write_f3(&mut s, 1.0005);
+        s.push_str(" Y");
+        write_f3(&mut s, -1e16);
+        assert_eq!(s, "X1.000 Y-10000000000000000.000");
+        assert_eq!(f3(f64::NEG_INFINITY), "-inf");
+        assert_eq!(
+            P3 {
+                x: 1.0,
+                y: -0.0004,
+                z: 2.5e-4
+            }
+            .to_string(),
+            "[1.000 -0.000 0.000]"
+        );
     }
 
     #[test]

@@ -1,48 +1,142 @@
-//! The group-code reader: bytes → (code, value, line) pairs → sections → [`Drawing`].
+//! The group-code reader: bytes → text → (code, value, line) pairs → sections → [`Drawing`].
+//!
+//! The file is turned into text once ([`String::from_utf8_lossy`]: borrowed when the file is
+//! valid UTF-8, which every ASCII file is). The pairs borrow their values from it; only the
+//! values that end up in the [`Drawing`] are copied. Those strings are decoded with the file's
+//! code page from their own bytes, value by value: the code page is only known after the
+//! header, and decoding a value on its own is what fixes the behaviour at the edges (byte
+//! order marks at the start of a value, multi-byte sequences cut by the end of a line).
 
-use crate::decode::{decode_unicode_escapes, encoding_for};
+use crate::decode::{decode_unicode_escapes_into, encoding_for, FileText};
 use crate::{Drawing, DxfError, DxfErrorKind, Entity, EntityKind, MText, Point3, Text};
 use encoding_rs::Encoding;
 
 struct Pair<'a> {
     code: i32,
-    value: &'a [u8],
+    /// The value line (end of line removed), a part of the file's text.
+    value: &'a str,
     /// 1-based line of the group code.
     line: usize,
 }
 
-fn trim_eol(mut s: &[u8]) -> &[u8] {
-    while let [rest @ .., b'\r' | b'\n'] = s {
-        s = rest;
-    }
-    s
+/// The lines of a text without their line ends (`\n` and the `\r`s before it), as
+/// `text.as_bytes().split(|&b| b == b'\n')` gives them.
+struct Lines<'a> {
+    text: &'a str,
+    /// Start of the next line; past the end of `text` after the last line.
+    pos: usize,
 }
 
-fn split_pairs(bytes: &[u8]) -> Result<Vec<Pair<'_>>, DxfError> {
-    let mut lines = bytes.split(|&b| b == b'\n').map(trim_eol);
-    let mut pairs = Vec::new();
+impl<'a> Lines<'a> {
+    /// What follows the current line (empty after the last one).
+    fn rest(&self) -> &'a str {
+        self.text.get(self.pos..).unwrap_or("")
+    }
+}
+
+/// The index of the first `\n` at or after `from`, or the length. Lines are short (`  0`,
+/// `LINE`, `1.5`): eight bytes at a time, one well-predicted branch for most lines, is
+/// quicker here than a byte loop or `memchr`'s set-up.
+fn find_newline(b: &[u8], from: usize) -> usize {
+    const ONES: u64 = 0x0101_0101_0101_0101;
+    let mut i = from;
+    while let Some(&word) = b.get(i..).and_then(|rest| rest.first_chunk::<8>()) {
+        // the lowest zero byte of `x` is the first `\n` (bytes above it may be flagged too)
+        let x = u64::from_le_bytes(word) ^ (ONES * u64::from(b'\n'));
+        let zero = x.wrapping_sub(ONES) & !x & (ONES << 7);
+        if zero != 0 {
+            return i + (zero.trailing_zeros() / 8) as usize;
+        }
+        i += 8;
+    }
+    while i < b.len() && b[i] != b'\n' {
+        i += 1;
+    }
+    i
+}
+
+impl<'a> Iterator for Lines<'a> {
+    type Item = &'a str;
+
+    fn next(&mut self) -> Option<&'a str> {
+        let b = self.text.as_bytes();
+        let start = self.pos;
+        if start > b.len() {
+            return None;
+        }
+        let mut end = find_newline(b, start);
+        self.pos = end + 1;
+        while end > start && b[end - 1] == b'\r' {
+            end -= 1;
+        }
+        Some(&self.text[start..end])
+    }
+}
+
+/// `s.trim()`, quicker for ASCII ends.
+fn trim(s: &str) -> &str {
+    // the ASCII characters of `char::is_whitespace` (note `\x0B`, unlike `u8::is_ascii_whitespace`)
+    let ws = |c: u8| matches!(c, b' ' | b'\t' | b'\n' | b'\x0B' | b'\x0C' | b'\r');
+    let b = s.as_bytes();
+    let mut i = 0;
+    while i < b.len() && ws(b[i]) {
+        i += 1;
+    }
+    let mut j = b.len();
+    while j > i && ws(b[j - 1]) {
+        j -= 1;
+    }
+    if i < j && (b[i] >= 0x80 || b[j - 1] >= 0x80) {
+        // other Unicode white space may follow
+        return s.trim();
+    }
+    &s[i..j]
+}
+
+/// The usual group code lines (`  0`, ` 10`, `100`): spaces, at most nine digits, spaces.
+/// `None` for anything else, which then goes the general way.
+fn plain_group_code(s: &str) -> Option<i32> {
+    let b = s.as_bytes();
+    let mut i = 0;
+    while i < b.len() && b[i] == b' ' {
+        i += 1;
+    }
+    let digits = i;
+    let mut v = 0i32;
+    while i < b.len() && b[i].is_ascii_digit() && i - digits < 9 {
+        v = v * 10 + (b[i] - b'0') as i32;
+        i += 1;
+    }
+    (i > digits && b[i..].iter().all(|&c| c == b' ')).then_some(v)
+}
+
+fn split_pairs(text: &str) -> Result<Vec<Pair<'_>>, DxfError> {
+    let mut lines = Lines { text, pos: 0 };
+    // a pair takes about ten bytes of a file
+    let mut pairs = Vec::with_capacity(text.len() / 8);
     let mut line_no = 0usize;
     while let Some(code_line) = lines.next() {
         line_no += 1;
-        let code_text = String::from_utf8_lossy(code_line);
-        let code_trim = code_text.trim();
-        if code_trim.is_empty() {
-            // trailing empty lines at the end of the file are harmless
-            if lines
-                .clone()
-                .all(|l| l.iter().all(|b| b.is_ascii_whitespace()))
-            {
-                break;
+        let code = match plain_group_code(code_line) {
+            Some(code) => code,
+            None => {
+                let code_trim = trim(code_line);
+                if code_trim.is_empty() {
+                    // trailing empty lines at the end of the file are harmless
+                    if lines.rest().bytes().all(|b| b.is_ascii_whitespace()) {
+                        break;
+                    }
+                    return Err(DxfError {
+                        line: line_no,
+                        kind: DxfErrorKind::BadGroupCode(String::new()),
+                    });
+                }
+                code_trim.parse().map_err(|_| DxfError {
+                    line: line_no,
+                    kind: DxfErrorKind::BadGroupCode(code_trim.chars().take(40).collect()),
+                })?
             }
-            return Err(DxfError {
-                line: line_no,
-                kind: DxfErrorKind::BadGroupCode(String::new()),
-            });
-        }
-        let code: i32 = code_trim.parse().map_err(|_| DxfError {
-            line: line_no,
-            kind: DxfErrorKind::BadGroupCode(code_trim.chars().take(40).collect()),
-        })?;
+        };
         let Some(value) = lines.next() else {
             return Err(DxfError {
                 line: line_no,
@@ -59,59 +153,55 @@ fn split_pairs(bytes: &[u8]) -> Result<Vec<Pair<'_>>, DxfError> {
     Ok(pairs)
 }
 
-struct Ctx {
+struct Ctx<'t> {
     enc: &'static Encoding,
+    src: &'t FileText<'t>,
 }
 
-impl Ctx {
+impl Ctx<'_> {
+    /// A kept string value: decoded with the file's code page, then `\U+XXXX` escapes.
     fn text(&self, p: &Pair) -> String {
-        let (s, _, _) = self.enc.decode(p.value);
-        decode_unicode_escapes(&s)
+        let mut out = String::new();
+        self.push_text(p, &mut out);
+        out
+    }
+
+    fn push_text(&self, p: &Pair, out: &mut String) {
+        let (s, _, _) = self.enc.decode(self.src.raw(p.value));
+        decode_unicode_escapes_into(&s, out);
     }
 }
 
-fn raw_str(p: &Pair) -> String {
-    String::from_utf8_lossy(p.value).trim().to_string()
+/// The value as written, without surrounding white space.
+fn raw_str<'a>(p: &Pair<'a>) -> &'a str {
+    trim(p.value)
 }
 
-fn num(p: &Pair) -> Result<f64, DxfError> {
-    let s = raw_str(p);
-    s.parse::<f64>().map_err(|_| DxfError {
+fn bad_number(p: &Pair, s: &str) -> DxfError {
+    DxfError {
         line: p.line + 1,
         kind: DxfErrorKind::BadNumber {
             code: p.code,
             value: s.chars().take(40).collect(),
         },
-    })
+    }
+}
+
+fn num(p: &Pair) -> Result<f64, DxfError> {
+    let s = raw_str(p);
+    s.parse::<f64>().map_err(|_| bad_number(p, s))
 }
 
 fn int(p: &Pair) -> Result<i32, DxfError> {
     let s = raw_str(p);
     s.parse::<i32>()
         .or_else(|_| s.parse::<f64>().map(|f| f as i32))
-        .map_err(|_| DxfError {
-            line: p.line + 1,
-            kind: DxfErrorKind::BadNumber {
-                code: p.code,
-                value: s.chars().take(40).collect(),
-            },
-        })
+        .map_err(|_| bad_number(p, s))
 }
 
+/// Structure markers (`0`/`SECTION`, …) are compared without ASCII white space only.
 fn is(p: &Pair, code: i32, value: &str) -> bool {
-    p.code == code && trim_ascii(p.value) == value.as_bytes()
-}
-
-fn trim_ascii(s: &[u8]) -> &[u8] {
-    let start = s
-        .iter()
-        .position(|b| !b.is_ascii_whitespace())
-        .unwrap_or(s.len());
-    let end = s
-        .iter()
-        .rposition(|b| !b.is_ascii_whitespace())
-        .map_or(start, |e| e + 1);
-    &s[start..end]
+    p.code == code && p.value.trim_ascii() == value
 }
 
 /// Reads a DXF file (ASCII, R12 to current versions).
@@ -122,9 +212,11 @@ pub fn read_dxf(bytes: &[u8]) -> Result<Drawing, DxfError> {
             kind: DxfErrorKind::Binary,
         });
     }
-    let pairs = split_pairs(bytes)?;
+    // The one decoding of the whole file; borrowed unless it has invalid UTF-8.
+    let src = FileText::new(bytes);
+    let pairs = split_pairs(&src.text)?;
     // Sections: (name, first pair index after the name, index of ENDSEC).
-    let mut sections: Vec<(String, usize, usize)> = Vec::new();
+    let mut sections: Vec<(&str, usize, usize)> = Vec::new();
     let mut i = 0;
     while i < pairs.len() {
         if is(&pairs[i], 0, "SECTION") {
@@ -169,15 +261,16 @@ pub fn read_dxf(bytes: &[u8]) -> Result<Drawing, DxfError> {
     };
     // Header first: it decides the string decoding.
     for (name, s, e) in &sections {
-        if name == "HEADER" {
+        if *name == "HEADER" {
             read_header(&pairs[*s..*e], &mut drawing)?;
         }
     }
     let ctx = Ctx {
         enc: encoding_for(&drawing.version, &drawing.codepage),
+        src: &src,
     };
     for (name, s, e) in &sections {
-        match name.as_str() {
+        match *name {
             "TABLES" => read_tables(&ctx, &pairs[*s..*e], &mut drawing),
             "ENTITIES" => read_entities(&ctx, &pairs[*s..*e], &mut drawing)?,
             _ => {}
@@ -187,12 +280,12 @@ pub fn read_dxf(bytes: &[u8]) -> Result<Drawing, DxfError> {
 }
 
 fn read_header(pairs: &[Pair], d: &mut Drawing) -> Result<(), DxfError> {
-    let mut var = String::new();
+    let mut var = "";
     for p in pairs {
         match p.code {
             9 => var = raw_str(p),
-            1 if var == "$ACADVER" => d.version = raw_str(p),
-            3 if var == "$DWGCODEPAGE" => d.codepage = raw_str(p),
+            1 if var == "$ACADVER" => d.version = raw_str(p).to_string(),
+            3 if var == "$DWGCODEPAGE" => d.codepage = raw_str(p).to_string(),
             40 if var == "$TEXTSIZE" => d.text_size = num(p)?,
             _ => {}
         }
@@ -221,8 +314,7 @@ fn records<'p, 'a>(pairs: &'p [Pair<'a>]) -> impl Iterator<Item = &'p [Pair<'a>]
 
 fn read_tables(ctx: &Ctx, pairs: &[Pair], d: &mut Drawing) {
     for rec in records(pairs) {
-        let kind = raw_str(&rec[0]);
-        match kind.as_str() {
+        match raw_str(&rec[0]) {
             "LTYPE" => {
                 if let Some(p) = rec.iter().find(|p| p.code == 2) {
                     d.linetypes.push(ctx.text(p));
@@ -244,13 +336,13 @@ fn read_tables(ctx: &Ctx, pairs: &[Pair], d: &mut Drawing) {
 fn read_entities(ctx: &Ctx, pairs: &[Pair], d: &mut Drawing) -> Result<(), DxfError> {
     for rec in records(pairs) {
         let kind = raw_str(&rec[0]);
-        if !matches!(kind.as_str(), "LINE" | "ARC" | "CIRCLE" | "TEXT" | "MTEXT") {
-            if !matches!(kind.as_str(), "VERTEX" | "SEQEND" | "ATTRIB") {
+        if !matches!(kind, "LINE" | "ARC" | "CIRCLE" | "TEXT" | "MTEXT") {
+            if !matches!(kind, "VERTEX" | "SEQEND" | "ATTRIB") {
                 d.ignored_entities += 1;
             }
             continue;
         }
-        if let Some(e) = read_entity(ctx, &kind, rec)? {
+        if let Some(e) = read_entity(ctx, kind, rec)? {
             d.entities.push(e);
         }
     }
@@ -263,9 +355,11 @@ fn set(pt: &mut Point3, axis: usize, p: &Pair) -> Result<(), DxfError> {
 }
 
 fn read_entity(ctx: &Ctx, kind: &str, rec: &[Pair]) -> Result<Option<Entity>, DxfError> {
-    let mut handle = String::new();
-    let mut layer = "0".to_string();
-    let mut linetype = None;
+    // String groups: the last one counts; copied once at the end.
+    let mut handle: Option<&Pair> = None;
+    let mut layer: Option<&Pair> = None;
+    let mut linetype: Option<&Pair> = None;
+    let mut text_1: Option<&Pair> = None;
     let mut linetype_scale = 1.0;
     let mut extrusion = [0.0, 0.0, 1.0];
     let mut p10 = [0.0; 3];
@@ -279,9 +373,9 @@ fn read_entity(ctx: &Ctx, kind: &str, rec: &[Pair]) -> Result<Option<Entity>, Dx
     let mut paper_space = false;
     for p in &rec[1..] {
         match p.code {
-            5 => handle = raw_str(p),
-            8 => layer = ctx.text(p),
-            6 => linetype = Some(ctx.text(p)),
+            5 => handle = Some(p),
+            8 => layer = Some(p),
+            6 => linetype = Some(p),
             48 => linetype_scale = num(p)?,
             67 => paper_space = int(p)? == 1,
             10 => set(&mut p10, 0, p)?,
@@ -302,13 +396,16 @@ fn read_entity(ctx: &Ctx, kind: &str, rec: &[Pair]) -> Result<Option<Entity>, Dx
             71 => i71 = Some(int(p)?),
             72 => i72 = int(p)?,
             73 => i73 = int(p)?,
-            1 | 3 if kind == "MTEXT" => text.push_str(&ctx.text(p)),
-            1 if kind == "TEXT" => text = ctx.text(p),
+            1 | 3 if kind == "MTEXT" => ctx.push_text(p, &mut text),
+            1 if kind == "TEXT" => text_1 = Some(p),
             _ => {}
         }
     }
     if paper_space {
         return Ok(None);
+    }
+    if let Some(p) = text_1 {
+        text = ctx.text(p);
     }
     let kind = match kind {
         "LINE" => EntityKind::Line {
@@ -346,9 +443,9 @@ fn read_entity(ctx: &Ctx, kind: &str, rec: &[Pair]) -> Result<Option<Entity>, Dx
     };
     Ok(Some(Entity {
         line: rec[0].line,
-        handle,
-        layer,
-        linetype,
+        handle: handle.map_or_else(String::new, |p| raw_str(p).to_string()),
+        layer: layer.map_or_else(|| "0".to_string(), |p| ctx.text(p)),
+        linetype: linetype.map(|p| ctx.text(p)),
         linetype_scale,
         extrusion,
         kind,
@@ -451,6 +548,172 @@ mod tests {
                 start_angle: 0.0,
                 end_angle: 90.0
             }
+        );
+    }
+
+    fn dxf_bytes(ver: &str, cp: &[u8], layer: &[u8], body: &[u8]) -> Vec<u8> {
+        let mut v = format!(
+            "  0\nSECTION\n  2\nHEADER\n  9\n$ACADVER\n  1\n{ver}\n  9\n$DWGCODEPAGE\n  3\n"
+        )
+        .into_bytes();
+        v.extend_from_slice(cp);
+        v.extend_from_slice(
+            b"\n  0\nENDSEC\n  0\nSECTION\n  2\nTABLES\n  0\nTABLE\n  2\nLAYER\n  0\nLAYER\n  2\n",
+        );
+        v.extend_from_slice(layer);
+        v.extend_from_slice(
+            b"\n  6\nDASHED\n  0\nENDTAB\n  0\nENDSEC\n  0\nSECTION\n  2\nENTITIES\n",
+        );
+        v.extend_from_slice(body);
+        v.extend_from_slice(b"  0\nENDSEC\n  0\nEOF\n");
+        v
+    }
+
+    fn one_entity(bytes: &[u8]) -> (Drawing, Entity) {
+        let d = read_dxf(bytes).unwrap();
+        assert_eq!(d.entities.len(), 1);
+        let e = d.entities[0].clone();
+        (d, e)
+    }
+
+    /// Corners of the text handling, as the first (allocating) reader had them.
+    #[test]
+    fn invalid_utf8_white_space_and_byte_order_marks() {
+        // windows-1252 bytes: decoded in kept strings, U+FFFD in raw ones (handles)
+        let (d, e) = one_entity(&dxf_bytes(
+            "AC1015",
+            b"ANSI_1252",
+            b"SCHL\xdcSSEL",
+            b"  0\nTEXT\n  5\nA\xfc\n  8\nSCHL\xdcSSEL\n  1\nGr\xfcn \\U+00E4x\n",
+        ));
+        assert_eq!(
+            d.layers.get("SCHLÜSSEL").map(String::as_str),
+            Some("DASHED")
+        );
+        assert_eq!(
+            (e.handle.as_str(), e.layer.as_str()),
+            ("A\u{FFFD}", "SCHLÜSSEL")
+        );
+        match e.kind {
+            EntityKind::Text(t) => assert_eq!(t.value, "Grün äx"),
+            k => panic!("unexpected {k:?}"),
+        }
+        // a number with an invalid byte
+        let err = read_dxf(&dxf_bytes(
+            "AC1015",
+            b"ANSI_1252",
+            b"P1",
+            b"  0\nLINE\n  8\nP1\n 10\n 1.\xfc5 \n",
+        ))
+        .unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "line 42: value '1.\u{FFFD}5' of group 10 is not a number"
+        );
+        // Unicode white space around codes and raw values, not around decoded strings;
+        // codes with a sign, leading zeros or more than nine digits
+        let (d, e) = one_entity(&dxf_bytes(
+            "AC1024",
+            b"ANSI_1252",
+            b"\xc2\xa0P1",
+            b"  0\nLINE\n  5\n\xc2\xa0A1\xe2\x80\x83\n\xc2\xa0 8\n\xc2\xa0P1\n+10\n1\n\x0b20\n2\n0000000011\n3\n",
+        ));
+        assert!(d.layers.contains_key("\u{a0}P1"));
+        assert_eq!((e.handle.as_str(), e.layer.as_str()), ("A1", "\u{a0}P1"));
+        assert_eq!(
+            e.kind,
+            EntityKind::Line {
+                start: [1.0, 2.0, 0.0],
+                end: [3.0, 0.0, 0.0]
+            }
+        );
+        // a UTF-8 byte order mark starting a decoded string is dropped (encoding_rs)
+        let d = read_dxf(&dxf_bytes(
+            "AC1024",
+            b"ANSI_1252",
+            b"\xef\xbb\xbfP1",
+            b"  0\nCIRCLE\n  8\n\xef\xbb\xbfP1\n 40\n\xc2\xa02.5\xc2\xa0\n",
+        ))
+        .unwrap();
+        assert!(d.layers.contains_key("P1"));
+        assert_eq!(d.entities[0].layer, "P1");
+        // windows-1251, an escape split over MTEXT groups stays as it is
+        let (d, e) = one_entity(&dxf_bytes(
+            "AC1015",
+            b"ANSI_1251",
+            b"\xcf1",
+            b"  0\nMTEXT\n  8\n\xcf1\n  3\n\xe0\\U+00\n  1\nE4\xe0b\n 71\n2.7\n",
+        ));
+        assert!(d.layers.contains_key("П1"));
+        match e.kind {
+            EntityKind::MText(m) => {
+                assert_eq!(m.value, "а\\U+00E4аb");
+                assert_eq!(m.attachment, 2);
+            }
+            k => panic!("unexpected {k:?}"),
+        }
+        // CR LF and extra CRs; integers from floats
+        let (_, e) = one_entity(&dxf_bytes(
+            "AC1015",
+            b"ANSI_1252",
+            b"P1",
+            b"  0\r\nARC\r\n  8\r\nP1\r\r\n 40\r\n1e1\r\n 50\r\n-0\r\n 51\r\ninf\r\n",
+        ));
+        assert_eq!(e.layer, "P1");
+        assert!(
+            matches!(e.kind, EntityKind::Arc { radius: 10.0, end_angle, .. } if end_angle.is_infinite())
+        );
+        let (_, e) = one_entity(&dxf_bytes(
+            "AC1015",
+            b"ANSI_1252",
+            b"P1",
+            b"  0\nTEXT\n 71\n 4.9 \n 72\n-3e9\n 73\nnan\n",
+        ));
+        match e.kind {
+            EntityKind::Text(t) => assert_eq!((t.generation, t.halign, t.valign), (4, i32::MIN, 0)),
+            k => panic!("unexpected {k:?}"),
+        }
+    }
+
+    #[test]
+    fn group_code_lines_and_trailing_lines() {
+        let with = |body: &[u8], tail: &[u8]| {
+            let mut v = dxf_bytes("AC1015", b"ANSI_1252", b"P1", body);
+            v.extend_from_slice(tail);
+            read_dxf(&v)
+        };
+        let err = |r: Result<Drawing, DxfError>| r.unwrap_err().to_string();
+        assert!(with(b"", b"\n \t\r\n\x0c\n").is_ok());
+        // vertical tab: white space to `str::trim`, not to the trailing-lines check
+        assert_eq!(
+            err(with(b"", b"\n\x0b\n")),
+            "line 41: '' is not a group code"
+        );
+        assert_eq!(
+            err(with(b"  0\nLINE\n\xc2\xa0\n5\n", b"")),
+            "line 39: '' is not a group code"
+        );
+        assert_eq!(
+            err(with(b"  0\nLINE\n1\xfc0\n5\n", b"")),
+            "line 39: '1\u{FFFD}0' is not a group code"
+        );
+        assert_eq!(
+            err(with(b"1234567890\nx\n  0\nLINE\n99999999999\nx\n", b"")),
+            "line 41: '99999999999' is not a group code"
+        );
+        assert_eq!(
+            err(read_dxf(
+                b"  0\nSECTION\n  2\nENTITIES\n  0\nLINE\n  0\nSECTION\n"
+            )),
+            "line 7: file ends in the middle of a group"
+        );
+        assert_eq!(
+            err(read_dxf(b"  0\nSECTION\n  2\nENTITIES\n  0")),
+            "line 5: file ends in the middle of a group"
+        );
+        assert_eq!(
+            err(read_dxf(b"  0\nEOF\n")),
+            "line 1: not a DXF file (no SECTION found)"
         );
     }
 
