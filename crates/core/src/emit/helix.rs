@@ -2,7 +2,7 @@
 
 use crate::emit::{bounded_passes, missing, Emitter, Frame, Kind, Skip, Target};
 use crate::front::drawing::Style;
-use crate::geom::{f3, gt, le, Geom, P2, P3};
+use crate::geom::{gt, le, Geom, F3, P2, P3};
 use crate::model::*;
 
 impl Emitter<'_> {
@@ -24,21 +24,21 @@ impl Emitter<'_> {
         if let Some(q) = &hx.q {
             self.comment(4, || format!("Q:{q}"));
         }
-        self.comment(2, || format!("MillHelix l={c} r={}", f3(hx.r)));
+        self.comment(2, || format!("MillHelix l={c} r={}", F3(hx.r)));
         self.move_xy(c.x, c.y - r1, r1);
         let (mut d, mut done) = (th, th);
         let mut z = self.pos.z;
         let half = r1 * std::f64::consts::PI;
         while gt(done, bottom) && !self.full {
-            self.comment(4, || format!("MillSemiCircle l={}", f3(d)));
+            self.comment(4, || format!("MillSemiCircle l={}", F3(d)));
             let b1 = (d - infeed / 2.0).max(bottom);
             let t = |e: &Emitter| {
                 format!(
                     "G02 F{} I0 J{} X{} Y{} Z{}",
-                    f3(hx.f),
-                    f3(r1),
-                    f3(c.x),
-                    f3(c.y + r1),
+                    F3(hx.f),
+                    F3(r1),
+                    F3(c.x),
+                    F3(c.y + r1),
                     e.zexpr(b1, c)
                 )
             };
@@ -48,10 +48,10 @@ impl Emitter<'_> {
             let t = |e: &Emitter| {
                 format!(
                     "G02 F{} I0 J{} X{} Y{} Z{}",
-                    f3(hx.f),
-                    f3(-r1),
-                    f3(c.x),
-                    f3(c.y - r1),
+                    F3(hx.f),
+                    F3(-r1),
+                    F3(c.x),
+                    F3(c.y - r1),
                     e.zexpr(b0, c)
                 )
             };

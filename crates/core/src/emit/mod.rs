@@ -7,7 +7,7 @@ use crate::args;
 use crate::diag::{Diagnostic, Msg, Origin};
 use crate::emit::optimize::optimize;
 use crate::front::drawing::Style;
-use crate::geom::{f3, Transform, P2, P3};
+use crate::geom::{Transform, F3, P2, P3};
 use crate::model::*;
 use crate::params::MAX_MAGNITUDE;
 use crate::probe::tour::{collect_probes, probe_tour, PlacedProbe};
@@ -51,7 +51,7 @@ pub(crate) fn bounded_passes(
         return Err(Diagnostic::error(
             Msg::TooManyPasses,
             origin.clone(),
-            args![n, f3(first), f3(bottom), f3(infeed), MAX_PASSES],
+            args![n, F3(first), F3(bottom), F3(infeed), MAX_PASSES],
         ));
     }
     Ok(n)
@@ -223,7 +223,7 @@ impl<'a> Emitter<'a> {
     pub(crate) fn move_xy(&mut self, x: f64, y: f64, len: f64) {
         self.push(
             Kind::HSweep,
-            |_: &Emitter| format!("G00 X{} Y{}", f3(x), f3(y)),
+            |_: &Emitter| format!("G00 X{} Y{}", F3(x), F3(y)),
             len,
             0.0,
         );
@@ -372,7 +372,7 @@ pub(crate) fn emit(model: &Model, dry: bool) -> Result<Emitted, Vec<Diagnostic>>
     let last_z = em.pos.z;
     em.push(
         Kind::VSweep,
-        |_: &Emitter| format!("G00 Z{}", f3(sx)),
+        |_: &Emitter| format!("G00 Z{}", F3(sx)),
         (last_z - sx).abs(),
         0.0,
     );
@@ -395,7 +395,7 @@ pub(crate) fn emit(model: &Model, dry: bool) -> Result<Emitted, Vec<Diagnostic>>
         em.errors.push(Diagnostic::error(
             Msg::MoveOutOfRange,
             origin,
-            args![f3(v), MAX_MAGNITUDE],
+            args![F3(v), MAX_MAGNITUDE],
         ));
     }
     if em.full {

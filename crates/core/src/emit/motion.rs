@@ -1,43 +1,24 @@
 //! Motion primitives (reference-output.md §5): DrillOrPullZ, sweeps, SafeSweep, MillLine and MillArc, and the probe-weighted Z expressions (§12.4).
 
-use crate::emit::{bt, Emitter, Kind, Target};
-use crate::geom::{f3, near, Geom, P2, P3};
+use crate::emit::{bt, Emitter, Kind, NamedProbe, Target};
+use crate::geom::{near, Geom, F3, P2, P3};
+use std::fmt;
 
 impl Emitter<'_> {
     /// `F3(z)`, or with probes `F3(z)(=F3(z)+w*[#n-TH]…)` weighted by the 4 nearest probes.
-    pub(crate) fn zexpr(&self, z: f64, xy: P2) -> String {
-        if self.probes.is_empty() {
-            return f3(z);
+    pub(crate) fn zexpr(&self, z: f64, xy: P2) -> ZExpr<'_> {
+        ZExpr {
+            z,
+            xy,
+            probes: self.probes,
         }
-        let mut weights: Vec<(f64, usize)> = self
-            .probes
-            .iter()
-            .enumerate()
-            .map(|(i, p)| (1.0 / (p.placed.pos.dist(xy) + 0.001), i))
-            .collect();
-        // descending, ties keep tour order (stable sort)
-        weights.sort_by(|a, b| b.0.partial_cmp(&a.0).unwrap_or(std::cmp::Ordering::Equal));
-        weights.truncate(4);
-        let sum: f64 = weights.iter().map(|w| w.0).sum();
-        let mut s = format!("{}(={}", f3(z), f3(z));
-        for (w, i) in weights {
-            let p = &self.probes[i];
-            s.push_str(&format!(
-                "+{}*[{}-{}]",
-                f3(w / sum),
-                p.name,
-                f3(p.placed.height())
-            ));
-        }
-        s.push(')');
-        s
     }
 
     pub(crate) fn drill_or_pull(&mut self, xy: P2, from: f64, to: f64, th: f64, feed: f64) {
         if near(to, from) {
             return;
         }
-        self.comment(4, || format!("DrillOrPullZFromTo {} {}", f3(from), f3(to)));
+        self.comment(4, || format!("DrillOrPullZFromTo {} {}", F3(from), F3(to)));
         if to > th || to > from {
             let t = |e: &Emitter| format!("G00 Z{}", e.zexpr(to, xy));
             self.push(Kind::VSweep, t, (from - to).abs(), 0.0);
@@ -76,7 +57,7 @@ impl Emitter<'_> {
         self.comment(2, || {
             format!(
                 "SweepAndDrillSafelyFromTo {from} {to} s={} bt={}",
-                f3(s),
+                F3(s),
                 bt(backtrack)
             )
         });
@@ -106,17 +87,17 @@ impl Emitter<'_> {
                 self.comment(2, || {
                     format!(
                         "MillLine s={a} e={b} fr={} to={} bt={}",
-                        f3(from_z),
-                        f3(to_z),
+                        F3(from_z),
+                        F3(to_z),
                         bt(backtrack)
                     )
                 });
                 let t = |e: &Emitter| {
                     format!(
                         "G01 F{} X{} Y{} Z{}",
-                        f3(feed),
-                        f3(b.x),
-                        f3(b.y),
+                        F3(feed),
+                        F3(b.x),
+                        F3(b.y),
                         e.zexpr(to_z, a)
                     )
                 };
@@ -127,11 +108,11 @@ impl Emitter<'_> {
                 self.comment(2, || {
                     format!(
                         "MillArc l={c} r={} a0={} a1={} fr={} to={} p0={a} p1={b} bt={}",
-                        f3(r),
-                        f3(a0),
-                        f3(a1),
-                        f3(from_z),
-                        f3(to_z),
+                        F3(r),
+                        F3(a0),
+                        F3(a1),
+                        F3(from_z),
+                        F3(to_z),
                         bt(backtrack)
                     )
                 });
@@ -139,11 +120,11 @@ impl Emitter<'_> {
                     format!(
                         "{} F{} I{} J{} X{} Y{} Z{}",
                         if ccw { "G03" } else { "G02" },
-                        f3(feed),
-                        f3(c.x - a.x),
-                        f3(c.y - a.y),
-                        f3(b.x),
-                        f3(b.y),
+                        F3(feed),
+                        F3(c.x - a.x),
+                        F3(c.y - a.y),
+                        F3(b.x),
+                        F3(b.y),
                         e.zexpr(to_z, a)
                     )
                 };
@@ -152,5 +133,37 @@ impl Emitter<'_> {
             }
         }
         self.pos = b.with_z(to_z);
+    }
+}
+
+/// A Z word's value, written straight into the line (no text of its own).
+pub(crate) struct ZExpr<'p> {
+    z: f64,
+    xy: P2,
+    probes: &'p [NamedProbe],
+}
+
+impl fmt::Display for ZExpr<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let z = F3(self.z);
+        if self.probes.is_empty() {
+            return write!(f, "{z}");
+        }
+        let mut weights: Vec<(f64, usize)> = self
+            .probes
+            .iter()
+            .enumerate()
+            .map(|(i, p)| (1.0 / (p.placed.pos.dist(self.xy) + 0.001), i))
+            .collect();
+        // descending, ties keep tour order (stable sort)
+        weights.sort_by(|a, b| b.0.partial_cmp(&a.0).unwrap_or(std::cmp::Ordering::Equal));
+        weights.truncate(4);
+        let sum: f64 = weights.iter().map(|w| w.0).sum();
+        write!(f, "{z}(={z}")?;
+        for (w, i) in weights {
+            let p = &self.probes[i];
+            write!(f, "+{}*[{}-{}]", F3(w / sum), p.name, F3(p.placed.height()))?;
+        }
+        f.write_str(")")
     }
 }

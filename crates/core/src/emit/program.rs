@@ -4,7 +4,7 @@ use crate::diag::{Diagnostic, Lang};
 use crate::emit::as_comment;
 use crate::emit::stats::Stats;
 use crate::emit::{emit, Emitted};
-use crate::geom::{f3, near, P2, P3};
+use crate::geom::{near, F3, P2, P3};
 use crate::model::*;
 
 /// The files of one compiled path.
@@ -43,7 +43,7 @@ pub(crate) fn prologue(banner: &str, file_name: &str, start: f64) -> Vec<String>
                 }
             ),
         ),
-        format!("G00 Z{}", f3(start)),
+        format!("G00 Z{}", F3(start)),
         "G00 X0.000 Y0.000".into(),
     ]
 }
@@ -87,20 +87,20 @@ pub fn generate(
         if !near(p.placed.pos.dist(cur), 0.0) {
             pl.push(format!(
                 "G00 X{} Y{}",
-                f3(p.placed.pos.x),
-                f3(p.placed.pos.y)
+                F3(p.placed.pos.x),
+                F3(p.placed.pos.y)
             ));
         }
         cur = p.placed.pos;
-        pl.push(format!("G00 Z{}", f3(p.placed.height() + model.params.o)));
-        pl.push(format!("G38.3 Z0 F{}", f3(p.placed.probe.z)));
+        pl.push(format!("G00 Z{}", F3(p.placed.height() + model.params.o)));
+        pl.push(format!("G38.3 Z0 F{}", F3(p.placed.probe.z)));
         pl.push("G04 P4".into());
-        pl.push(format!("G00 Z{}", f3(s)));
+        pl.push(format!("G00 Z{}", F3(s)));
     }
     if !near(cur.dist(P2::default()), 0.0) {
         pl.push("G00 X0.000 Y0.000".into());
     }
-    pl.push(format!("G00 Z{}", f3(s)));
+    pl.push(format!("G00 Z{}", F3(s)));
     pl.push("M30".into());
     pl.push("%".into());
     let z_lines: Vec<String> = probes
@@ -116,7 +116,7 @@ pub fn generate(
             let inner = format!(
                 "{}{label}/T={}",
                 p.placed.probe.center,
-                f3(p.placed.height())
+                F3(p.placed.height())
             );
             format!("{} {}=", as_comment(0, &inner), p.name)
         })
