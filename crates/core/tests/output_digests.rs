@@ -13,7 +13,10 @@ use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
 /// FNV-1a, 64 bit: stable across platforms and Rust versions (std's hasher is not promised to be).
+/// Messages name files by the path given, which holds the checkout's folder: that part is
+/// replaced, so the table holds wherever the repository is cloned.
 fn fnv(data: &str) -> u64 {
+    let data = data.replace(&*root().to_string_lossy(), "<root>");
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
     for b in data.bytes() {
         h ^= u64::from(b);
