@@ -143,7 +143,19 @@ pub fn parse(args: &[String], tool: Tool) -> Parsed {
                 }
             }
             'z' => s.probe_feed = number(&opt, &value, &mut p.errors),
-            'm' => p.m = number(&opt, &value, &mut p.errors),
+            'm' => {
+                p.m = number(&opt, &value, &mut p.errors);
+                // a limit of NaN, 0 or beyond ±1e6 would switch the check off or make it useless
+                if let Some(d) = p.m.and_then(|m| {
+                    millpath_core::probe::adjustz::check_max(
+                        m,
+                        &value,
+                        millpath_core::probe::adjustz::MaxOption::Slash,
+                    )
+                }) {
+                    p.errors.push(d);
+                }
+            }
             'x' => match regex::Regex::new(&value) {
                 Ok(_) => {
                     if tool == Tool::Dxf2GCode {
@@ -259,7 +271,7 @@ pub fn help_adjustz(lang: Lang) -> &'static str {
             "\
 Usage: millpath pathgcodeadjustz /m MAX [/x REGEX] [/l LANG] FILE...
 Turns NAME_Clean.gcode and the measured NAME_Z.txt into NAME_Milling.gcode.
-  /m MAX        largest allowed difference between a measured and the nominal height (mm)
+  /m MAX        largest allowed difference between a measured and the nominal height (mm, > 0)
   /x REGEX      print the input lines that match
   /l LANG       message language (en, de)
 FILE may be NAME.dxf, NAME_Clean.gcode, NAME_Z.txt or NAME."
@@ -268,7 +280,7 @@ FILE may be NAME.dxf, NAME_Clean.gcode, NAME_Z.txt or NAME."
             "\
 Aufruf: millpath pathgcodeadjustz /m MAX [/x REGEX] [/l SPRACHE] DATEI...
 Erzeugt aus NAME_Clean.gcode und der gemessenen NAME_Z.txt die NAME_Milling.gcode.
-  /m MAX        größte erlaubte Abweichung zwischen gemessener und Soll-Höhe (mm)
+  /m MAX        größte erlaubte Abweichung zwischen gemessener und Soll-Höhe (mm, > 0)
   /x REGEX      passende Eingabezeilen ausgeben
   /l SPRACHE    Sprache der Meldungen (en, de)
 DATEI kann NAME.dxf, NAME_Clean.gcode, NAME_Z.txt oder NAME sein."
@@ -369,6 +381,19 @@ mod tests {
         assert_eq!(p.m, Some(0.5));
         let p = parse(&a(&["x"]), Tool::AdjustZ);
         assert!(p.errors.iter().any(|e| e.msg == Msg::MissingM));
+    }
+
+    #[test]
+    fn adjustz_max_must_be_finite_and_positive() {
+        for bad in ["NaN", "inf", "Infinity", "1e999", "0", "0,0", "-1", "2e6"] {
+            let p = parse(&a(&["/m", bad, "x"]), Tool::AdjustZ);
+            assert!(!p.errors.is_empty(), "/m {bad}");
+        }
+        let p = parse(&a(&["/m0", "x"]), Tool::AdjustZ);
+        assert_eq!(
+            p.errors[0].message(Lang::En),
+            "/m value 0 must be a finite number > 0 and at most 1000000"
+        );
     }
 
     #[test]

@@ -208,7 +208,7 @@ fn adjust_z_end_to_end() {
     .unwrap();
     std::fs::write(
         dir.path().join("p_Clean.gcode"),
-        "%\nG01 Z0.800(=0.800+1.000*[#51-2.000])\n%\n",
+        "%\nG01 Z0.800(=0.800+1.000*[#51-2.000])\nM30\n%\n",
     )
     .unwrap();
     let o = millpath(dir.path(), &["pathgcodeadjustz", "/m", "0,5", "p.dxf"]);
@@ -219,7 +219,7 @@ fn adjust_z_end_to_end() {
         String::from_utf8_lossy(&o.stderr)
     );
     let m = std::fs::read_to_string(dir.path().join("p_Milling.gcode")).unwrap();
-    assert_eq!(m, "%\nG01 Z0.900(==0.800+1.000*[#51-2.000])\n%\n");
+    assert_eq!(m, "%\nG01 Z0.900(==0.800+1.000*[#51-2.000])\nM30\n%\n");
     // too far off: error, no new file
     std::fs::remove_file(dir.path().join("p_Milling.gcode")).unwrap();
     std::fs::write(
@@ -229,7 +229,8 @@ fn adjust_z_end_to_end() {
     .unwrap();
     let o = millpath(dir.path(), &["adjust-z", "--max", "0.5", "p_Clean.gcode"]);
     assert_eq!(o.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("differs from 3 by more than /m=0.5"));
+    assert!(String::from_utf8_lossy(&o.stderr)
+        .contains("Value 3 for #51 differs from 2.000 by more than --max=0.5"));
     assert!(!dir.path().join("p_Milling.gcode").exists());
     // a malformed expression is an error with its column, not a crash
     std::fs::write(
@@ -239,7 +240,7 @@ fn adjust_z_end_to_end() {
     .unwrap();
     std::fs::write(
         dir.path().join("p_Clean.gcode"),
-        "G01 Z0.800(=0.800+1.000*[#51-2.000)\n",
+        "%\nG01 Z0.800(=0.800+1.000*[#51-2.000)\nM30\n%\n",
     )
     .unwrap();
     let o = millpath(dir.path(), &["pathgcodeadjustz", "/m0.5", "p"]);

@@ -267,6 +267,24 @@ messages! {
     TooManyMoves = "The program would have more than {0} moves", "Das Programm hätte mehr als {0} Bewegungen";
     MoveOutOfRange = "The program would move to {0}, outside ±{1} mm (values add up: T, O, S, H, subpath placement)", "Das Programm würde nach {0} fahren, außerhalb von ±{1} mm (Werte addieren sich: T, O, S, H, Teilpfad-Lage)";
     SettingNotFinite = "Setting {0}={1} must be a finite number within ±{2}", "Einstellung {0}={1} muss eine endliche Zahl innerhalb von ±{2} sein";
+    // adjust-z safety
+    MaxInvalid = "{0} value {1} must be a finite number > 0 and at most 1000000", "{0}-Wert {1} muss eine endliche Zahl > 0 und höchstens 1000000 sein";
+    ZOutOfRange = "Value '{0}' for {1} is outside ±1000000", "Wert '{0}' für {1} liegt außerhalb von ±1000000";
+    ZTooFarMax = "Value {0} for {1} differs from {2} by more than --max={3}", "Wert {0} für {1} weicht von {2} um mehr als --max={3} ab";
+    ZNominalMismatch = "T={0} for {1} differs from its nominal height {2} in {3}:{4}", "T={0} für {1} weicht von der Soll-Höhe {2} in {3}:{4} ab";
+    ZProbeMissing = "Probe {0} (nominal height {1}) has no measured value in {2}", "Messpunkt {0} (Soll-Höhe {1}) hat keinen Messwert in {2}";
+    ZUnknownProbe = "{0} is not a probe of {1}", "{0} ist kein Messpunkt von {1}";
+    ZProbeHeightsDiffer = "Probe {0} has nominal height {1} here, but {2} in line {3}", "Messpunkt {0} hat hier die Soll-Höhe {1}, aber {2} in Zeile {3}";
+    ZProbeTermForm = "Probe {0} is not used as a term [{0}-height] in '{1}'", "Messpunkt {0} wird in '{1}' nicht als Term [{0}-Höhe] verwendet";
+    ZIncompleteProgram = "{0} is not a complete program: it must start with a line %, contain M30 and end with a line %", "{0} ist kein vollständiges Programm: es muss mit einer Zeile % beginnen, M30 enthalten und mit einer Zeile % enden";
+    ZAlreadyAdjusted = "Line is already adjusted ('(=='); {0} must be the file written by compile", "Zeile ist schon angepasst ('(=='); {0} muss die von compile geschriebene Datei sein";
+    ZUnreadableExpression = "Probe expression that adjust-z cannot rewrite: '{0}'", "Messpunkt-Ausdruck, den adjust-z nicht umschreiben kann: '{0}'";
+    LineTooLong = "Line longer than {0} characters", "Zeile länger als {0} Zeichen";
+    ExprTooDeep = "Expression nested deeper than {0} levels at column {1} in '{2}'", "Ausdruck tiefer als {0} Ebenen geschachtelt bei Spalte {1} in '{2}'";
+    ExprNumberRange = "Number '{0}' at column {1} in '{2}' is outside ±1000000", "Zahl '{0}' bei Spalte {1} in '{2}' liegt außerhalb von ±1000000";
+    ExprResultRange = "Expression '{0}' does not give a finite height within ±1000000", "Ausdruck '{0}' ergibt keine endliche Höhe innerhalb von ±1000000";
+    StaleMillingRemoved = "Removed {0}: it is not newer than {1}, and no new one was written", "{0} entfernt: die Datei ist nicht neuer als {1}, und es wurde keine neue geschrieben";
+    CannotRemove = "Cannot remove outdated {0}: {1}", "Veraltete Datei {0} kann nicht entfernt werden: {1}";
 }
 
 impl Msg {

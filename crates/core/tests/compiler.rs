@@ -458,13 +458,16 @@ fn z_probes_produce_probing_z_and_clean_files() {
     assert!(clean.contains("G01 Z0.800(=0.800+"), "{clean}");
     // adjust-z closes the loop
     let mut diags = millpath_core::Diags::default();
-    let vars = millpath_core::probe::adjustz::parse_z_file(
+    let milling = millpath_core::probe::adjustz::adjust(
+        clean,
+        "c",
         &z.replace("#51=", "#51=2.1").replace("#52=", "#52=3.0"),
         "z",
         0.5,
+        millpath_core::probe::adjustz::MaxOption::Long,
         &mut diags,
-    );
-    let milling = millpath_core::probe::adjustz::rewrite(clean, "c", &vars, &mut diags);
+    )
+    .unwrap();
     assert!(!diags.has_errors());
     assert!(milling.matches("(==").count() > 0);
     assert_eq!(
