@@ -3,6 +3,7 @@
 //! outputs are returned to the caller, which writes them.
 
 pub mod adjustz;
+pub mod chain_order;
 pub mod config;
 pub mod convert;
 pub mod diag;
