@@ -2,9 +2,10 @@
 
 use crate::args;
 use crate::diag::{Diagnostic, Msg};
+use crate::emit::chain_order::fast_order;
 use crate::emit::{bounded_passes, missing, Emitter, Frame, Skip, MAX_ITEMS};
 use crate::front::drawing::Style;
-use crate::geom::{ge, lt, near, Geom};
+use crate::geom::{ge, lt, near, Geom, P2};
 use crate::model::*;
 
 impl Emitter<'_> {
@@ -51,30 +52,14 @@ impl Emitter<'_> {
         th: f64,
     ) -> Result<(), Skip> {
         let p = &fr.model.params;
-        let total: usize = passes.iter().map(Vec::len).sum();
         let mut done_count = vec![0usize; passes.len()];
-        let mut head = geoms[0].start().with_z(passes[0][0]);
+        let head = geoms[0].start().with_z(passes[0][0]);
         let s = fr.h + p.s;
-        for _ in 0..total {
+        let ends: Vec<(P2, P2)> = geoms.iter().map(|g| (g.start(), g.end())).collect();
+        for (si, forward) in fast_order(&ends, passes, head) {
             if self.full {
                 break;
             }
-            let mut best: Option<(usize, bool, f64)> = None;
-            for (si, g) in geoms.iter().enumerate() {
-                let k = done_count[si];
-                if k >= passes[si].len() {
-                    continue;
-                }
-                let z = passes[si][k];
-                let ds = head.dist(g.start().with_z(z));
-                let de = head.dist(g.end().with_z(z));
-                let forward = lt(ds, de);
-                let tip = ds.min(de);
-                if best.is_none_or(|(_, _, bt)| lt(tip, bt)) {
-                    best = Some((si, forward, tip));
-                }
-            }
-            let Some((si, forward, _)) = best else { break };
             let z = passes[si][done_count[si]];
             done_count[si] += 1;
             let g = if forward {
@@ -85,7 +70,6 @@ impl Emitter<'_> {
             let seg = &ch.segs[si];
             self.safe_sweep(self.pos, g.start().with_z(z), th, s, seg.f, false);
             self.segment_pass(fr, seg, &g, forward, z, th);
-            head = g.end().with_z(z);
         }
         let end = geoms[geoms.len() - 1].end();
         self.safe_sweep(self.pos, end.with_z(s), p.t, s, p.f, false);

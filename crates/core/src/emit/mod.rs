@@ -14,6 +14,7 @@ use crate::probe::tour::{collect_probes, probe_tour, PlacedProbe};
 
 pub mod bars;
 pub mod chain;
+pub mod chain_order;
 pub mod elements;
 pub mod helix;
 pub mod motion;

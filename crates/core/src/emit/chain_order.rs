@@ -1,0 +1,324 @@
+//! Order of the passes ("edges") of a fast-milled chain (§7.2): greedy nearest edge.
+//!
+//! [`fast_order_reference`] is the spec's sequential scan, quadratic in the number of
+//! segments. [`fast_order`] gives the identical order in about O(n log n): the end points of
+//! all passes, as 3-D points `[x, y, z_pass]`, sit in a static k-d tree that a pass leaves
+//! once it is milled; the candidate of a segment is its next pass (points of deeper passes
+//! are skipped). Each step runs the spec's scan over only the candidates nearest the head.
+//!
+//! Why that is exact. Let S be a set of candidates such that every tip in S is `lt` every
+//! tip outside S. In the full scan a candidate outside S never replaces a best from S (its
+//! tip is larger), and the first member of S met replaces any best from outside S; from
+//! there on the best stays in S and changes exactly as in a scan over S alone, in list
+//! order. So scanning S alone gives the full scan's answer. S is grown nearest-first until
+//! the next point is at least `L` away with `L − M > 2·eps·(L + 0.001)`, `M` the largest tip
+//! in S. A candidate not yet met has both its points at ≥ `L`, so its tip `f ≥ L`, and for
+//! every tip `a ≤ M` of S: `f − a ≥ (f − L) + (L − M) > eps·(f + 0.001) + eps·(L + 0.001)`,
+//! i.e. `lt(a, f)` with a margin far above rounding. Without such a gap S ends up holding
+//! every candidate: the full scan. `L` is a lower bound of the spec's distance: queue keys
+//! are squared distances computed like [`P3::dist`] (bounding boxes: of the clamped head,
+//! never more), shrunk by 1e-12. Non-finite input falls back to the reference scan.
+
+use crate::geom::{lt, EPS, P2, P3};
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
+/// One step of the order: the segment whose next pass is milled, and whether it is milled
+/// from its start to its end (`true`) or backwards.
+pub type Step = (usize, bool);
+
+/// The spec's scan (§7.2), verbatim: for every step all segments in list order, the
+/// candidate of a segment is its next pass; entered at the start iff `lt(ds, de)`; it
+/// replaces the best iff its tip is `lt` the best's tip. `ends[i]` are the start and end of
+/// segment `i`, `passes[i]` its pass depths, `head` the 3-D start position.
+#[doc(hidden)]
+pub fn fast_order_reference(ends: &[(P2, P2)], passes: &[Vec<f64>], head: P3) -> Vec<Step> {
+    let total: usize = passes.iter().map(Vec::len).sum();
+    let mut done_count = vec![0usize; passes.len()];
+    let mut head = head;
+    let mut order = Vec::with_capacity(total);
+    for _ in 0..total {
+        let mut best: Option<(usize, bool, f64)> = None;
+        for (si, &(a, b)) in ends.iter().enumerate() {
+            let k = done_count[si];
+            if k >= passes[si].len() {
+                continue;
+            }
+            let z = passes[si][k];
+            let ds = head.dist(a.with_z(z));
+            let de = head.dist(b.with_z(z));
+            let forward = lt(ds, de);
+            let tip = ds.min(de);
+            if best.is_none_or(|(_, _, bt)| lt(tip, bt)) {
+                best = Some((si, forward, tip));
+            }
+        }
+        let Some((si, forward, _)) = best else { break };
+        let z = passes[si][done_count[si]];
+        done_count[si] += 1;
+        order.push((si, forward));
+        // the end of the geometry in pass direction (a reversed geometry ends at the start)
+        let (a, b) = ends[si];
+        head = if forward { b } else { a }.with_z(z);
+    }
+    order
+}
+
+/// The end points of all passes of all segments in a static k-d tree, from which points
+/// are only removed: a pass leaves when it is milled. Nodes know how many of their points
+/// are left, so emptied parts of the drawing cost nothing.
+struct PassPoints {
+    /// Points in tree order: `[x, y, z]` and the segment and pass they belong to.
+    pts: Vec<[f64; 3]>,
+    owner: Vec<(usize, usize)>,
+    alive: Vec<bool>,
+    /// Tree position of the start (end) point of pass `k` of segment `si`:
+    /// `pos[2 · (first[si] + k)]` (`+ 1`).
+    pos: Vec<usize>,
+    first: Vec<usize>,
+    nodes: Vec<KdNode>,
+}
+
+/// Best-first queue of a query: (squared distance or its lower bound, node or point).
+type Queue = BinaryHeap<Reverse<(u64, usize)>>;
+
+struct KdNode {
+    lo: [f64; 3],
+    hi: [f64; 3],
+    /// The node's points are `pts[start..end]`; `left` is 0 for a leaf, else the children
+    /// are `left` and `left + 1`.
+    start: usize,
+    end: usize,
+    left: usize,
+    alive: usize,
+}
+
+const LEAF: usize = 8;
+/// Marks a point (rather than a node) in the query heap.
+const POINT: usize = 1 << (usize::BITS - 1);
+
+/// Squared distance, the same expression as [`P3::dist`] before its square root.
+fn dist2(h: P3, p: [f64; 3]) -> f64 {
+    let (dx, dy, dz) = (h.x - p[0], h.y - p[1], h.z - p[2]);
+    dx * dx + dy * dy + dz * dz
+}
+
+impl PassPoints {
+    fn new(ends: &[(P2, P2)], passes: &[Vec<f64>]) -> Self {
+        // slot 2·j (+ 1): the start (end) point of the j-th pass of all segments
+        let mut first = Vec::with_capacity(passes.len());
+        let mut owner_of_pass = Vec::new();
+        let mut items: Vec<([f64; 3], usize)> = Vec::new();
+        for (si, &(a, b)) in ends.iter().enumerate() {
+            first.push(owner_of_pass.len());
+            for (k, &z) in passes[si].iter().enumerate() {
+                let slot = 2 * owner_of_pass.len();
+                owner_of_pass.push((si, k));
+                items.push(([a.x, a.y, z], slot));
+                items.push(([b.x, b.y, z], slot + 1));
+            }
+        }
+        let mut nodes = Vec::new();
+        if !items.is_empty() {
+            nodes.push(KdNode {
+                lo: [0.0; 3],
+                hi: [0.0; 3],
+                start: 0,
+                end: items.len(),
+                left: 0,
+                alive: items.len(),
+            });
+            Self::build(&mut nodes, &mut items, 0);
+        }
+        let mut pos = vec![0; items.len()];
+        let mut pts = Vec::with_capacity(items.len());
+        let mut owner = Vec::with_capacity(items.len());
+        for (i, &(p, slot)) in items.iter().enumerate() {
+            pos[slot] = i;
+            pts.push(p);
+            owner.push(owner_of_pass[slot / 2]);
+        }
+        PassPoints {
+            alive: vec![true; pts.len()],
+            pts,
+            owner,
+            pos,
+            first,
+            nodes,
+        }
+    }
+
+    fn build(nodes: &mut Vec<KdNode>, items: &mut [([f64; 3], usize)], at: usize) {
+        let (start, end) = (nodes[at].start, nodes[at].end);
+        let part = &mut items[start..end];
+        let (mut lo, mut hi) = (part[0].0, part[0].0);
+        for (p, _) in part.iter() {
+            for i in 0..3 {
+                lo[i] = lo[i].min(p[i]);
+                hi[i] = hi[i].max(p[i]);
+            }
+        }
+        nodes[at].lo = lo;
+        nodes[at].hi = hi;
+        if part.len() <= LEAF {
+            return;
+        }
+        let axis = (0..3)
+            .max_by(|&i, &j| (hi[i] - lo[i]).total_cmp(&(hi[j] - lo[j])))
+            .unwrap_or(0);
+        let mid = part.len() / 2;
+        part.select_nth_unstable_by(mid, |p, q| p.0[axis].total_cmp(&q.0[axis]));
+        let left = nodes.len();
+        nodes[at].left = left;
+        for (s, e) in [(start, start + mid), (start + mid, end)] {
+            nodes.push(KdNode {
+                lo,
+                hi,
+                start: s,
+                end: e,
+                left: 0,
+                alive: e - s,
+            });
+        }
+        Self::build(nodes, items, left);
+        Self::build(nodes, items, left + 1);
+    }
+
+    /// Takes out both end points of pass `k` of segment `si`.
+    fn remove(&mut self, si: usize, k: usize) {
+        for slot in [2 * (self.first[si] + k), 2 * (self.first[si] + k) + 1] {
+            let at = self.pos[slot];
+            debug_assert!(self.alive[at], "a pass is milled once");
+            self.alive[at] = false;
+            let mut n = 0;
+            loop {
+                self.nodes[n].alive -= 1;
+                let left = self.nodes[n].left;
+                if left == 0 {
+                    break;
+                }
+                n = if at < self.nodes[left].end {
+                    left
+                } else {
+                    left + 1
+                };
+            }
+        }
+    }
+
+    /// Lower bound of the squared distance from `h` to the points of node `n`.
+    fn node_dist2(&self, h: P3, n: usize) -> f64 {
+        let KdNode { lo, hi, .. } = self.nodes[n];
+        dist2(
+            h,
+            [
+                h.x.clamp(lo[0], hi[0]),
+                h.y.clamp(lo[1], hi[1]),
+                h.z.clamp(lo[2], hi[2]),
+            ],
+        )
+    }
+
+    fn push_node(&self, queue: &mut Queue, h: P3, n: usize) {
+        if self.nodes[n].alive > 0 {
+            let d2 = self.node_dist2(h, n);
+            queue.push(Reverse((d2.to_bits(), n)));
+        }
+    }
+
+    /// Calls `visit(point, squared distance)` for the points left, nearest first, until it
+    /// returns false. (Squared distances are ≥ +0, so their bits order like their values.)
+    fn nearest(&self, queue: &mut Queue, h: P3, mut visit: impl FnMut(usize, f64) -> bool) {
+        queue.clear();
+        if self.nodes.is_empty() {
+            return;
+        }
+        self.push_node(queue, h, 0);
+        while let Some(Reverse((bits, item))) = queue.pop() {
+            if item & POINT != 0 {
+                if !visit(item & !POINT, f64::from_bits(bits)) {
+                    return;
+                }
+                continue;
+            }
+            let KdNode {
+                start, end, left, ..
+            } = self.nodes[item];
+            if left != 0 {
+                self.push_node(queue, h, left);
+                self.push_node(queue, h, left + 1);
+            } else {
+                for i in start..end {
+                    if self.alive[i] {
+                        let d2 = dist2(h, self.pts[i]);
+                        queue.push(Reverse((d2.to_bits(), i | POINT)));
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The same order as [`fast_order_reference`], in about O(n log n) (see the module docs).
+pub fn fast_order(ends: &[(P2, P2)], passes: &[Vec<f64>], head: P3) -> Vec<Step> {
+    let finite = |p: P2| p.x.is_finite() && p.y.is_finite();
+    let all_finite = finite(head.xy())
+        && head.z.is_finite()
+        && ends.iter().all(|&(a, b)| finite(a) && finite(b))
+        && passes.iter().flatten().all(|z| z.is_finite());
+    if !all_finite {
+        return fast_order_reference(ends, passes, head);
+    }
+    assert_eq!(ends.len(), passes.len(), "one pass list per segment");
+    let n = ends.len();
+    let total: usize = passes.iter().map(Vec::len).sum();
+    let mut done_count = vec![0usize; n];
+    // the step in which a segment was last met (+1; 0 = never)
+    let mut met_in = vec![0usize; n];
+    let mut tree = PassPoints::new(ends, passes);
+    let mut queue = Queue::new();
+    let mut head = head;
+    let mut order = Vec::with_capacity(total);
+    // the candidates met in this step: (segment, forward, tip)
+    let mut met: Vec<(usize, bool, f64)> = Vec::new();
+    for step in 1..=total {
+        met.clear();
+        let mut max_tip = f64::NEG_INFINITY;
+        tree.nearest(&mut queue, head, |i, d2| {
+            let reach = d2.sqrt() * (1.0 - 1e-12);
+            if !met.is_empty() && reach - max_tip > 2.0 * EPS * (reach + 0.001) {
+                return false;
+            }
+            let (si, k) = tree.owner[i];
+            if k != done_count[si] || met_in[si] == step {
+                return true; // a deeper pass (no candidate yet), or met already
+            }
+            met_in[si] = step;
+            let (a, b) = ends[si];
+            let z = passes[si][k];
+            let ds = head.dist(a.with_z(z));
+            let de = head.dist(b.with_z(z));
+            let tip = ds.min(de);
+            max_tip = max_tip.max(tip);
+            met.push((si, lt(ds, de), tip));
+            true
+        });
+        // the spec's scan, over the met candidates in list order
+        met.sort_unstable_by_key(|m| m.0);
+        let mut best: Option<(usize, bool, f64)> = None;
+        for &(si, forward, tip) in &met {
+            if best.is_none_or(|(_, _, bt)| lt(tip, bt)) {
+                best = Some((si, forward, tip));
+            }
+        }
+        let Some((si, forward, _)) = best else { break };
+        let (a, b) = ends[si];
+        let k = done_count[si];
+        let z = passes[si][k];
+        tree.remove(si, k);
+        done_count[si] = k + 1;
+        order.push((si, forward));
+        head = if forward { b } else { a }.with_z(z);
+    }
+    order
+}
