@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Seed corpora for the fuzz targets, built from the project's own examples and test drawings
+# (never from ../shared): written to fuzz/corpus/<target>/ (not committed).
+set -euo pipefail
+cd "$(dirname "$0")"
+root=..
+mkdir -p corpus/dxf_read corpus/text_parse corpus/format_idempotent corpus/compile
+for f in "$root"/examples/*/*.dxf; do
+  cp "$f" "corpus/dxf_read/$(basename "$f")"
+  # the compile target reads one leading byte: even = DXF
+  { printf '\x00'; cat "$f"; } > "corpus/compile/dxf-$(basename "$f")"
+done
+for f in "$root"/examples/*/*.mpath "$root"/grammar/tree-sitter-millpath/test/corpus/*; do
+  [ -f "$f" ] || continue
+  b=$(basename "$f")
+  cp "$f" "corpus/text_parse/$b"
+  cp "$f" "corpus/format_idempotent/$b"
+  { printf '\x01'; cat "$f"; } > "corpus/compile/text-$b"
+done
+# small hostile seeds of our own
+printf 'path 1000.1P {\n  start (0, 0)  O2 T2 INaN B-0,3\n  end (20, 0)\n  mill (0, 0) -> (20, 0)\n}\n' > corpus/text_parse/nan.mpath
+printf '\x01path 1000.1P {\n  start (0, 0)  O2 T2 I-1 B-0,1\n  end (30, 0)\n  sweep (0, 0) -> (10, 0)\n  helix (10, 0) d8\n  sweep (10, 0) -> (30, 0)\n}\n' > corpus/compile/helix-negative-i.mpath
+echo "seeded: $(find corpus -type f | wc -l) files"
