@@ -18,8 +18,14 @@ pub struct Client {
 
 impl Client {
     pub fn start(bin: &str) -> Client {
-        let mut child = Command::new(bin)
-            .arg("lsp")
+        let mut cmd = Command::new(bin);
+        cmd.arg("lsp");
+        Client::spawn(cmd)
+    }
+
+    /// Starts the server with a command line of the caller's (e.g. under `ulimit`).
+    pub fn spawn(mut cmd: Command) -> Client {
+        let mut child = cmd
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())
             .stderr(Stdio::null())
