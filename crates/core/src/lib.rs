@@ -12,6 +12,7 @@ pub mod load;
 pub mod model;
 pub mod params;
 pub mod probe;
+pub mod second_opinion;
 
 pub use diag::{Diagnostic, Diags, Lang, Msg, Origin, Severity};
 pub use load::fs::{FileSystem, MemFileSystem, OsFileSystem};
@@ -135,6 +136,14 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
             return outcome;
         }
     };
+    let program = match &generated.output {
+        Output::Milling(g) => g,
+        Output::Probing { clean, .. } => clean,
+    };
+    let lang = session.lang();
+    for d in second_opinion::review(program, &model, &generated.line_sources, lang) {
+        session.diags.push(d);
+    }
     let prefix = output_prefix(input, &model.params.r);
     let with = |s: &str| PathBuf::from(format!("{}{s}", prefix.display()));
     outcome.outputs = match generated.output {

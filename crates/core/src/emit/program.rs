@@ -1,6 +1,6 @@
 //! File layouts (reference-output.md §4, §12.2, §12.3): the milling program, the probing program and `_Z.txt`.
 
-use crate::diag::{Diagnostic, Lang};
+use crate::diag::{Diagnostic, Lang, Origin};
 use crate::emit::as_comment;
 use crate::emit::stats::Stats;
 use crate::emit::{emit, Emitted};
@@ -22,6 +22,8 @@ pub enum Output {
 pub struct Generated {
     pub output: Output,
     pub stats: Stats,
+    /// For every line of the milling (or clean) program, the element that wrote it.
+    pub line_sources: Vec<Option<Origin>>,
 }
 
 pub(crate) fn prologue(banner: &str, file_name: &str, start: f64) -> Vec<String> {
@@ -63,12 +65,21 @@ pub fn generate(
     lang: Lang,
 ) -> Result<Generated, Vec<Diagnostic>> {
     let Emitted {
-        items, probes, sx, ..
+        items,
+        probes,
+        sx,
+        sources,
     } = emit(model, false)?;
     let s = model.params.s;
 
     let stats = Stats::of(&items, sweep_speed);
     let mut lines = prologue(banner, file_name, sx);
+    let mut line_sources: Vec<Option<Origin>> = vec![None; lines.len()];
+    line_sources.extend(
+        items
+            .iter()
+            .map(|i| i.source.and_then(|k| sources.get(k as usize).cloned())),
+    );
     lines.extend(items.into_iter().map(|i| i.text));
     lines.extend(stats.lines(lang).iter().map(|l| format!("  ({l})")));
     lines.push("M30".into());
@@ -78,6 +89,7 @@ pub fn generate(
         return Ok(Generated {
             output: Output::Milling(body),
             stats,
+            line_sources,
         });
     }
     // probing program and Z file
@@ -128,6 +140,7 @@ pub fn generate(
             clean: body,
         },
         stats,
+        line_sources,
     })
 }
 
