@@ -14,11 +14,12 @@ pub mod params;
 pub mod probe;
 
 pub use diag::{Diagnostic, Diags, Lang, Msg, Origin, Severity};
+pub use emit::Dialect;
 pub use load::fs::{FileSystem, MemFileSystem, OsFileSystem};
 pub use load::session::Session;
 pub use load::settings::Settings;
 
-use emit::{generate, stats::Stats, Output};
+use emit::{generate_for, stats::Stats, Controller, Output};
 use std::path::{Path, PathBuf};
 
 /// The program banner written as line 2 of every G-code file.
@@ -83,7 +84,11 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
             match session.build_top(&name) {
                 Err(abort) => session.diags.push(abort),
                 Ok(None) => {}
-                Ok(Some(model)) => match emit::check(&model, session.settings.sweep_speed) {
+                Ok(Some(model)) => match emit::check_for(
+                    &model,
+                    session.settings.sweep_speed,
+                    &Controller::of(&session.settings),
+                ) {
                     Ok(stats) => outcome.stats.push((name.clone(), stats)),
                     Err(errs) => errs.into_iter().for_each(|e| session.diags.push(e)),
                 },
@@ -122,12 +127,13 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
     if session.diags.has_errors() {
         return outcome;
     }
-    let generated = match generate(
+    let generated = match generate_for(
         &model,
         &file_name,
         banner,
         session.settings.sweep_speed,
         session.lang(),
+        &Controller::of(&session.settings),
     ) {
         Ok(g) => g,
         Err(errs) => {
