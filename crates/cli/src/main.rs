@@ -63,6 +63,25 @@ struct MachineArgs {
     /// Settings file (default: nearest millpath.toml above the first input)
     #[arg(long)]
     config: Option<PathBuf>,
+    /// Controller the programs are written for (or `dialect`; default reference)
+    #[arg(long, value_parser = dialect_parser())]
+    dialect: Option<millpath_core::Dialect>,
+    /// Plunge feed in linuxcnc/grbl, mm/min (or `plunge_feed`; default half the feed)
+    #[arg(long)]
+    plunge_feed: Option<f64>,
+    /// Spindle speed in linuxcnc/grbl: M3 S… at the start, M5 at the end (or `spindle_rpm`)
+    #[arg(long)]
+    spindle_rpm: Option<f64>,
+    /// Seconds to wait after the spindle start (or `spindle_dwell`; default 2)
+    #[arg(long)]
+    spindle_dwell: Option<f64>,
+}
+
+fn dialect_parser() -> impl clap::builder::TypedValueParser<Value = millpath_core::Dialect> {
+    use clap::builder::TypedValueParser;
+    let names = millpath_core::Dialect::ALL.map(|d| d.name());
+    clap::builder::PossibleValuesParser::new(names)
+        .map(|s| millpath_core::Dialect::from_name(&s).unwrap_or_default())
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -407,6 +426,18 @@ fn settings_for(
         s.restrictions.push((a.to_string(), b.to_string()));
     }
     s.debug_pattern = m.debug_texts.clone();
+    if let Some(d) = m.dialect {
+        s.dialect = d;
+    }
+    if m.plunge_feed.is_some() {
+        s.plunge_feed = m.plunge_feed;
+    }
+    if m.spindle_rpm.is_some() {
+        s.spindle_rpm = m.spindle_rpm;
+    }
+    if let Some(v) = m.spindle_dwell {
+        s.spindle_dwell = v;
+    }
     if let Some(l) = m.lang {
         s.lang = to_lang(l);
     }

@@ -15,11 +15,12 @@ pub mod probe;
 pub mod second_opinion;
 
 pub use diag::{Diagnostic, Diags, Lang, Msg, Origin, Severity};
+pub use emit::Dialect;
 pub use load::fs::{FileSystem, MemFileSystem, OsFileSystem};
 pub use load::session::Session;
 pub use load::settings::Settings;
 
-use emit::{generate, stats::Stats, Output};
+use emit::{generate_for, stats::Stats, Controller, Output};
 use std::path::{Path, PathBuf};
 
 /// The program banner written as line 2 of every G-code file.
@@ -84,7 +85,11 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
             match session.build_top(&name) {
                 Err(abort) => session.diags.push(abort),
                 Ok(None) => {}
-                Ok(Some(model)) => match emit::check(&model, session.settings.sweep_speed) {
+                Ok(Some(model)) => match emit::check_for(
+                    &model,
+                    session.settings.sweep_speed,
+                    &Controller::of(&session.settings),
+                ) {
                     Ok(stats) => outcome.stats.push((name.clone(), stats)),
                     Err(errs) => errs.into_iter().for_each(|e| session.diags.push(e)),
                 },
@@ -123,12 +128,13 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
     if session.diags.has_errors() {
         return outcome;
     }
-    let generated = match generate(
+    let generated = match generate_for(
         &model,
         &file_name,
         banner,
         session.settings.sweep_speed,
         session.lang(),
+        &Controller::of(&session.settings),
     ) {
         Ok(g) => g,
         Err(errs) => {
@@ -141,8 +147,13 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
         Output::Probing { clean, .. } => clean,
     };
     let lang = session.lang();
-    for d in second_opinion::review(program, &model, &generated.line_sources, lang) {
+    let dialect = session.settings.dialect;
+    for d in second_opinion::review(program, &model, &generated.line_sources, lang, dialect) {
         session.diags.push(d);
+    }
+    if session.diags.has_errors() {
+        // a controller dialect whose checker objects: nothing is written
+        return outcome;
     }
     let prefix = output_prefix(input, &model.params.r);
     let with = |s: &str| PathBuf::from(format!("{}{s}", prefix.display()));

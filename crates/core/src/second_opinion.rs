@@ -4,50 +4,53 @@
 
 use crate::args;
 use crate::diag::{Diagnostic, Lang, Msg, Origin};
+use crate::emit::dialect::lowest_depth;
 use crate::model::{Element, Model};
 use millpath_verify::{verify, Dialect, Options, Severity};
 
 /// The material top, tool diameter and deepest drawn depth the checker needs. Subpaths raised
 /// by H lift the top: the stock's top is the highest of them (nothing above it is material).
 pub fn stock_of(model: &Model) -> (f64, f64, Option<f64>) {
-    fn walk(m: &Model, h: f64, depth: usize, top: &mut f64, bottom: &mut Option<f64>) {
-        *top = top.max(h + m.params.t);
-        let mut depths: Vec<Option<f64>> = Vec::new();
-        for e in &m.elements {
-            match e {
-                Element::Chain(c) => c.segs.iter().for_each(|s| depths.extend([s.b, s.d])),
-                Element::Drill(d) => depths.extend([d.b, d.d]),
-                Element::Helix(x) => depths.extend([x.b, x.d]),
-                Element::Subpath(emb) => {
-                    if let (Some(t), true) = (&emb.target, depth < 10) {
-                        walk(t, h + emb.h, depth + 1, top, bottom);
-                    }
-                }
-                Element::Sweep(_) => {}
-            }
-        }
-        for z in depths.into_iter().flatten().map(|v| h + v) {
-            *bottom = Some(bottom.map_or(z, |b| b.min(z)));
-        }
+    fn highest_top(m: &Model, h: f64, depth: usize) -> f64 {
+        m.elements
+            .iter()
+            .filter_map(|e| match e {
+                Element::Subpath(emb) if depth < 10 => emb
+                    .target
+                    .as_ref()
+                    .map(|t| highest_top(t, h + emb.h, depth + 1)),
+                _ => None,
+            })
+            .fold(h + m.params.t, f64::max)
     }
-    let (mut top, mut bottom) = (model.params.t, None);
-    walk(model, 0.0, 0, &mut top, &mut bottom);
-    (top, model.params.o, bottom)
+    (
+        highest_top(model, 0.0, 0),
+        model.params.o,
+        lowest_depth(model, 0.0, 0),
+    )
 }
 
-/// Checks one written program; findings become diagnostics at the element of their line
-/// (warnings: the reference dialect must stay byte-identical, so nothing is refused here).
+/// Checks one written program; findings become diagnostics at the element of their line. In
+/// the reference dialect they are warnings (its output must stay byte-identical to the
+/// reference tool's); for a real controller an error stops the write.
 pub fn review(
     program: &str,
     model: &Model,
     line_sources: &[Option<Origin>],
     lang: Lang,
+    dialect: crate::emit::dialect::Dialect,
 ) -> Vec<Diagnostic> {
+    use crate::emit::dialect::Dialect as Ours;
+    let (checked_as, strict) = match dialect {
+        Ours::Reference => (Dialect::Reference, false),
+        Ours::LinuxCnc => (Dialect::LinuxCnc, true),
+        Ours::Grbl => (Dialect::Grbl, true),
+    };
     let (top, tool, bottom) = stock_of(model);
     let report = verify(
         program,
         &Options {
-            dialect: Dialect::Reference,
+            dialect: checked_as,
             top: Some(top),
             tool: Some(tool),
             bottom,
@@ -67,11 +70,12 @@ pub fn review(
                 .line
                 .and_then(|l| line_sources.get(l.wrapping_sub(1)).cloned().flatten())
                 .unwrap_or_else(|| model.raw.start_origin());
-            Diagnostic::warning(
-                Msg::SecondOpinion,
-                origin,
-                args![f.line.unwrap_or(0), f.text, f.message(vlang)],
-            )
+            let args = args![f.line.unwrap_or(0), f.text, f.message(vlang)];
+            if strict && f.severity == Severity::Error {
+                Diagnostic::error(Msg::SecondOpinion, origin, args)
+            } else {
+                Diagnostic::warning(Msg::SecondOpinion, origin, args)
+            }
         })
         .collect()
 }

@@ -4,7 +4,7 @@ use crate::{analyze, file_ref, workspace_files, Analysis, Pos, Workspace};
 use millpath_core::build::traverse::traverse;
 use millpath_core::diag::{Msg, Origin};
 use millpath_core::emit::chain::pass_depths;
-use millpath_core::emit::{generate, Output};
+use millpath_core::emit::{generate_for, Controller, Output};
 use millpath_core::front::drawing::{
     RawPath, RawSegment, SegKind, Style as CoreStyle, PATH_KEYS, PROBE_KEYS,
 };
@@ -593,6 +593,7 @@ struct TopModel {
     model: std::sync::Arc<millpath_core::model::Model>,
     lang: Lang,
     sweep_speed: f64,
+    controller: Controller,
     errors: Vec<String>,
 }
 
@@ -601,6 +602,7 @@ fn top_model(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<TopModel
     let ds = ws.settings_for(path);
     let lang = ds.settings.lang;
     let sweep_speed = ds.settings.sweep_speed;
+    let controller = Controller::of(&ds.settings);
     let fs = ws.fs();
     let joined = |e: &[millpath_core::Diagnostic]| {
         e.iter()
@@ -619,6 +621,7 @@ fn top_model(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<TopModel
             model,
             lang,
             sweep_speed,
+            controller,
             errors: messages(&session, lang),
         }),
         Ok(None) => Err(format!(
@@ -635,6 +638,7 @@ pub fn preview(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<Previe
         model,
         lang,
         sweep_speed,
+        controller,
         errors,
     } = top_model(ws, path, name)?;
     let name = model.name().to_string();
@@ -642,12 +646,13 @@ pub fn preview(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<Previe
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let g = generate(
+    let g = generate_for(
         &model,
         &file_name,
         &millpath_core::banner(),
         sweep_speed,
         lang,
+        &controller,
     )
     .map_err(|e| {
         e.iter()

@@ -346,3 +346,18 @@ fn toolpath_for_the_view() {
     assert_eq!(tp["bounds"]["minZ"], -0.2);
     assert!(toolpath(&ws, &p(dir.path(), "2010.mpath"), Some("9.9Q")).is_err());
 }
+
+#[test]
+fn preview_follows_the_dialect_of_the_settings() {
+    let (dir, ws) = setup();
+    std::fs::write(
+        dir.path().join("millpath.toml"),
+        "feed = 300\nsweep_speed = 1000\nsweep_height = 10\ndialect = \"grbl\"\nspindle_rpm = 9000\n",
+    )
+    .unwrap();
+    let pv = preview(&ws, &p(dir.path(), "2010.mpath"), Some("2010.1P")).unwrap();
+    assert!(pv.gcode.starts_with("(millpath V."), "{}", pv.gcode);
+    assert!(pv.gcode.contains("\nF300.000\nT1\nM3 S9000\nG4 P2\n"));
+    assert!(pv.gcode.contains("\nG01 F150.000 Z1.500\n"));
+    assert!(pv.gcode.ends_with("M5\nM30\n"));
+}

@@ -15,6 +15,7 @@ use crate::probe::tour::{collect_probes, probe_tour, PlacedProbe};
 pub mod bars;
 pub mod chain;
 pub mod chain_order;
+pub mod dialect;
 pub mod elements;
 pub mod helix;
 pub mod motion;
@@ -23,7 +24,8 @@ pub mod program;
 pub mod stats;
 pub mod toolpath;
 
-pub use program::{check, generate, Generated, Output};
+pub use dialect::{Controller, Dialect};
+pub use program::{check, check_for, generate, generate_for, Generated, Output};
 pub use toolpath::{toolpath, Move, Toolpath};
 
 /// Items (moves and comments) one program may hold: far beyond any real part, and a bound on
@@ -151,6 +153,8 @@ pub(crate) struct Emitter<'a> {
     /// Origins of the elements emitted so far, and the current one.
     pub(crate) sources: Vec<Origin>,
     pub(crate) source: Option<u32>,
+    /// The controller the texts are written for (plunge feeds).
+    pub(crate) ctl: Controller,
 }
 
 /// Trace comment text: trimmed, `)` → `]`, `\` → `/`.
@@ -321,8 +325,9 @@ fn missing_values(model: &Model, out: &mut Vec<Diagnostic>, depth: usize) {
     }
 }
 
-/// The body moves of a model (dry: without texts), its probes and start height.
-pub(crate) fn emit(model: &Model, dry: bool) -> Result<Emitted, Vec<Diagnostic>> {
+/// The body moves of a model (dry: without texts) for a controller, its probes and start
+/// height.
+pub(crate) fn emit(model: &Model, dry: bool, ctl: &Controller) -> Result<Emitted, Vec<Diagnostic>> {
     if model.elements.is_empty() {
         return Err(vec![Diagnostic::error(
             Msg::NoSegments,
@@ -363,6 +368,7 @@ pub(crate) fn emit(model: &Model, dry: bool) -> Result<Emitted, Vec<Diagnostic>>
         dry,
         sources: Vec::new(),
         source: None,
+        ctl: *ctl,
     };
     em.comment(2, || format!("Model {}", model.label()));
     em.emit_model(Frame {

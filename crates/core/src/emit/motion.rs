@@ -30,8 +30,14 @@ impl Emitter<'_> {
                 self.to(Target::z(th));
             }
             if !near(to, th) {
-                let t = |e: &Emitter| format!("G01 Z{}", e.zexpr(to, xy));
-                self.push(Kind::Drill, t, (th - to).abs(), feed);
+                // the reference writes no F (the modal feed applies); the other dialects the
+                // plunge feed, which the statistics then use as well
+                let plunge = self.ctl.plunge(feed);
+                let t = |e: &Emitter| match plunge {
+                    None => format!("G01 Z{}", e.zexpr(to, xy)),
+                    Some(f) => format!("G01 F{} Z{}", F3(f), e.zexpr(to, xy)),
+                };
+                self.push(Kind::Drill, t, (th - to).abs(), plunge.unwrap_or(feed));
                 self.to(Target::z(to));
             }
         }

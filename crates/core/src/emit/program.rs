@@ -2,9 +2,10 @@
 
 use crate::diag::{Diagnostic, Lang, Origin};
 use crate::emit::as_comment;
+use crate::emit::dialect::Controller;
 use crate::emit::stats::Stats;
 use crate::emit::{emit, Emitted};
-use crate::geom::{near, F3, P2, P3};
+use crate::geom::{near, F3, P2};
 use crate::model::*;
 
 /// The files of one compiled path.
@@ -26,37 +27,22 @@ pub struct Generated {
     pub line_sources: Vec<Option<Origin>>,
 }
 
-pub(crate) fn prologue(banner: &str, file_name: &str, start: f64) -> Vec<String> {
-    vec![
-        "%".into(),
-        as_comment(0, banner),
-        as_comment(0, file_name),
-        "F150".into(),
-        "G17 G21 G40 G49 G54 G80 G90 G94".into(),
-        "T1".into(),
-        as_comment(
-            0,
-            &format!(
-                "SweepSafelyTo {}",
-                P3 {
-                    x: 0.0,
-                    y: 0.0,
-                    z: start
-                }
-            ),
-        ),
-        format!("G00 Z{}", F3(start)),
-        "G00 X0.000 Y0.000".into(),
-    ]
-}
-
 /// What a check needs: the emission errors and the statistics, without any text.
 pub fn check(model: &Model, sweep_speed: f64) -> Result<Stats, Vec<Diagnostic>> {
-    Ok(Stats::of(&emit(model, true)?.items, sweep_speed))
+    check_for(model, sweep_speed, &Controller::reference())
 }
 
-/// Generates the G-code of a top-level model. `Err` holds the errors that make the output
-/// unusable (the caller writes nothing then).
+/// [`check`] for a controller (its plunge feeds change the time estimates).
+pub fn check_for(
+    model: &Model,
+    sweep_speed: f64,
+    ctl: &Controller,
+) -> Result<Stats, Vec<Diagnostic>> {
+    Ok(Stats::of(&emit(model, true, ctl)?.items, sweep_speed))
+}
+
+/// Generates the G-code of a top-level model as the reference does. `Err` holds the errors
+/// that make the output unusable (the caller writes nothing then).
 pub fn generate(
     model: &Model,
     file_name: &str,
@@ -64,16 +50,35 @@ pub fn generate(
     sweep_speed: f64,
     lang: Lang,
 ) -> Result<Generated, Vec<Diagnostic>> {
+    generate_for(
+        model,
+        file_name,
+        banner,
+        sweep_speed,
+        lang,
+        &Controller::reference(),
+    )
+}
+
+/// [`generate`] for a controller dialect.
+pub fn generate_for(
+    model: &Model,
+    file_name: &str,
+    banner: &str,
+    sweep_speed: f64,
+    lang: Lang,
+    ctl: &Controller,
+) -> Result<Generated, Vec<Diagnostic>> {
     let Emitted {
         items,
         probes,
         sx,
         sources,
-    } = emit(model, false)?;
+    } = emit(model, false, ctl)?;
     let s = model.params.s;
 
     let stats = Stats::of(&items, sweep_speed);
-    let mut lines = prologue(banner, file_name, sx);
+    let mut lines = ctl.prologue(banner, file_name, model, sx, true);
     let mut line_sources: Vec<Option<Origin>> = vec![None; lines.len()];
     line_sources.extend(
         items
@@ -82,8 +87,7 @@ pub fn generate(
     );
     lines.extend(items.into_iter().map(|i| i.text));
     lines.extend(stats.lines(lang).iter().map(|l| format!("  ({l})")));
-    lines.push("M30".into());
-    lines.push("%".into());
+    lines.extend(ctl.epilogue(true));
     let body = join(&lines);
     if probes.is_empty() {
         return Ok(Generated {
@@ -93,7 +97,7 @@ pub fn generate(
         });
     }
     // probing program and Z file
-    let mut pl = prologue(banner, file_name, s);
+    let mut pl = ctl.prologue(banner, file_name, model, s, false);
     let mut cur = P2::default();
     for p in &probes {
         if !near(p.placed.pos.dist(cur), 0.0) {
@@ -113,8 +117,7 @@ pub fn generate(
         pl.push("G00 X0.000 Y0.000".into());
     }
     pl.push(format!("G00 Z{}", F3(s)));
-    pl.push("M30".into());
-    pl.push("%".into());
+    pl.extend(ctl.epilogue(false));
     let z_lines: Vec<String> = probes
         .iter()
         .map(|p| {

@@ -1,8 +1,8 @@
 //! The moves of a program as the machine makes them, for the toolpath view.
 
 use crate::diag::{Diagnostic, Origin};
-use crate::emit::emit;
 use crate::emit::Kind;
+use crate::emit::{emit, Controller};
 use crate::geom::{P2, P3};
 use crate::model::*;
 
@@ -28,7 +28,7 @@ pub struct Toolpath {
 
 /// The toolpath of a top-level model.
 pub fn toolpath(model: &Model) -> Result<Toolpath, Vec<Diagnostic>> {
-    let e = emit(model, true)?;
+    let e = emit(model, true, &Controller::reference())?;
     let mut pos = P3 {
         x: 0.0,
         y: 0.0,

@@ -1,6 +1,7 @@
 //! `millpath.toml`: machine settings of a folder tree. Parsing and applying only; finding
 //! the file is the caller's (the CLI walks the file system, the language server its view).
 
+use crate::emit::dialect::Dialect;
 use crate::Settings;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
@@ -23,6 +24,11 @@ pub struct FileConfig {
     #[serde(default)]
     pub restrictions: Vec<String>,
     pub lang: Option<String>,
+    /// `reference` (default), `linuxcnc` or `grbl`.
+    pub dialect: Option<Dialect>,
+    pub plunge_feed: Option<f64>,
+    pub spindle_rpm: Option<f64>,
+    pub spindle_dwell: Option<f64>,
 }
 
 /// Parses a settings file; relative search directories are taken relative to `base_dir`.
@@ -65,6 +71,18 @@ impl FileConfig {
         }
         if let Some(l) = &self.lang {
             s.lang = crate::Lang::from_name(l);
+        }
+        if let Some(d) = self.dialect {
+            s.dialect = d;
+        }
+        if self.plunge_feed.is_some() {
+            s.plunge_feed = self.plunge_feed;
+        }
+        if self.spindle_rpm.is_some() {
+            s.spindle_rpm = self.spindle_rpm;
+        }
+        if let Some(v) = self.spindle_dwell {
+            s.spindle_dwell = v;
         }
     }
 }

@@ -3,6 +3,7 @@
 use crate::args;
 use crate::diag::Lang;
 use crate::diag::{Diagnostic, Msg, Origin};
+use crate::emit::dialect::{Dialect, DEFAULT_SPINDLE_DWELL};
 use crate::params::MAX_MAGNITUDE;
 use std::path::PathBuf;
 
@@ -28,6 +29,16 @@ pub struct Settings {
     /// `/x`: debug output of text assignments.
     pub debug_pattern: Option<String>,
     pub lang: Lang,
+    /// The controller the programs are written for (`reference`: byte-identical to
+    /// PathDxf2GCode).
+    pub dialect: Dialect,
+    /// Feed of plunges in the `linuxcnc` and `grbl` dialects; `None`: half the feed of the
+    /// element (a set value is never faster than the element's feed either).
+    pub plunge_feed: Option<f64>,
+    /// Spindle speed (`linuxcnc`, `grbl`): `M3 S…` before the first move, `M5` at the end.
+    pub spindle_rpm: Option<f64>,
+    /// Seconds to wait after the spindle start (`G4 P…`; 0: no wait).
+    pub spindle_dwell: f64,
 }
 
 impl Default for Settings {
@@ -44,6 +55,10 @@ impl Default for Settings {
             restrictions: Vec::new(),
             debug_pattern: None,
             lang: Lang::En,
+            dialect: Dialect::Reference,
+            plunge_feed: None,
+            spindle_rpm: None,
+            spindle_dwell: DEFAULT_SPINDLE_DWELL,
         }
     }
 }
@@ -58,9 +73,13 @@ impl Settings {
             ("sweep_height", self.sweep_height),
         ];
         values.extend(self.probe_feed.map(|z| ("probe_feed", z)));
-        values
+        values.extend(self.plunge_feed.map(|v| ("plunge_feed", v)));
+        values.extend(self.spindle_rpm.map(|v| ("spindle_rpm", v)));
+        values.push(("spindle_dwell", self.spindle_dwell));
+        let finite = |v: f64| v.is_finite() && v.abs() <= MAX_MAGNITUDE;
+        let mut errors: Vec<Diagnostic> = values
             .into_iter()
-            .filter(|(_, v)| !(v.is_finite() && v.abs() <= MAX_MAGNITUDE))
+            .filter(|(_, v)| !finite(*v))
             .map(|(name, v)| {
                 Diagnostic::error(
                     Msg::SettingNotFinite,
@@ -68,7 +87,29 @@ impl Settings {
                     args![name, v, MAX_MAGNITUDE],
                 )
             })
-            .collect()
+            .collect();
+        // the controller settings must also make sense as what they are
+        let positive = [
+            ("plunge_feed", self.plunge_feed),
+            ("spindle_rpm", self.spindle_rpm),
+        ];
+        for (name, v) in positive {
+            if let Some(v) = v.filter(|v| finite(*v) && *v <= 0.0) {
+                errors.push(Diagnostic::error(
+                    Msg::MustBePositive,
+                    Origin::Options,
+                    args![name, crate::params::fmt_num(v)],
+                ));
+            }
+        }
+        if finite(self.spindle_dwell) && self.spindle_dwell < 0.0 {
+            errors.push(Diagnostic::error(
+                Msg::OptionNegative,
+                Origin::Options,
+                args!["spindle_dwell", crate::params::fmt_num(self.spindle_dwell)],
+            ));
+        }
+        errors
     }
     pub fn probe_feed(&self) -> f64 {
         match self.probe_feed {

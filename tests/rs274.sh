@@ -1,0 +1,106 @@
+#!/usr/bin/env bash
+# LinuxCNC's interpreter (rs274, Debian package linuxcnc-uspace) runs every program we write
+# in the `linuxcnc` dialect without an error: the examples and every shared drawing that
+# compiles alone (../shared/conformance/fixtures and ../shared/samples; skipped when absent).
+# Probed drawings are also taken through adjust-z (probes measured at their nominal heights).
+# The same drawings in the `reference` dialect are reported, not failed: the reference writes
+# F150 before G94, which resets the feed in LinuxCNC, so a first plunge has no feed.
+# A negative check proves rs274 really rejects such a program. Last line: N passed, M failed.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+if ! command -v rs274 >/dev/null; then
+  apt-get update -q && DEBIAN_FRONTEND=noninteractive apt-get install -y -q linuxcnc-uspace >/dev/null
+fi
+if [ -z "${MILLPATH_BIN:-}" ]; then
+  cargo build --release --quiet -p millpath-cli || exit 1
+fi
+BIN=${MILLPATH_BIN:-${CARGO_TARGET_DIR:-$PWD/target}/release/millpath}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+shared=../shared
+[ -d "$shared/conformance/fixtures" ] || shared=
+
+# rs274_ok FILE: rs274 (batch mode, stdin closed, stop at the first error) runs FILE to its
+# end with exit status 0 and prints nothing on stderr but its "executing" banner. What it
+# complained about is left in $why.
+rs274_ok() {
+  local err status
+  err=$(cd "$(dirname "$1")" && timeout 60 rs274 -g "$(basename "$1")" </dev/null 2>&1 >/dev/null)
+  status=$?
+  why=$(printf '%s\n' "$err" | grep -v '^executing$' | head -3 | sed 's/^/      /')
+  [ "$status" -eq 0 ] && [ -z "$why" ]
+}
+
+# compile_all DIALECT: compiles the drawings into $tmp/DIALECT; prints the programs written.
+compile_all() {
+  local d=$1 out=$tmp/$1 f
+  mkdir -p "$out"/plate "$out"/text "$out"/fixtures "$out"/samples
+  # drawings and settings only (no programs left over from earlier runs)
+  cp examples/plate/*.dxf examples/plate/millpath.toml "$out/plate/"
+  cp examples/text/*.mpath examples/text/millpath.toml "$out/text/"
+  if [ -n "$shared" ]; then
+    cp "$shared"/conformance/fixtures/*.dxf "$out/fixtures/"
+    cp "$shared"/samples/*.dxf "$out/samples/"
+  fi
+  for f in "$out"/plate/*.dxf "$out"/text/*.mpath; do
+    # the examples carry their machine settings (millpath.toml) and must compile
+    "$BIN" compile --dialect "$d" "$f" >/dev/null 2>&1 || echo "COMPILE-FAILED $f"
+  done
+  for f in "$out"/fixtures/*.dxf "$out"/samples/*.dxf; do
+    [ -e "$f" ] || continue
+    # a drawing that does not compile alone (several paths, errors) writes nothing: skipped
+    "$BIN" compile --dialect "$d" --feed 150 --sweep-speed 500 --sweep-height 15 "$f" \
+      >/dev/null 2>&1 || true
+  done
+  # probed drawings: every probe measured at its nominal height, then adjust-z
+  for f in "$out"/*/*_Z.txt; do
+    [ -e "$f" ] || continue
+    sed -i -E 's|/T=([-0-9.]+)\) (#[0-9]+)=$|/T=\1) \2=\1|' "$f"
+    "$BIN" adjust-z --max 0.5 "${f%_Z.txt}_Clean.gcode" >/dev/null 2>&1 ||
+      echo "COMPILE-FAILED adjust-z ${f%_Z.txt}_Clean.gcode"
+  done
+  find "$out" -name '*_Milling.gcode' -o -name '*_Clean.gcode' -o -name '*_Probing.gcode' | sort
+}
+
+passed=0
+failed=0
+programs=$(compile_all linuxcnc)
+while IFS= read -r p; do
+  [ -n "$p" ] || continue
+  case $p in
+  COMPILE-FAILED*)
+    echo "FAIL  ${p#COMPILE-FAILED } failed in the linuxcnc dialect"
+    failed=$((failed + 1))
+    continue
+    ;;
+  esac
+  if rs274_ok "$p"; then
+    passed=$((passed + 1))
+  else
+    echo "FAIL  linuxcnc ${p#"$tmp"/linuxcnc/}"
+    printf '%s\n' "$why"
+    failed=$((failed + 1))
+  fi
+done <<<"$programs"
+
+# the reference dialect, for comparison (reported, not failed)
+ref_ok=0
+ref_bad=0
+while IFS= read -r p; do
+  case $p in "" | COMPILE-FAILED*) continue ;; esac
+  if rs274_ok "$p"; then ref_ok=$((ref_ok + 1)); else ref_bad=$((ref_bad + 1)); fi
+done <<<"$(compile_all reference)"
+echo "reference dialect (for comparison): rs274 accepts $ref_ok, rejects $ref_bad programs"
+
+# negative check: the reference output of a drawing that plunges first must be rejected
+neg=$tmp/reference/plate/1234.1P_Milling.gcode
+if [ -f "$neg" ] && ! rs274_ok "$neg"; then
+  passed=$((passed + 1))
+else
+  echo "FAIL  negative check: rs274 accepted the reference output of examples/plate/1234.1P.dxf"
+  failed=$((failed + 1))
+fi
+
+[ -n "$shared" ] || echo "(../shared is absent: only the examples were compiled)"
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
