@@ -31,7 +31,7 @@ q() { printf '%q ' "$@"; } # one shell-quoted command line
 echo "== ${#files[@]} shared drawings, $RUNS runs each, $(nproc) cores"
 "$tok" "${files[@]}"
 python3 bench/ezdxf_read.py "${files[@]}" 2>/dev/null
-python3 bench/timeit.py -n "$RUNS" --warmup 1 \
+python3 bench/timecmds.py -n "$RUNS" --warmup 1 \
   --ratio 'check/tokenizer:<=2' --ratio 'ezdxf/check:>=40' \
   "check=$(q "$bin" check --quiet "${files[@]}")" \
   "tokenizer=$(q "$tok" "${files[@]}")" \
@@ -45,7 +45,7 @@ trap 'rm -rf "$work"' EXIT
 n=$(find "$work" -name '*.dxf' | wc -l)
 echo
 echo "== check over $COPIES copies of the shared drawings ($n files)"
-python3 bench/timeit.py -n "$(( (RUNS + 1) / 2 ))" --warmup 1 --ratio '1-worker/all-cores' \
+python3 bench/timecmds.py -n "$(( (RUNS + 1) / 2 ))" --warmup 1 --ratio '1-worker/all-cores' \
   "all-cores=$(q "$bin" check --quiet "$work")" \
   "1-worker=RAYON_NUM_THREADS=1 $(q "$bin" check --quiet "$work")"
 if [ -x /usr/bin/time ]; then

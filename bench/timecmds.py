@@ -5,7 +5,7 @@ For each: wall seconds (monotonic clock around start and reap) and cpu seconds (
 of the finished child, from wait4), as min / median / max. Ratios are medians of the ratios
 taken run by run.
 
-    timeit.py [-n RUNS] [--warmup N] [--ratio A/B[:TARGET]]... NAME=COMMAND...
+    timecmds.py [-n RUNS] [--warmup N] [--ratio A/B[:TARGET]]... NAME=COMMAND...
 
 COMMAND is run by /bin/sh; its output is thrown away. `--ratio check/tokenizer:<=2` prints
 the wall-time ratio of two named commands and, with a target, whether it is met.
