@@ -5,7 +5,7 @@
 //! ```sh
 //! cargo bench -p millpath-cli --bench check                 # everything
 //! cargo bench -p millpath-cli --bench check -- shared       # only the 38 shared drawings
-//! cargo bench -p millpath-cli --bench check -- chain_20000
+//! cargo bench -p millpath-cli --bench check -- 'chain_20000|short_chains'
 //! ```
 //!
 //! Cases: the shared drawings (`../shared/conformance/fixtures` and `../shared/samples`,
@@ -19,7 +19,7 @@
 #[path = "../../../bench/drawings.rs"]
 mod drawings;
 
-use criterion::{criterion_group, criterion_main, Criterion};
+use criterion::{criterion_group, criterion_main, Criterion, SamplingMode};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -59,16 +59,19 @@ fn bench_check(c: &mut Criterion, name: &str, inputs: &[PathBuf]) {
     }
     let mut g = c.benchmark_group("check");
     if first > Duration::from_millis(500) {
+        // slow cases: 10 samples of one run each (flat: runs per sample = ⌈time / (10 · one run)⌉),
+        // no warm-up beyond the first run; criterion may say the samples take longer
         g.sample_size(10)
+            .sampling_mode(SamplingMode::Flat)
             .warm_up_time(Duration::from_millis(1))
-            .measurement_time(first.mul_f64(12.0));
+            .measurement_time(first.mul_f64(8.0));
     }
     g.bench_function(name, |b| b.iter(|| check(inputs)));
     g.finish();
 }
 
 /// Criterion filters by name only once the case runs; this skips generating and the first
-/// timed run of cases that are filtered out (`cargo bench … -- NAME`, a substring here).
+/// timed run of cases that are filtered out (`cargo bench … -- 'REGEX'`, as criterion does).
 fn c_filter_matches(name: &str) -> bool {
     const WITH_VALUE: &[&str] = &[
         "--save-baseline",
@@ -99,7 +102,13 @@ fn c_filter_matches(name: &str) -> bool {
         }
     }
     let id = format!("check/{name}");
-    filters.is_empty() || filters.iter().any(|f| id.contains(f.as_str()))
+    let exact = std::env::args().any(|a| a == "--exact");
+    filters.is_empty()
+        || filters.iter().any(|f| match regex::Regex::new(f) {
+            _ if exact => id == *f,
+            Ok(re) => re.is_match(&id),
+            Err(_) => id.contains(f.as_str()),
+        })
 }
 
 fn shared_drawings() -> Option<Vec<PathBuf>> {
