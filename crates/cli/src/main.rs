@@ -129,6 +129,9 @@ enum Command {
         machine: MachineArgs,
         #[arg(long, value_enum, default_value = "human")]
         format: Format,
+        /// No progress bar (it is shown only on a terminal, for many files)
+        #[arg(long, short = 'q')]
+        quiet: bool,
         #[arg(required = true)]
         paths: Vec<PathBuf>,
     },
@@ -237,8 +240,9 @@ fn main() -> ExitCode {
         Command::Check {
             machine,
             format,
+            quiet,
             paths,
-        } => run_check(&machine, format, &paths),
+        } => run_check(&machine, format, quiet, &paths),
         Command::Verify {
             dialect,
             top,
@@ -542,7 +546,70 @@ fn is_drawing(f: &Path) -> bool {
         || millpath_core::load::fs::is_text_file(f)
 }
 
-fn run_check(m: &MachineArgs, format: Format, paths: &[PathBuf]) -> u8 {
+/// What checking one file gives: its progress lines and its diagnostics, in order.
+struct FileCheck {
+    info: Vec<String>,
+    diags: Vec<Diagnostic>,
+}
+
+/// The session that checks one file. Each file gets its own (files are checked on their own,
+/// like separate lint targets), built inside the worker thread that checks the file.
+fn check_session<'a>(
+    settings: &Settings,
+    fs: &'a OsFileSystem,
+) -> Result<Session<'a>, Vec<Diagnostic>> {
+    Session::new(settings.clone(), fs)
+}
+
+/// Checks one file in a session of its own.
+fn check_file(settings: &Settings, input: &Path) -> Result<FileCheck, Vec<Diagnostic>> {
+    let fs = OsFileSystem;
+    let mut session = check_session(settings, &fs)?;
+    compile_file(&mut session, input, &banner());
+    Ok(FileCheck {
+        info: std::mem::take(&mut session.info),
+        diags: std::mem::take(&mut session.diags.list),
+    })
+}
+
+/// From this many files on, `check` shows a progress bar (on a terminal, without `--quiet`).
+const PROGRESS_MIN_FILES: usize = 50;
+
+/// Checks every input on all cores; the results come back in input order.
+fn check_all(
+    settings: &Settings,
+    inputs: &[PathBuf],
+    quiet: bool,
+) -> Vec<Result<FileCheck, Vec<Diagnostic>>> {
+    use rayon::prelude::*;
+    use std::io::IsTerminal;
+    let bar = if !quiet && inputs.len() >= PROGRESS_MIN_FILES && std::io::stderr().is_terminal() {
+        let bar = indicatif::ProgressBar::new(inputs.len() as u64);
+        if let Ok(style) = indicatif::ProgressStyle::with_template(
+            "{bar:40} {pos}/{len} files  {elapsed_precise} (eta {eta})",
+        ) {
+            bar.set_style(style);
+        }
+        bar
+    } else {
+        indicatif::ProgressBar::hidden()
+    };
+    let one = |input: &PathBuf| {
+        let r = check_file(settings, input);
+        bar.inc(1);
+        r
+    };
+    // Workers get the main thread's usual 8 MiB stack, so that a drawing checks on a worker
+    // exactly as it would on the main thread.
+    let results = match rayon::ThreadPoolBuilder::new().stack_size(8 << 20).build() {
+        Ok(pool) => pool.install(|| inputs.par_iter().map(one).collect()),
+        Err(_) => inputs.iter().map(one).collect(),
+    };
+    bar.finish_and_clear();
+    results
+}
+
+fn run_check(m: &MachineArgs, format: Format, quiet: bool, paths: &[PathBuf]) -> u8 {
     let mut inputs = Vec::new();
     collect_files(paths, is_drawing, &mut inputs);
     let mut settings = match settings_for(m, inputs.first().map(PathBuf::as_path), false) {
@@ -554,22 +621,23 @@ fn run_check(m: &MachineArgs, format: Format, paths: &[PathBuf]) -> u8 {
     };
     settings.check = true;
     let lang = settings.lang;
-    let fs = OsFileSystem;
     let mut all = Vec::new();
-    // One session per file: each file is checked on its own, like separate lint targets.
-    for input in &inputs {
-        let mut session = match Session::new(settings.clone(), &fs) {
-            Ok(s) => s,
+    // Printed in input order, whatever order the workers finished in.
+    for result in check_all(&settings, &inputs, quiet) {
+        match result {
+            Ok(file) => {
+                if format == Format::Human {
+                    for line in file.info {
+                        eprintln!("{line}");
+                    }
+                }
+                all.extend(file.diags);
+            }
             Err(errs) => {
                 print_human(&errs, lang);
                 return 2;
             }
-        };
-        compile_file(&mut session, input, &banner());
-        if format == Format::Human {
-            flush_info(&mut session);
         }
-        all.extend(session.diags.list);
     }
     let errors = all.iter().filter(|d| d.severity == Severity::Error).count();
     match format {
