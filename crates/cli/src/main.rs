@@ -328,6 +328,9 @@ fn print_stats(outcome: &millpath_core::FileOutcome, lang: Lang) {
         let l = s.lines(lang);
         eprintln!("  {};  {};", l[0], l[1]);
         eprintln!("  {};  {};  {};", l[2], l[3], l[4]);
+        if let Some(m) = s.model_line(lang) {
+            eprintln!("  {m}");
+        }
     }
 }
 

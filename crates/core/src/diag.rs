@@ -267,6 +267,7 @@ messages! {
     TooManyMoves = "The program would have more than {0} moves", "Das Programm hätte mehr als {0} Bewegungen";
     MoveOutOfRange = "The program would move to {0}, outside ±{1} mm (values add up: T, O, S, H, subpath placement)", "Das Programm würde nach {0} fahren, außerhalb von ±{1} mm (Werte addieren sich: T, O, S, H, Teilpfad-Lage)";
     SecondOpinion = "Second opinion on the G-code, line {0} '{1}': {2}", "Zweite Meinung zum G-Code, Zeile {0} '{1}': {2}";
+    MachineNeedsAcceleration = "max_velocity needs max_acceleration: the time estimates use both", "max_velocity braucht max_acceleration: die Zeitschätzung verwendet beide";
     SettingNotFinite = "Setting {0}={1} must be a finite number within ±{2}", "Einstellung {0}={1} muss eine endliche Zahl innerhalb von ±{2} sein";
     // adjust-z safety
     MaxInvalid = "{0} value {1} must be a finite number > 0 and at most 1000000", "{0}-Wert {1} muss eine endliche Zahl > 0 und höchstens 1000000 sein";

@@ -6,6 +6,7 @@
 //! no `%` program delimiters — no `%` lines.
 
 use crate::emit::as_comment;
+use crate::emit::timing::Machine;
 use crate::front::drawing::Style;
 use crate::geom::{f3, P3};
 use crate::load::settings::Settings;
@@ -61,6 +62,8 @@ pub struct Controller {
     pub spindle_rpm: Option<f64>,
     /// Seconds to wait after the spindle start.
     pub spindle_dwell: f64,
+    /// Machine limits for the time estimates; `None`: the reference's time model.
+    pub machine: Option<Machine>,
 }
 
 impl Default for Controller {
@@ -77,6 +80,7 @@ impl Controller {
             plunge_feed: None,
             spindle_rpm: None,
             spindle_dwell: DEFAULT_SPINDLE_DWELL,
+            machine: None,
         }
     }
 
@@ -86,6 +90,7 @@ impl Controller {
             plunge_feed: s.plunge_feed,
             spindle_rpm: s.spindle_rpm,
             spindle_dwell: s.spindle_dwell,
+            machine: s.machine(),
         }
     }
 

@@ -22,6 +22,7 @@ pub mod motion;
 pub mod optimize;
 pub mod program;
 pub mod stats;
+pub mod timing;
 pub mod toolpath;
 
 pub use dialect::{Controller, Dialect};

@@ -5,7 +5,7 @@ use crate::emit::as_comment;
 use crate::emit::dialect::Controller;
 use crate::emit::stats::Stats;
 use crate::emit::{emit, Emitted};
-use crate::geom::{near, F3, P2};
+use crate::geom::{near, F3, P2, P3};
 use crate::model::*;
 
 /// The files of one compiled path.
@@ -38,7 +38,13 @@ pub fn check_for(
     sweep_speed: f64,
     ctl: &Controller,
 ) -> Result<Stats, Vec<Diagnostic>> {
-    Ok(Stats::of(&emit(model, true, ctl)?.items, sweep_speed))
+    let e = emit(model, true, ctl)?;
+    Ok(Stats::timed(
+        &e.items,
+        sweep_speed,
+        start(e.sx),
+        ctl.machine.as_ref(),
+    ))
 }
 
 /// Generates the G-code of a top-level model as the reference does. `Err` holds the errors
@@ -77,7 +83,7 @@ pub fn generate_for(
     } = emit(model, false, ctl)?;
     let s = model.params.s;
 
-    let stats = Stats::of(&items, sweep_speed);
+    let stats = Stats::timed(&items, sweep_speed, start(sx), ctl.machine.as_ref());
     let mut lines = ctl.prologue(banner, file_name, model, sx, true);
     let mut line_sources: Vec<Option<Origin>> = vec![None; lines.len()];
     line_sources.extend(
@@ -87,6 +93,7 @@ pub fn generate_for(
     );
     lines.extend(items.into_iter().map(|i| i.text));
     lines.extend(stats.lines(lang).iter().map(|l| format!("  ({l})")));
+    lines.extend(stats.model_line(lang).map(|l| format!("  ({l})")));
     lines.extend(ctl.epilogue(true));
     let body = join(&lines);
     if probes.is_empty() {
@@ -145,6 +152,15 @@ pub fn generate_for(
         stats,
         line_sources,
     })
+}
+
+/// Where the body's moves start: above the origin at the start height.
+fn start(sx: f64) -> P3 {
+    P3 {
+        x: 0.0,
+        y: 0.0,
+        z: sx,
+    }
 }
 
 fn join(lines: &[String]) -> String {

@@ -1,7 +1,12 @@
-//! Statistics: lengths, times and command count (reference-output.md §14).
+//! Statistics: lengths, times and command count (reference-output.md §14). The times are the
+//! reference's (length / F · 1.4) unless machine limits are set: then they come from the
+//! trapezoidal planner in `timing.rs`, and a sixth line names that model.
 
 use crate::diag::Lang;
+use crate::emit::timing::{plan, Machine};
 use crate::emit::{Item, Kind};
+use crate::geom::P3;
+use crate::params::fmt_num;
 
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Stats {
@@ -12,6 +17,8 @@ pub struct Stats {
     pub sweep: f64,
     pub sweep_min: f64,
     pub count: usize,
+    /// The machine limits the times were estimated with; `None`: the reference's model.
+    pub machine: Option<Machine>,
 }
 
 const TICKS_PER_MINUTE: f64 = 600_000_000.0;
@@ -41,6 +48,40 @@ impl Stats {
         s.drill_min *= 1.4;
         s.sweep_min *= 1.4;
         s
+    }
+
+    /// [`Stats::of`], with the times of the trapezoidal model when `machine` is set (the tool
+    /// starting at rest at `start`).
+    pub fn timed(items: &[Item], sweep_speed: f64, start: P3, machine: Option<&Machine>) -> Stats {
+        let mut s = Stats::of(items, sweep_speed);
+        if let Some(m) = machine {
+            let t = plan(items, start, m);
+            s.mill_min = t.mill / 60.0;
+            s.drill_min = t.drill / 60.0;
+            s.sweep_min = t.sweep / 60.0;
+            s.machine = Some(*m);
+        }
+        s
+    }
+
+    /// The line after the five naming the time model, e.g. `Time model: trapezoidal,
+    /// v=X5000/Y5000/Z1000 mm/min, a=X500/Y500/Z200 mm/s^2, G64 P0.05`; `None` for the
+    /// reference's model (whose output has five lines).
+    pub fn model_line(&self, lang: Lang) -> Option<String> {
+        let m = self.machine?;
+        let axes = |a: &crate::emit::timing::Axes| {
+            format!("X{}/Y{}/Z{}", fmt_num(a.x), fmt_num(a.y), fmt_num(a.z))
+        };
+        let label = match lang {
+            Lang::En => "Time model: trapezoidal",
+            Lang::De => "Zeitmodell: Trapez",
+        };
+        Some(format!(
+            "{label}, v={} mm/min, a={} mm/s^2, G64 P{}",
+            axes(&m.max_velocity),
+            axes(&m.max_acceleration),
+            fmt_num(m.path_tolerance)
+        ))
     }
 
     /// The five statistics texts, e.g. `Fräslänge:     115 mm   ca.  2 min`.
@@ -95,6 +136,7 @@ mod tests {
             sweep: 65.99,
             sweep_min: 65.99 / 500.0 * 1.4,
             count: 8,
+            machine: None,
         };
         let de = s.lines(Lang::De);
         assert_eq!(de[0], "Fräslänge:     115 mm   ca.  2 min");

@@ -2,6 +2,7 @@
 //! the file is the caller's (the CLI walks the file system, the language server its view).
 
 use crate::emit::dialect::Dialect;
+use crate::emit::timing::Axes;
 use crate::Settings;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
@@ -29,6 +30,35 @@ pub struct FileConfig {
     pub plunge_feed: Option<f64>,
     pub spindle_rpm: Option<f64>,
     pub spindle_dwell: Option<f64>,
+    /// `[machine]`: limits for the time estimates.
+    pub machine: Option<MachineConfig>,
+}
+
+/// `[machine]`: `max_velocity` (mm/min) and `max_acceleration` (mm/s²), each one number for
+/// every axis or `{ x = …, y = …, z = … }`, and `path_tolerance` (G64 P, mm).
+#[derive(Debug, Default, Deserialize, Clone, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct MachineConfig {
+    pub max_velocity: Option<AxesValue>,
+    pub max_acceleration: Option<AxesValue>,
+    pub path_tolerance: Option<f64>,
+}
+
+/// One number for every axis, or one per axis.
+#[derive(Debug, Deserialize, Clone, Copy, PartialEq)]
+#[serde(untagged)]
+pub enum AxesValue {
+    All(f64),
+    Each(Axes),
+}
+
+impl AxesValue {
+    pub fn axes(self) -> Axes {
+        match self {
+            AxesValue::All(v) => Axes::all(v),
+            AxesValue::Each(a) => a,
+        }
+    }
 }
 
 /// Parses a settings file; relative search directories are taken relative to `base_dir`.
@@ -83,6 +113,17 @@ impl FileConfig {
         }
         if let Some(v) = self.spindle_dwell {
             s.spindle_dwell = v;
+        }
+        if let Some(m) = &self.machine {
+            if let Some(v) = m.max_velocity {
+                s.max_velocity = Some(v.axes());
+            }
+            if let Some(a) = m.max_acceleration {
+                s.max_acceleration = Some(a.axes());
+            }
+            if let Some(p) = m.path_tolerance {
+                s.path_tolerance = p;
+            }
         }
     }
 }

@@ -4,6 +4,7 @@ use crate::args;
 use crate::diag::Lang;
 use crate::diag::{Diagnostic, Msg, Origin};
 use crate::emit::dialect::{Dialect, DEFAULT_SPINDLE_DWELL};
+use crate::emit::timing::{Axes, Machine, DEFAULT_PATH_TOLERANCE};
 use crate::params::MAX_MAGNITUDE;
 use std::path::PathBuf;
 
@@ -39,6 +40,13 @@ pub struct Settings {
     pub spindle_rpm: Option<f64>,
     /// Seconds to wait after the spindle start (`G4 P…`; 0: no wait).
     pub spindle_dwell: f64,
+    /// Maximum velocity per axis (mm/min) for the time estimates; `None`: `/v` on every axis.
+    pub max_velocity: Option<Axes>,
+    /// MAX_ACCELERATION per axis (mm/s²). Set: the statistics use the trapezoidal time model
+    /// (`emit/timing.rs`); `None`: the reference's model.
+    pub max_acceleration: Option<Axes>,
+    /// G64 P (mm): how far a blended corner may leave the path, for the time estimates.
+    pub path_tolerance: f64,
 }
 
 impl Default for Settings {
@@ -59,6 +67,9 @@ impl Default for Settings {
             plunge_feed: None,
             spindle_rpm: None,
             spindle_dwell: DEFAULT_SPINDLE_DWELL,
+            max_velocity: None,
+            max_acceleration: None,
+            path_tolerance: DEFAULT_PATH_TOLERANCE,
         }
     }
 }
@@ -76,6 +87,8 @@ impl Settings {
         values.extend(self.plunge_feed.map(|v| ("plunge_feed", v)));
         values.extend(self.spindle_rpm.map(|v| ("spindle_rpm", v)));
         values.push(("spindle_dwell", self.spindle_dwell));
+        let machine = self.machine_values();
+        values.extend(machine.iter().cloned());
         let finite = |v: f64| v.is_finite() && v.abs() <= MAX_MAGNITUDE;
         let mut errors: Vec<Diagnostic> = values
             .into_iter()
@@ -89,10 +102,11 @@ impl Settings {
             })
             .collect();
         // the controller settings must also make sense as what they are
-        let positive = [
+        let mut positive = vec![
             ("plunge_feed", self.plunge_feed),
             ("spindle_rpm", self.spindle_rpm),
         ];
+        positive.extend(machine.iter().map(|(name, v)| (*name, Some(*v))));
         for (name, v) in positive {
             if let Some(v) = v.filter(|v| finite(*v) && *v <= 0.0) {
                 errors.push(Diagnostic::error(
@@ -109,8 +123,51 @@ impl Settings {
                 args!["spindle_dwell", crate::params::fmt_num(self.spindle_dwell)],
             ));
         }
+        if self.max_velocity.is_some() && self.max_acceleration.is_none() {
+            errors.push(Diagnostic::error(
+                Msg::MachineNeedsAcceleration,
+                Origin::Options,
+                vec![],
+            ));
+        }
         errors
     }
+
+    /// The machine limits as named values (`max_velocity.x` …, `path_tolerance`).
+    fn machine_values(&self) -> Vec<(&'static str, f64)> {
+        let mut v = Vec::new();
+        if let Some(a) = self.max_velocity {
+            v.extend(
+                ["max_velocity.x", "max_velocity.y", "max_velocity.z"]
+                    .into_iter()
+                    .zip(a.values().map(|(_, v)| v)),
+            );
+        }
+        if let Some(a) = self.max_acceleration {
+            v.extend(
+                [
+                    "max_acceleration.x",
+                    "max_acceleration.y",
+                    "max_acceleration.z",
+                ]
+                .into_iter()
+                .zip(a.values().map(|(_, v)| v)),
+            );
+        }
+        v.push(("path_tolerance", self.path_tolerance));
+        v
+    }
+
+    /// The machine limits of the time estimates: set when `max_acceleration` is (the maximum
+    /// velocity defaults to `/v` on every axis).
+    pub fn machine(&self) -> Option<Machine> {
+        Some(Machine {
+            max_acceleration: self.max_acceleration?,
+            max_velocity: self.max_velocity.unwrap_or(Axes::all(self.sweep_speed)),
+            path_tolerance: self.path_tolerance,
+        })
+    }
+
     pub fn probe_feed(&self) -> f64 {
         match self.probe_feed {
             Some(z) if z > 0.0 => z,

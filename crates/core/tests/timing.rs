@@ -1,0 +1,398 @@
+//! Time estimates with machine limits (`emit/timing.rs`): programs of a few moves against
+//! velocity profiles computed by hand from the formulas (the arithmetic is in the comments;
+//! no number here was taken from the code), the statistics lines, and the model line of a
+//! compiled program.
+//!
+//! Unless a test says otherwise: MAX_ACCELERATION 500 mm/s² on every axis, so each phase
+//! accelerates with A = 250 mm/s²; maximum velocity 6000 mm/min = 100 mm/s on every axis;
+//! G64 P0.05.
+
+mod support;
+
+use millpath_core::diag::{Lang, Msg};
+use millpath_core::emit::stats::Stats;
+use millpath_core::emit::timing::{Axes, Machine};
+use millpath_core::emit::{Item, Kind, Target};
+use millpath_core::geom::{P2, P3};
+use millpath_core::Settings;
+use support::*;
+
+fn machine() -> Machine {
+    Machine {
+        max_velocity: Axes::all(6000.0),
+        max_acceleration: Axes::all(500.0),
+        path_tolerance: 0.05,
+    }
+}
+
+const ORIGIN: P3 = P3 {
+    x: 0.0,
+    y: 0.0,
+    z: 0.0,
+};
+
+fn item(kind: Kind, len: f64, feed: f64, target: Target) -> Item {
+    Item {
+        kind,
+        text: String::new(),
+        len,
+        feed,
+        target,
+        source: None,
+    }
+}
+
+/// A cut in the XY plane at Z0 from the previous point to (x, y); `len` is its length.
+fn cut(x: f64, y: f64, len: f64, feed: f64) -> Item {
+    item(
+        Kind::Mill,
+        len,
+        feed,
+        Target {
+            x: Some(x),
+            y: Some(y),
+            z: Some(0.0),
+            arc: None,
+        },
+    )
+}
+
+fn xy(x: f64, y: f64) -> Target {
+    Target {
+        x: Some(x),
+        y: Some(y),
+        ..Target::default()
+    }
+}
+
+fn stats(items: &[Item], m: &Machine) -> Stats {
+    Stats::timed(items, 500.0, ORIGIN, Some(m))
+}
+
+/// Seconds of milling.
+fn mill_seconds(items: &[Item], m: &Machine) -> f64 {
+    stats(items, m).mill_min * 60.0
+}
+
+fn close(got: f64, want: f64) {
+    assert!(
+        (got - want).abs() <= 1e-6 * want.max(1.0),
+        "got {got}, want {want}"
+    );
+}
+
+#[test]
+fn a_long_line_reaches_the_feed() {
+    // L = 100 mm at F600 = 10 mm/s; critical distance v²/A = 100/250 = 0.4 mm ≤ 100:
+    // t = L/v + v/A = 100/10 + 10/250 = 10 + 0.04 = 10.04 s
+    close(
+        mill_seconds(&[cut(100.0, 0.0, 100.0, 600.0)], &machine()),
+        10.04,
+    );
+}
+
+#[test]
+fn a_short_line_never_reaches_the_feed() {
+    // L = 0.2 mm < v²/A = 0.4 mm: a triangle, t = 2·√(L/A) = 2·√(0.2/250) = 2·√0.0008
+    // = 2·0.0282842712 = 0.0565685425 s (the peak √(A·L) = √50 = 7.07 mm/s < 10)
+    close(
+        mill_seconds(&[cut(0.2, 0.0, 0.2, 600.0)], &machine()),
+        0.0565685425,
+    );
+}
+
+#[test]
+fn a_square_slows_down_at_its_three_corners() {
+    // 100 mm sides at F600 (v = 10 mm/s), from rest back to rest, three 90° corners.
+    // Corner: θ = 90°, c = cos 45° = 0.7071067812; blend radius r = P·c/(1 − c)
+    // = 0.05·0.7071067812/0.2928932188 = 0.1207106781 mm (its tangent points r·tan 45° =
+    // 0.12 mm from the corner ≪ 50 mm); corner speed vc = √(A·r) = √(250·0.1207106781)
+    // = √30.1776695 = 5.4934205673 mm/s < 10.
+    // Side 1 (0 → vc): accelerating 10/250 = 0.04 s over 100/500 = 0.2 mm; decelerating
+    // (10 − 5.4934205673)/250 = 0.0180263177 s over (100 − 30.1776695)/500 = 0.1396446609 mm;
+    // cruise (100 − 0.2 − 0.1396446609)/10 = 9.9660355339 s; t1 = 10.0240618516 s.
+    // Sides 2 and 3 (vc → vc): 2·0.0180263177 + (100 − 2·0.1396446609)/10
+    // = 0.0360526354 + 9.9720710678 = 10.0081237033 s. Side 4 (vc → 0) = t1.
+    // Total 2·10.0240618516 + 2·10.0081237033 = 40.0643711098 s.
+    let square = [
+        cut(100.0, 0.0, 100.0, 600.0),
+        cut(100.0, 100.0, 100.0, 600.0),
+        cut(0.0, 100.0, 100.0, 600.0),
+        cut(0.0, 0.0, 100.0, 600.0),
+    ];
+    close(mill_seconds(&square, &machine()), 40.0643711098);
+    // a tighter tolerance slows down more: P0.01 → r = 0.0241421356, vc = √6.0355339
+    // = 2.4567323635 mm/s, (10 − vc)/250 = 0.0301730705 s, (100 − vc²)/500 = 0.1879289322 mm;
+    // sides 2·(0.04 + 0.0301730705 + (100 − 0.2 − 0.1879289322)/10)
+    // + 2·(2·0.0301730705 + (100 − 2·0.1879289322)/10)
+    // = 2·(0.0701730705 + 9.9612071068) + 2·(0.0603461410 + 9.9624142136)
+    // = 2·10.0313801773 + 2·10.0227603546 = 40.1082810638 s
+    let tight = Machine {
+        path_tolerance: 0.01,
+        ..machine()
+    };
+    close(mill_seconds(&square, &tight), 40.1082810638);
+}
+
+#[test]
+fn collinear_pieces_do_not_slow_down() {
+    // ten 10 mm pieces on one straight line = one 100 mm line: 10.04 s (see above)
+    let pieces: Vec<Item> = (1..=10)
+        .map(|k| cut(10.0 * k as f64, 0.0, 10.0, 600.0))
+        .collect();
+    close(mill_seconds(&pieces, &machine()), 10.04);
+    // 100 pieces of 1 mm along a 45° diagonal: each from rest to rest would take
+    // 1/10 + 10/353.55 = 0.1283 s (12.83 s for all); blended straight on they make one line. F600 still rules (the axes allow 141 mm/s);
+    // the acceleration along the diagonal is A/cos 45° = 250/0.7071067812 = 353.5533906 mm/s²
+    // (each axis takes 250·0.7071 = 176.8 mm/s² ≤ 250): t = 100/10 + 10/353.5533906
+    // = 10 + 0.0282842712 = 10.0282842712 s
+    let s = std::f64::consts::FRAC_1_SQRT_2;
+    let diagonal: Vec<Item> = (1..=100)
+        .map(|k| cut(k as f64 * s, k as f64 * s, 1.0, 600.0))
+        .collect();
+    close(mill_seconds(&diagonal, &machine()), 10.0282842712);
+}
+
+#[test]
+fn an_arc_is_limited_by_its_centripetal_acceleration() {
+    // half circle R = 2 mm, counter-clockwise from (2, 0) to (−2, 0) around (0, 0), F3000
+    // (50 mm/s): v ≤ √(A·R) = √(250·2) = √500 = 22.3606797750 mm/s; L = π·2 = 6.2831853072 mm
+    // ≥ v²/A = 500/250 = 2 mm, so t = L/v + v/A = 6.2831853072/22.3606797750
+    // + 22.3606797750/250 = 0.2809925892 + 0.0894427191 = 0.3704353083 s
+    let start = P3 {
+        x: 2.0,
+        y: 0.0,
+        z: 0.0,
+    };
+    let arc = item(
+        Kind::Mill,
+        std::f64::consts::PI * 2.0,
+        3000.0,
+        Target {
+            x: Some(-2.0),
+            y: Some(0.0),
+            z: Some(0.0),
+            arc: Some((P2 { x: 0.0, y: 0.0 }, true)),
+        },
+    );
+    let s = Stats::timed(&[arc], 500.0, start, Some(&machine()));
+    close(s.mill_min * 60.0, 0.3704353083);
+}
+
+#[test]
+fn an_arc_continuing_a_line_tangentially_keeps_its_speed() {
+    // a 100 mm line along +X into a quarter circle R = 100 turning left (tangent at the
+    // joint), F600: the arc's limit √(250·100) = 158 mm/s is above 10 mm/s, so the path
+    // behaves like one 100 + 50π = 257.0796326795 mm move: t = 25.7079632679 + 0.04
+    // = 25.7479632679 s
+    let arc = item(
+        Kind::Mill,
+        50.0 * std::f64::consts::PI,
+        600.0,
+        Target {
+            x: Some(200.0),
+            y: Some(100.0),
+            z: Some(0.0),
+            arc: Some((P2 { x: 100.0, y: 100.0 }, true)),
+        },
+    );
+    close(
+        mill_seconds(&[cut(100.0, 0.0, 100.0, 600.0), arc], &machine()),
+        25.7479632679,
+    );
+}
+
+#[test]
+fn sweeps_and_plunges_use_the_axis_limits() {
+    let m = Machine {
+        max_velocity: Axes {
+            x: 6000.0,
+            y: 3000.0,
+            z: 300.0,
+        },
+        max_acceleration: Axes {
+            x: 500.0,
+            y: 500.0,
+            z: 200.0,
+        },
+        path_tolerance: 0.05,
+    };
+    // a 1000 mm sweep along X at V_x = 100 mm/s: 1000/100 + 100/250 = 10.4 s
+    let along_x = item(Kind::HSweep, 1000.0, 0.0, xy(1000.0, 0.0));
+    close(
+        Stats::timed(&[along_x], 500.0, ORIGIN, Some(&m)).sweep_min * 60.0,
+        10.4,
+    );
+    // a 45° sweep of 100 mm: X may go 100/0.7071 = 141.4 mm/s, Y only 50/0.7071
+    // = 70.7106781187 mm/s; both axes accelerate with 250 mm/s², so along the move
+    // A = 250/0.7071067812 = 353.5533906 mm/s²; L ≥ v²/A = 5000/353.55 = 14.1 mm:
+    // t = 100/70.7106781187 + 70.7106781187/353.5533906 = 1.4142135624 + 0.2
+    // = 1.6142135624 s
+    let d = 100.0 * std::f64::consts::FRAC_1_SQRT_2;
+    let diagonal = item(Kind::HSweep, 100.0, 0.0, xy(d, d));
+    close(
+        Stats::timed(&[diagonal], 500.0, ORIGIN, Some(&m)).sweep_min * 60.0,
+        1.6142135624,
+    );
+    // a 5 mm plunge at F600 (10 mm/s) but V_z = 5 mm/s, A_z = 100 mm/s²: v²/A = 0.25 ≤ 5:
+    // t = 5/5 + 5/100 = 1.05 s
+    let plunge = item(
+        Kind::Drill,
+        5.0,
+        600.0,
+        Target {
+            z: Some(-5.0),
+            ..Target::default()
+        },
+    );
+    close(
+        Stats::timed(&[plunge], 500.0, ORIGIN, Some(&m)).drill_min * 60.0,
+        1.05,
+    );
+}
+
+#[test]
+fn a_change_between_sweep_and_cut_is_a_stop() {
+    // a 100 mm sweep along X (100 mm/s: 1 + 0.4 = 1.4 s) then a 100 mm cut straight on at
+    // F600 (10.04 s): no blend between G00 and G01, each from rest to rest
+    let sweep = item(Kind::HSweep, 100.0, 0.0, xy(100.0, 0.0));
+    let s = stats(&[sweep, cut(200.0, 0.0, 100.0, 600.0)], &machine());
+    close(s.sweep_min * 60.0, 1.4);
+    close(s.mill_min * 60.0, 10.04);
+}
+
+#[test]
+fn totals_and_minutes_are_formatted_as_before() {
+    // 3000 mm at F600: 300 + 0.04 = 300.04 s = 5.0006666667 min → ceil 6 (the reference's
+    // model: 3000/600·1.4 = 7 min)
+    let items = [cut(3000.0, 0.0, 3000.0, 600.0)];
+    let s = stats(&items, &machine());
+    let en = s.lines(Lang::En);
+    assert_eq!(en[0], "Milling length:  3000 mm   ca.  6 min");
+    assert_eq!(en[2], "Sweeps:          0 mm   ca.  0 min");
+    assert_eq!(en[3], "Sum:          3000 mm   ca.  6 min");
+    assert_eq!(en[4], "Command count: 1");
+    assert_eq!(
+        s.model_line(Lang::En).unwrap(),
+        "Time model: trapezoidal, v=X6000/Y6000/Z6000 mm/min, a=X500/Y500/Z500 mm/s^2, G64 P0.05"
+    );
+    assert_eq!(
+        s.model_line(Lang::De).unwrap(),
+        "Zeitmodell: Trapez, v=X6000/Y6000/Z6000 mm/min, a=X500/Y500/Z500 mm/s^2, G64 P0.05"
+    );
+    let reference = Stats::timed(&items, 500.0, ORIGIN, None);
+    assert_eq!(reference, Stats::of(&items, 500.0));
+    assert_eq!(
+        reference.lines(Lang::En)[0],
+        "Milling length:  3000 mm   ca.  7 min"
+    );
+    assert_eq!(reference.model_line(Lang::En), None);
+}
+
+/// T2, I1.2, B−0.3, S5: a 20 mm line milled in two passes.
+const LINE: &str = "path 1000.1P {
+  start (0, 0)  O2 T2 I1,2 B-0,3 S5
+  end (20, 0)
+  mill (0, 0) -> (20, 0)
+}
+";
+
+fn program(settings: Settings) -> String {
+    let run = compile_with(&[("1000.1P.mpath", LINE.into())], "1000.1P.mpath", settings);
+    assert!(run.diags.is_empty(), "{:?}", run.messages());
+    run.output("_Milling.gcode").to_string()
+}
+
+#[test]
+fn a_compiled_program_names_its_time_model() {
+    let plain = program(settings());
+    assert!(!plain.contains("Time model"), "{plain}");
+    let timed = program(Settings {
+        max_acceleration: Some(Axes {
+            x: 500.0,
+            y: 500.0,
+            z: 200.0,
+        }),
+        ..settings()
+    });
+    // the five lines, then the model (the velocity defaults to /v on every axis), then M30
+    let lines: Vec<&str> = timed.lines().collect();
+    let at = lines
+        .iter()
+        .position(|l| l.starts_with("  (Command count:"))
+        .unwrap();
+    assert_eq!(
+        lines[at + 1],
+        "  (Time model: trapezoidal, v=X500/Y500/Z500 mm/min, a=X500/Y500/Z200 mm/s^2, G64 P0.05)"
+    );
+    assert_eq!(lines[at + 2], "M30");
+    // everything above the statistics times is the same program
+    let cut = |p: &str| p[..p.find("  (Milling length:").unwrap()].to_string();
+    assert_eq!(cut(&plain), cut(&timed));
+}
+
+#[test]
+fn machine_settings_are_checked() {
+    let bad = Settings {
+        max_velocity: Some(Axes {
+            x: 5000.0,
+            y: 0.0,
+            z: f64::NAN,
+        }),
+        path_tolerance: -1.0,
+        ..settings()
+    };
+    let errors: Vec<Msg> = bad.number_errors().iter().map(|d| d.msg).collect();
+    assert!(errors.contains(&Msg::SettingNotFinite), "{errors:?}");
+    assert_eq!(
+        errors.iter().filter(|m| **m == Msg::MustBePositive).count(),
+        2,
+        "{errors:?}"
+    );
+    assert!(
+        errors.contains(&Msg::MachineNeedsAcceleration),
+        "{errors:?}"
+    );
+    assert!(Settings::default().number_errors().is_empty());
+    assert_eq!(Settings::default().machine(), None);
+}
+
+#[test]
+fn millpath_toml_machine_table() {
+    use millpath_core::load::config::{parse, Have};
+    use std::path::Path;
+    let cfg = parse(
+        "feed = 150\n[machine]\nmax_velocity = { x = 5000, y = 5000, z = 1000 }\nmax_acceleration = 400\npath_tolerance = 0.02\n",
+        Path::new("."),
+    )
+    .unwrap();
+    let mut s = Settings::default();
+    cfg.apply(&mut s, &mut Have::default());
+    assert_eq!(
+        s.machine(),
+        Some(Machine {
+            max_velocity: Axes {
+                x: 5000.0,
+                y: 5000.0,
+                z: 1000.0
+            },
+            max_acceleration: Axes::all(400.0),
+            path_tolerance: 0.02,
+        })
+    );
+    // unknown axes and keys are errors with their line
+    let e = parse(
+        "[machine]\nmax_velocity = { x = 1, y = 2, w = 3 }\n",
+        Path::new("."),
+    )
+    .unwrap_err();
+    assert!(e.contains("line 2"), "{e}");
+    let e = parse("[machine]\nmax_accel = 3\n", Path::new(".")).unwrap_err();
+    assert!(e.contains("max_accel"), "{e}");
+    // without the table nothing changes
+    let mut s = Settings::default();
+    parse("feed = 150\n", Path::new("."))
+        .unwrap()
+        .apply(&mut s, &mut Have::default());
+    assert_eq!(s.machine(), None);
+}
