@@ -30,14 +30,22 @@ pub struct Workspace {
     pub utf8: bool,
 }
 
-/// The file system as the editor sees it: open buffers over the disk.
+/// The file system as the editor sees it: open text buffers over the disk. A DXF drawing is
+/// always read from the disk (an editor's text of it is decoded from its code page and no
+/// longer the drawing's bytes).
 pub struct WorkspaceFs<'a> {
     overlays: &'a HashMap<PathBuf, String>,
 }
 
+impl WorkspaceFs<'_> {
+    fn overlay(&self, path: &Path) -> Option<&String> {
+        self.overlays.get(path).filter(|_| is_text_file(path))
+    }
+}
+
 impl FileSystem for WorkspaceFs<'_> {
     fn read(&self, path: &Path) -> std::io::Result<Vec<u8>> {
-        match self.overlays.get(path) {
+        match self.overlay(path) {
             Some(t) => Ok(t.clone().into_bytes()),
             None => std::fs::read(path),
         }
@@ -58,7 +66,7 @@ impl FileSystem for WorkspaceFs<'_> {
     }
     fn stamp(&self, path: &Path) -> Option<millpath_core::load::parse_cache::FileStamp> {
         use millpath_core::load::parse_cache::FileStamp;
-        match self.overlays.get(path) {
+        match self.overlay(path) {
             Some(t) => Some(FileStamp::of_contents(t.as_bytes())),
             None => FileStamp::of_disk_file(path),
         }
@@ -326,6 +334,8 @@ pub fn analyze_with(ws: &Workspace, path: &Path, cancelled: &dyn Fn() -> bool) -
         .collect();
     let mut deps = fs.files.into_inner().unwrap_or_default();
     deps.remove(path);
+    // the settings: any `millpath.toml` above the file
+    deps.extend(path.ancestors().skip(1).map(|d| d.join(config::FILE_NAME)));
     let dirs = fs.dirs.into_inner().unwrap_or_default();
     Some(Analysis {
         path: path.to_path_buf(),

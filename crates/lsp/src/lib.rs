@@ -384,6 +384,10 @@ impl Backend {
         let mut todo = Vec::new();
         if let Ok(mut st) = self.state.lock() {
             for c in changed {
+                // an open drawing is read from the disk: its own change counts
+                if !millpath_core::load::fs::is_text_file(c) && st.generation.contains_key(c) {
+                    todo.push(c.clone());
+                }
                 for d in Self::dependents(&st, c) {
                     if !todo.contains(&d) {
                         todo.push(d);
