@@ -4,6 +4,7 @@
 
 pub mod features;
 pub mod line_index;
+pub mod reparse;
 
 use millpath_core::diag::{Diagnostic, FileRef, Origin};
 use millpath_core::front::drawing::{DrawnObject, RawPath};
@@ -190,6 +191,8 @@ pub struct Analysis {
     pub deps: BTreeSet<PathBuf>,
     /// Folders searched for subpaths: a file appearing there may resolve a missing one.
     pub dirs: BTreeSet<PathBuf>,
+    /// The text parsed without syntax errors (the next version may reuse the tree).
+    pub syntax_ok: bool,
     /// Drawn object index by the byte offset of its element.
     pub(crate) object_at: HashMap<usize, usize>,
     /// Per path: segment object → index of the first segment of its chain (computed once).
@@ -250,6 +253,17 @@ pub fn analyze(ws: &Workspace, path: &Path) -> Analysis {
 /// tree kept for the editor features), DXF drawings loaded by the session itself, then
 /// [`compile_file`].
 pub fn analyze_with(ws: &Workspace, path: &Path, cancelled: &dyn Fn() -> bool) -> Option<Analysis> {
+    analyze_from(ws, path, None, cancelled)
+}
+
+/// [`analyze_with`] that parses incrementally from the previous analysis of the document
+/// (a keystroke in one element line parses that line only, see [`reparse`]).
+pub fn analyze_from(
+    ws: &Workspace,
+    path: &Path,
+    prev: Option<&Analysis>,
+    cancelled: &dyn Fn() -> bool,
+) -> Option<Analysis> {
     let is_text = is_text_file(path);
     let src = if is_text {
         ws.text(path).unwrap_or_default()
@@ -261,7 +275,18 @@ pub fn analyze_with(ws: &Workspace, path: &Path, cancelled: &dyn Fn() -> bool) -
             .unwrap_or_default()
     };
     let settings = ws.settings_for(path);
-    let (ast, syntax_errors) = if is_text { parse(&src) } else { parse("") };
+    let (ast, syntax_errors) = if is_text {
+        let prev = prev
+            .filter(|p| p.syntax_ok && p.path == path)
+            .map(|p| reparse::Previous {
+                src: &p.src,
+                ast: &p.ast,
+            });
+        reparse::reparse(prev, &src)
+    } else {
+        parse("")
+    };
+    let syntax_ok = syntax_errors.is_empty();
     if cancelled() {
         return None;
     }
@@ -348,6 +373,7 @@ pub fn analyze_with(ws: &Workspace, path: &Path, cancelled: &dyn Fn() -> bool) -
         settings,
         deps,
         dirs,
+        syntax_ok,
         object_at,
         chain_first: Mutex::default(),
         previews: Mutex::default(),

@@ -5,7 +5,7 @@
 use millpath_core::diag::{Diagnostic as CoreDiagnostic, Origin, Severity};
 use millpath_core::load::config::FileConfig;
 use millpath_ide::features;
-use millpath_ide::{analyze_with, Analysis, LineIndex, Pos, Workspace};
+use millpath_ide::{analyze_from, Analysis, LineIndex, Pos, Workspace};
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use std::collections::HashMap;
@@ -321,10 +321,11 @@ impl Backend {
                 async move {
                     let st = state.clone();
                     let p = path.clone();
+                    let prev = state.lock().ok().and_then(|s| s.last.get(&path).cloned());
                     let r = tokio::task::spawn_blocking(move || {
                         catch_unwind(AssertUnwindSafe(|| {
                             let cancelled = || g != u64::MAX && !is_current(&st, &p, g);
-                            analyze_with(&ws, &p, &cancelled)
+                            analyze_from(&ws, &p, prev.as_deref(), &cancelled)
                         }))
                     })
                     .await;
@@ -417,7 +418,9 @@ impl Backend {
             state: self.state.clone(),
         };
         tokio::spawn(async move {
-            tokio::time::sleep(debounce).await;
+            if !debounce.is_zero() {
+                tokio::time::sleep(debounce).await;
+            }
             if !is_current(&this.state, &path, generation) {
                 return;
             }
@@ -630,12 +633,18 @@ impl LanguageServer for Backend {
     async fn did_open(&self, params: DidOpenTextDocumentParams) {
         let uri = params.text_document.uri;
         let Some(p) = to_path(&uri) else { return };
+        // the same text as on disk changes nothing for the files depending on it
+        let as_on_disk = std::fs::read_to_string(&p).is_ok_and(|t| t == params.text_document.text);
         if let Ok(mut st) = self.state.lock() {
             st.ws.overlays.insert(p.clone(), params.text_document.text);
             st.versions.insert(p.clone(), params.text_document.version);
             st.generation.entry(p.clone()).or_insert(0);
+            Self::bump(&mut st, &p);
         }
-        self.changed(p);
+        self.publish_later(p.clone());
+        if !as_on_disk {
+            self.dependents_changed(&[p]);
+        }
     }
 
     async fn did_change(&self, params: DidChangeTextDocumentParams) {
@@ -980,7 +989,7 @@ pub fn service() -> (LspService<Backend>, tower_lsp_server::ClientSocket) {
             versions: HashMap::new(),
             entries: HashMap::new(),
             last: HashMap::new(),
-            debounce: Duration::from_millis(10),
+            debounce: Duration::ZERO,
             watch_files: false,
             shutdown: false,
         })),
