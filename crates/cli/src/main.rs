@@ -265,10 +265,7 @@ fn main() -> ExitCode {
             html,
             svg,
         } => run_render(&file, path.as_deref(), html, svg),
-        Command::Lsp { .. } => {
-            millpath_lsp::run_stdio();
-            0
-        }
+        Command::Lsp { .. } => millpath_lsp::run_stdio(),
         Command::Pathdxf2gcode { args } => run_dxf2gcode(&args),
         Command::Pathgcodeadjustz { args } => run_adjustz_compat(&args),
     };

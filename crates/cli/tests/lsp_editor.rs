@@ -370,5 +370,30 @@ fn a_client_with_only_root_uri_gets_cross_file_features() {
         .filter(|l| l["uri"].as_str().unwrap().ends_with("2010.mpath"))
         .count();
     assert_eq!(in_project, 2, "{r}");
+    let in_part = |r: &Value| {
+        r["result"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|l| l["uri"].as_str().unwrap().ends_with("2001.mpath"))
+            .count()
+    };
+    assert_eq!(in_part(&r), 1, "the declaration is included: {r}");
+    // without the declaration
+    let r = c.request("textDocument/references", json!({ "textDocument": { "uri": doc }, "position": { "line": line, "character": 7 }, "context": { "includeDeclaration": false } }));
+    assert_eq!(in_part(&r), 0, "{r}");
+    assert_eq!(r["result"].as_array().unwrap().len(), 2, "{r}");
     assert!(c.shutdown().success());
+}
+
+/// `exit` without `shutdown` ends the server with status 1 (LSP), after it: 0.
+#[test]
+fn exit_without_shutdown_is_status_1() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut c = Client::start(BIN);
+    c.initialize(dir.path(), json!({}));
+    assert_eq!(c.exit_without_shutdown().code(), Some(1));
+    let mut c = Client::start(BIN);
+    c.initialize(dir.path(), json!({}));
+    assert_eq!(c.shutdown().code(), Some(0));
 }

@@ -60,7 +60,6 @@ struct State {
     debounce: Duration,
     /// The client can register `workspace/didChangeWatchedFiles` dynamically.
     watch_files: bool,
-    shutdown: bool,
 }
 
 pub struct Backend {
@@ -406,11 +405,14 @@ impl Backend {
     /// a newer change makes it stale (abandoned, never published).
     fn publish_later(&self, path: PathBuf) {
         let Some(uri) = to_uri(&path) else { return };
-        let Ok((generation, debounce)) = self
-            .state
-            .lock()
-            .map(|s| (s.generation.get(&path).copied().unwrap_or(0), s.debounce))
-        else {
+        // the client's version of exactly this generation
+        let Ok((generation, debounce, version)) = self.state.lock().map(|s| {
+            (
+                s.generation.get(&path).copied().unwrap_or(0),
+                s.debounce,
+                s.versions.get(&path).copied(),
+            )
+        }) else {
             return;
         };
         let this = Backend {
@@ -432,11 +434,6 @@ impl Backend {
                 Err(e) if e.code == tower_lsp_server::jsonrpc::ErrorCode::ContentModified => return,
                 Err(_) => internal_error_diagnostic(),
             };
-            let version = this
-                .state
-                .lock()
-                .ok()
-                .and_then(|s| s.versions.get(&path).copied());
             if is_current(&this.state, &path, generation) {
                 this.client.publish_diagnostics(uri, diags, version).await;
             }
@@ -624,9 +621,7 @@ impl LanguageServer for Backend {
     }
 
     async fn shutdown(&self) -> Result<()> {
-        if let Ok(mut st) = self.state.lock() {
-            st.shutdown = true;
-        }
+        SHUT_DOWN.store(true, std::sync::atomic::Ordering::SeqCst);
         Ok(())
     }
 
@@ -769,13 +764,14 @@ impl LanguageServer for Backend {
             .analysis(&params.text_document_position.text_document.uri)
             .await?;
         let at = offset(&a, params.text_document_position.position);
+        let with_declaration = params.context.include_declaration;
         guarded(|| {
-            Some(
-                features::references(&a, &ws, at)
-                    .iter()
-                    .filter_map(loc)
-                    .collect(),
-            )
+            let mut out = Vec::new();
+            if with_declaration {
+                out.extend(features::definition(&a, &ws, at).iter().filter_map(loc));
+            }
+            out.extend(features::references(&a, &ws, at).iter().filter_map(loc));
+            Some(out)
         })
     }
 
@@ -991,7 +987,6 @@ pub fn service() -> (LspService<Backend>, tower_lsp_server::ClientSocket) {
             last: HashMap::new(),
             debounce: Duration::ZERO,
             watch_files: false,
-            shutdown: false,
         })),
     })
     .custom_method("millpath/gcodePreview", Backend::gcode_preview)
@@ -999,14 +994,18 @@ pub fn service() -> (LspService<Backend>, tower_lsp_server::ClientSocket) {
     .finish()
 }
 
-/// Serves LSP over standard input and output until the client exits.
-pub fn run_stdio() {
+/// `shutdown` was received (the exit status of [`run_stdio`]).
+static SHUT_DOWN: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Serves LSP over standard input and output until the client exits; the exit status is 0
+/// after `shutdown`, 1 when the client exits (or the input ends) without it.
+pub fn run_stdio() -> u8 {
     let Ok(rt) = tokio::runtime::Builder::new_multi_thread()
         .enable_all()
         .build()
     else {
         eprintln!("millpath lsp: cannot start the runtime");
-        return;
+        return 1;
     };
     rt.block_on(async {
         let (service, socket) = service();
@@ -1014,4 +1013,7 @@ pub fn run_stdio() {
             .serve(service)
             .await;
     });
+    // blocking analyses still running are not waited for
+    rt.shutdown_background();
+    u8::from(!SHUT_DOWN.load(std::sync::atomic::Ordering::SeqCst))
 }
