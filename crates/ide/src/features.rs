@@ -615,6 +615,7 @@ struct TopModel {
 /// Builds `name` (default: the first path of the file) with the file's settings.
 fn top_model(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<TopModel, String> {
     let ds = ws.settings_for(path);
+    let missing = ds.missing_message();
     let lang = ds.settings.lang;
     let sweep_speed = ds.settings.sweep_speed;
     let fs = ws.fs();
@@ -635,7 +636,11 @@ fn top_model(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<TopModel
             model,
             lang,
             sweep_speed,
-            errors: messages(&session, lang),
+            // not silent: `millpath compile` would refuse without them
+            errors: missing
+                .into_iter()
+                .chain(messages(&session, lang))
+                .collect(),
         }),
         Ok(None) => Err(format!(
             "path {name} cannot be built: {}",

@@ -98,6 +98,7 @@ pub struct DocSettings {
     pub settings: Settings,
     pub feed: SettingSource,
     pub sweep_height: SettingSource,
+    pub sweep_speed: SettingSource,
     pub probe_feed: SettingSource,
     /// A `millpath.toml` that does not parse.
     pub config_error: Option<(PathBuf, String)>,
@@ -130,6 +131,7 @@ impl Workspace {
             settings: Settings::default(),
             feed: SettingSource::Default,
             sweep_height: SettingSource::Default,
+            sweep_speed: SettingSource::Default,
             probe_feed: SettingSource::Default,
             config_error: None,
         };
@@ -148,6 +150,9 @@ impl Workspace {
                         if cfg.sweep_height.is_some() {
                             ds.sweep_height = src.clone();
                         }
+                        if cfg.sweep_speed.is_some() {
+                            ds.sweep_speed = src.clone();
+                        }
                         if cfg.probe_feed.is_some() {
                             ds.probe_feed = src;
                         }
@@ -165,11 +170,48 @@ impl Workspace {
         if self.client.sweep_height.is_some() {
             ds.sweep_height = SettingSource::Editor;
         }
+        if self.client.sweep_speed.is_some() {
+            ds.sweep_speed = SettingSource::Editor;
+        }
         if self.client.probe_feed.is_some() {
             ds.probe_feed = SettingSource::Editor;
         }
         ds.settings = s;
         ds
+    }
+}
+
+impl DocSettings {
+    /// The machine settings that neither `millpath.toml` nor the editor gives (`millpath
+    /// compile` refuses to run without them; the defaults F150, S15 are only placeholders).
+    pub fn missing_machine(&self) -> Vec<&'static str> {
+        [
+            ("feed", &self.feed),
+            ("sweep_speed", &self.sweep_speed),
+            ("sweep_height", &self.sweep_height),
+        ]
+        .into_iter()
+        .filter(|(_, s)| **s == SettingSource::Default)
+        .map(|(n, _)| n)
+        .collect()
+    }
+
+    /// The message for [`DocSettings::missing_machine`], `None` when nothing is missing.
+    pub fn missing_message(&self) -> Option<String> {
+        let m = self.missing_machine();
+        if m.is_empty() {
+            return None;
+        }
+        Some(match self.settings.lang {
+            millpath_core::Lang::De => format!(
+                "Maschinenwerte fehlen: {} (in millpath.toml oder den Editor-Einstellungen angeben); die Vorschau nimmt Platzhalter",
+                m.join(", ")
+            ),
+            millpath_core::Lang::En => format!(
+                "missing machine settings: {} (set them in millpath.toml or the editor settings); the preview uses placeholders",
+                m.join(", ")
+            ),
+        })
     }
 }
 
