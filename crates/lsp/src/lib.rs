@@ -308,44 +308,48 @@ impl Backend {
                 },
             }
         };
-        let a = entry
-            .cell
-            .get_or_init(|| {
-                let (state, ws, path, g) = (
-                    self.state.clone(),
-                    entry.ws.clone(),
-                    path.clone(),
-                    entry.generation,
-                );
-                async move {
-                    let st = state.clone();
-                    let p = path.clone();
-                    let prev = state.lock().ok().and_then(|s| s.last.get(&path).cloned());
-                    let r = tokio::task::spawn_blocking(move || {
-                        catch_unwind(AssertUnwindSafe(|| {
-                            let cancelled = || g != u64::MAX && !is_current(&st, &p, g);
-                            analyze_from(&ws, &p, prev.as_deref(), &cancelled)
-                        }))
-                    })
-                    .await;
-                    let a = match r {
-                        Ok(Ok(Some(a))) => Arc::new(a),
-                        Ok(Ok(None)) => return None,
-                        // a panic: the error is reported by the caller
-                        _ => return None,
-                    };
-                    if g != u64::MAX {
-                        if let Ok(mut s) = state.lock() {
-                            if s.generation.contains_key(&path) {
-                                s.last.insert(path, a.clone());
+        // the analysis runs in a task of its own: a cancelled request does not abort it
+        // for the others waiting on the same version
+        let shared = entry.clone();
+        let state = self.state.clone();
+        let task_path = path.clone();
+        let task = tokio::spawn(async move {
+            let e = shared.clone();
+            e.cell
+                .get_or_init(|| {
+                    let (state, ws, path, g) =
+                        (state, shared.ws.clone(), task_path, shared.generation);
+                    async move {
+                        let st = state.clone();
+                        let p = path.clone();
+                        let prev = state.lock().ok().and_then(|s| s.last.get(&path).cloned());
+                        let r = tokio::task::spawn_blocking(move || {
+                            catch_unwind(AssertUnwindSafe(|| {
+                                let cancelled = || g != u64::MAX && !is_current(&st, &p, g);
+                                analyze_from(&ws, &p, prev.as_deref(), &cancelled)
+                            }))
+                        })
+                        .await;
+                        let a = match r {
+                            Ok(Ok(Some(a))) => Arc::new(a),
+                            Ok(Ok(None)) => return None,
+                            // a panic: the error is reported by the caller
+                            _ => return None,
+                        };
+                        if g != u64::MAX {
+                            if let Ok(mut s) = state.lock() {
+                                if s.generation.contains_key(&path) {
+                                    s.last.insert(path, a.clone());
+                                }
                             }
                         }
+                        Some(a)
                     }
-                    Some(a)
-                }
-            })
-            .await
-            .clone();
+                })
+                .await
+                .clone()
+        });
+        let a = task.await.ok().flatten();
         match a {
             Some(a) => Ok((a, entry.ws.clone())),
             None if entry.generation != u64::MAX
