@@ -1,7 +1,13 @@
-//! Bench script: median time from `didChange` to `publishDiagnostics` of the language server
-//! on a generated 2,000-element file (target: under 20 ms). Run with
-//! `cargo bench -p millpath-cli --bench lsp_latency`.
-
+//! Bench script (release build): latencies of the language server as an editor sees them.
+//! Run with `cargo bench -p millpath-cli --bench lsp_latency`. Measures, on generated files
+//! of 2,000 and 20,000 elements, with short chains (three mill lines, one sweep) and one
+//! long chain (mill lines only):
+//!
+//! - the median time from an incremental `didChange` (typing in the start line) to the
+//!   `publishDiagnostics` of that version (targets: < 10 ms at 2,000, < 60 ms at 20,000);
+//! - the median time of `textDocument/inlayHint` for a 40-line range (target: < 5 ms at 20,000);
+//! - a burst of 10 edits 100 ms apart: the time from the last edit to the diagnostics of the
+//!   last version (target: within two analyses' time).
 #[path = "../tests/common/lsp_client.rs"]
 mod lsp_client;
 
@@ -31,7 +37,60 @@ pub fn big_file(n: usize, infeed: &str) -> String {
     s
 }
 
-fn main() {
+/// A path of `n` elements that is one long mill chain.
+pub fn long_chain(n: usize, infeed: &str) -> String {
+    let mut s = format!("path 3000.1P {{\n  start (0, 0)  M10x3 O2 T3 I{infeed} B-0,2\n");
+    let segments = n - 2;
+    let mut lines = Vec::new();
+    let mut x = 0.0;
+    for i in 0..segments {
+        let y0 = if i % 2 == 0 { 0.0 } else { 5.0 };
+        let y1 = 5.0 - y0;
+        lines.push(format!("  mill ({x}, {y0}) -> ({}, {y1})\n", x + 1.0));
+        x += 1.0;
+    }
+    let y_end = if segments.is_multiple_of(2) { 0.0 } else { 5.0 };
+    s.push_str(&format!("  end ({x}, {y_end})\n"));
+    for l in lines {
+        s.push_str(&l);
+    }
+    s.push_str("}\n");
+    s
+}
+
+fn ms(d: Duration) -> f64 {
+    d.as_secs_f64() * 1e3
+}
+
+fn median(mut v: Vec<Duration>) -> Duration {
+    v.sort();
+    v[v.len() / 2]
+}
+
+/// An incremental change of the infeed digit in line 2 (`I1,5` ↔ `I1,2`).
+fn type_infeed(c: &mut Client, doc: &str, version: i64, digit: &str) {
+    let col = "  start (0, 0)  M10x3 O2 T3 I1,".len();
+    c.notify("textDocument/didChange", json!({ "textDocument": { "uri": doc, "version": version },
+        "contentChanges": [{ "range": { "start": { "line": 1, "character": col }, "end": { "line": 1, "character": col + 1 } }, "text": digit }] }));
+}
+
+fn wait_version(c: &mut Client, doc: &str, version: i64) -> serde_json::Value {
+    loop {
+        let d = c
+            .wait_diagnostics(doc, Duration::from_secs(300))
+            .expect("diagnostics");
+        if d["params"]["version"] == json!(version) {
+            return d;
+        }
+    }
+}
+
+fn scenario(n: usize, long: bool, runs: usize) {
+    let shape = if long {
+        "one long chain"
+    } else {
+        "short chains"
+    };
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(
         dir.path().join("millpath.toml"),
@@ -39,33 +98,71 @@ fn main() {
     )
     .unwrap();
     let path = dir.path().join("3000.mpath");
-    let text = big_file(2000, "1,5");
-    assert_eq!(text.lines().count(), 2002);
+    let text = if long {
+        long_chain(n, "1,5")
+    } else {
+        big_file(n, "1,5")
+    };
     std::fs::write(&path, &text).unwrap();
     let mut c = Client::start(env!("CARGO_BIN_EXE_millpath"));
-    c.initialize(dir.path(), json!({ "debounceMs": 0 }));
+    c.initialize(dir.path(), json!({}));
     let doc = uri(&path);
     c.notify("textDocument/didOpen", json!({ "textDocument": { "uri": doc, "languageId": "millpath", "version": 1, "text": text } }));
-    let first = c
-        .wait_notification("textDocument/publishDiagnostics", Duration::from_secs(60))
-        .expect("diagnostics");
-    assert_eq!(
-        first["params"]["diagnostics"],
-        json!([]),
-        "the generated file is clean"
-    );
+    let first = wait_version(&mut c, &doc, 1);
+    assert_eq!(first["params"]["diagnostics"], json!([]), "clean file");
+    let mut version = 1;
     let mut times = Vec::new();
-    for i in 0..31 {
-        let infeed = if i % 2 == 0 { "1,2" } else { "1,5" };
-        let changed = big_file(2000, infeed);
+    for i in 0..runs {
+        version += 1;
         let t0 = Instant::now();
-        c.notify("textDocument/didChange", json!({ "textDocument": { "uri": doc, "version": i + 2 }, "contentChanges": [{ "text": changed }] }));
-        c.wait_notification("textDocument/publishDiagnostics", Duration::from_secs(60))
-            .expect("diagnostics");
+        type_infeed(&mut c, &doc, version, if i % 2 == 0 { "2" } else { "5" });
+        wait_version(&mut c, &doc, version);
         times.push(t0.elapsed());
     }
-    times.sort();
-    let median = times[times.len() / 2];
-    println!("didChange → publishDiagnostics, 2,000 elements, {} runs: median {:.1} ms (min {:.1}, max {:.1})", times.len(), median.as_secs_f64() * 1e3, times[0].as_secs_f64() * 1e3, times[times.len() - 1].as_secs_f64() * 1e3);
+    let analysis = median(times.clone());
+    println!(
+        "{n:>6} elements, {shape:<14}: didChange → publishDiagnostics median {:7.1} ms (min {:.1}, max {:.1}, {runs} runs)",
+        ms(analysis),
+        ms(*times.iter().min().unwrap()),
+        ms(*times.iter().max().unwrap())
+    );
+    // inlay hints of a 40-line range in the middle (the analysis of this version is shared)
+    let mut hints = Vec::new();
+    let mid = (n / 2) as u64;
+    for _ in 0..21 {
+        let t0 = Instant::now();
+        let r = c.request("textDocument/inlayHint", json!({ "textDocument": { "uri": doc }, "range": { "start": { "line": mid, "character": 0 }, "end": { "line": mid + 40, "character": 0 } } }));
+        hints.push(t0.elapsed());
+        assert!(r["result"].is_array(), "{r}");
+    }
+    println!(
+        "{n:>6} elements, {shape:<14}: inlay hints of 40 lines median {:7.2} ms",
+        ms(median(hints))
+    );
+    // a burst of 10 edits 100 ms apart
+    let mut last = Instant::now();
+    for i in 0..10 {
+        version += 1;
+        type_infeed(&mut c, &doc, version, if i % 2 == 0 { "2" } else { "5" });
+        last = Instant::now();
+        if i < 9 {
+            std::thread::sleep(Duration::from_millis(100));
+        }
+    }
+    wait_version(&mut c, &doc, version);
+    let after = last.elapsed();
+    println!(
+        "{n:>6} elements, {shape:<14}: burst of 10 edits 100 ms apart: final diagnostics {:7.1} ms after the last edit ({:.1} analyses)",
+        ms(after),
+        after.as_secs_f64() / analysis.as_secs_f64()
+    );
     c.shutdown();
+}
+
+fn main() {
+    for (n, runs) in [(2_000, 31), (20_000, 15)] {
+        for long in [false, true] {
+            scenario(n, long, runs);
+        }
+    }
 }

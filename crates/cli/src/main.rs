@@ -288,10 +288,7 @@ fn main() -> ExitCode {
             html,
             svg,
         } => run_render(&file, path.as_deref(), html, svg),
-        Command::Lsp { .. } => {
-            millpath_lsp::run_stdio();
-            0
-        }
+        Command::Lsp { .. } => millpath_lsp::run_stdio(),
         Command::Pathdxf2gcode { args } => run_dxf2gcode(&args),
         Command::Pathgcodeadjustz { args } => run_adjustz_compat(&args),
     };
@@ -982,6 +979,15 @@ fn run_render(file: &Path, path: Option<&str>, html: Option<PathBuf>, svg: Optio
     let file = complete_input(&file.to_string_lossy());
     let abs = std::fs::canonicalize(&file).unwrap_or_else(|_| file.clone());
     let ws = millpath_ide::Workspace::default();
+    // like `compile`: no drawing with placeholder machine settings
+    let missing = ws.settings_for(&abs).missing_machine();
+    if !missing.is_empty() {
+        eprintln!(
+            "error: missing machine settings: {} (give them in millpath.toml)",
+            missing.join(", ")
+        );
+        return 2;
+    }
     let data = match millpath_ide::features::toolpath(&ws, &abs, path) {
         Ok(d) => d,
         Err(e) => {

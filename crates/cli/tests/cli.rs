@@ -413,3 +413,18 @@ fn render_writes_a_toolpath_page_and_an_svg() {
     assert_eq!(o.status.code(), Some(1));
     assert!(!dir.path().join("x.svg").exists());
 }
+
+/// `render` without machine settings refuses like `compile` (no placeholder F150/S15).
+#[test]
+fn render_without_machine_settings_refuses() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(
+        examples().join("text").join("2001.mpath"),
+        dir.path().join("2001.mpath"),
+    )
+    .unwrap();
+    let o = millpath(dir.path(), &["render", "2001.mpath", "--svg", "t.svg"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("missing machine settings"));
+    assert!(!dir.path().join("t.svg").exists());
+}

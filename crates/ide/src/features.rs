@@ -51,9 +51,7 @@ pub fn element_at(a: &Analysis, offset: usize) -> Option<(&PathBlock, &Element)>
 }
 
 fn object_index(a: &Analysis, el: &Element) -> Option<usize> {
-    a.objects
-        .iter()
-        .position(|o| matches!(&o.origin, Origin::Span { start, .. } if *start == el.span.start))
+    a.object_at.get(&el.span.start).copied()
 }
 
 fn raw_path<'a>(a: &'a Analysis, name: &str) -> Option<&'a RawPath> {
@@ -294,7 +292,7 @@ fn provenance(a: &Analysis, path: &RawPath, el: &Element, seg: Option<&RawSegmen
     let mut rows = Vec::new();
     let mut push = |key: char, value: String, source: String| rows.push(Row { key, value, source });
     let get = |t: Option<&ParamText>, k: char| t.and_then(|t| t.raw(k)).map(str::to_string);
-    let chain_first = seg.and_then(|s| chain_first_segment(path, s));
+    let chain_first = seg.and_then(|s| chain_first_segment(a, path, s));
     let is_start = matches!(el.kind.value, Kind::Start);
     let keys: Vec<char> = match &el.kind.value {
         Kind::Start => "TOMFSIBDWPUAZCER".chars().collect(),
@@ -387,9 +385,29 @@ fn provenance(a: &Analysis, path: &RawPath, el: &Element, seg: Option<&RawSegmen
     rows
 }
 
-/// The first segment of the chain a mill segment belongs to (in traversal order).
-fn chain_first_segment<'p>(path: &'p RawPath, seg: &RawSegment) -> Option<&'p RawSegment> {
-    let (start, end) = (path.start.as_ref()?, path.end.as_ref()?);
+/// The first segment of the chain a mill segment belongs to (in traversal order). The
+/// traversal of a path is made once per analysis (not per element).
+fn chain_first_segment<'p>(
+    a: &Analysis,
+    path: &'p RawPath,
+    seg: &RawSegment,
+) -> Option<&'p RawSegment> {
+    let firsts = {
+        let mut cache = a.chain_first.lock().ok()?;
+        cache
+            .entry(path.name.clone())
+            .or_insert_with(|| std::sync::Arc::new(chain_firsts(path)))
+            .clone()
+    };
+    firsts.get(&seg.object).map(|&f| &path.segments[f])
+}
+
+/// Segment object → index of the first segment of its mill chain, for a whole path.
+fn chain_firsts(path: &RawPath) -> std::collections::HashMap<usize, usize> {
+    let mut out = std::collections::HashMap::new();
+    let (Some(start), Some(end)) = (path.start.as_ref(), path.end.as_ref()) else {
+        return out;
+    };
     let mut diags = millpath_core::Diags::default();
     let steps = traverse(path, start.pos, end.pos, &mut diags);
     let mut first: Option<usize> = None;
@@ -397,14 +415,12 @@ fn chain_first_segment<'p>(path: &'p RawPath, seg: &RawSegment) -> Option<&'p Ra
         let s = &path.segments[st.index];
         if matches!(s.kind, SegKind::Mill(_)) {
             let f = *first.get_or_insert(st.index);
-            if s.object == seg.object {
-                return Some(&path.segments[f]);
-            }
+            out.entry(s.object).or_insert(f);
         } else {
             first = None;
         }
     }
-    None
+    out
 }
 
 fn segment_of<'a>(a: &'a Analysis, el: &Element) -> Option<(&'a RawPath, Option<&'a RawSegment>)> {
@@ -600,6 +616,7 @@ struct TopModel {
 /// Builds `name` (default: the first path of the file) with the file's settings.
 fn top_model(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<TopModel, String> {
     let ds = ws.settings_for(path);
+    let missing = ds.missing_message();
     let lang = ds.settings.lang;
     let sweep_speed = ds.settings.sweep_speed;
     let controller = Controller::of(&ds.settings);
@@ -622,7 +639,11 @@ fn top_model(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<TopModel
             lang,
             sweep_speed,
             controller,
-            errors: messages(&session, lang),
+            // not silent: `millpath compile` would refuse without them
+            errors: missing
+                .into_iter()
+                .chain(messages(&session, lang))
+                .collect(),
         }),
         Ok(None) => Err(format!(
             "path {name} cannot be built: {}",
@@ -704,9 +725,21 @@ pub struct Hint {
 
 /// Inherited depths (B, D, I) shown after elements that do not set them.
 pub fn inlay_hints(a: &Analysis) -> Vec<Hint> {
+    inlay_hints_in(a, 0, usize::MAX)
+}
+
+/// Inlay hints of the elements overlapping the byte range `start..end`: the cost is that of
+/// those elements (plus one traversal per path, made once per analysis).
+pub fn inlay_hints_in(a: &Analysis, start: usize, end: usize) -> Vec<Hint> {
     let mut out = Vec::new();
     for p in a.ast.paths() {
+        if p.span.end < start || p.span.start > end {
+            continue;
+        }
         for el in p.elements() {
+            if el.span.end < start || el.span.start > end {
+                continue;
+            }
             let keys: &[char] = match el.kind.value {
                 Kind::Mill | Kind::Bars | Kind::Drill(Style::Mill) | Kind::Helix(Style::Mill) => {
                     &['B']
@@ -744,7 +777,7 @@ fn location_of(ws: &Workspace, raw: &RawPath) -> Location {
             file, start, end, ..
         } => {
             let text = ws.text(&file.path).unwrap_or_default();
-            let idx = crate::LineIndex::new(&text);
+            let idx = ws.line_index(&text);
             Location {
                 path: file.path.clone(),
                 start: idx.pos(start),
@@ -841,7 +874,7 @@ pub fn references(a: &Analysis, ws: &Workspace, offset: usize) -> Vec<Location> 
             match &t.origin {
                 Origin::Span { start, end, .. } => {
                     let text = ws.text(&f).unwrap_or_default();
-                    let idx = crate::LineIndex::new(&text);
+                    let idx = ws.line_index(&text);
                     out.push(Location {
                         path: f.clone(),
                         start: idx.pos(*start),
@@ -1295,12 +1328,25 @@ pub struct Lens {
     pub path: String,
 }
 
+/// [`preview`] computed once per analysis: `ws` must be the workspace `a` was made from.
+pub fn preview_of(a: &Analysis, ws: &Workspace, name: Option<&str>) -> Result<Preview, String> {
+    let key = name.map(str::to_string);
+    if let Some(p) = a.previews.lock().ok().and_then(|c| c.get(&key).cloned()) {
+        return p;
+    }
+    let p = preview(ws, &a.path, name);
+    if let Ok(mut c) = a.previews.lock() {
+        c.insert(key, p.clone());
+    }
+    p
+}
+
 /// One lens per path: its statistics, with the preview as command.
 pub fn code_lenses(a: &Analysis, ws: &Workspace) -> Vec<Lens> {
     a.ast
         .paths()
         .map(|p| {
-            let title = match preview(ws, &a.path, Some(&p.name.value)) {
+            let title = match preview_of(a, ws, Some(&p.name.value)) {
                 Ok(pv) => pv
                     .stats
                     .iter()
@@ -1347,9 +1393,9 @@ pub fn toolpath(
             Origin::Span {
                 file, start, line, ..
             } => {
-                let idx = texts.entry(file.path.clone()).or_insert_with(|| {
-                    crate::LineIndex::new(&ws.text(&file.path).unwrap_or_default())
-                });
+                let idx = texts
+                    .entry(file.path.clone())
+                    .or_insert_with(|| ws.line_index(&ws.text(&file.path).unwrap_or_default()));
                 let p = idx.pos(*start);
                 let text = ws
                     .text(&file.path)

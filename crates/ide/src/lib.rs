@@ -4,17 +4,18 @@
 
 pub mod features;
 pub mod line_index;
+pub mod reparse;
 
 use millpath_core::diag::{Diagnostic, FileRef, Origin};
-use millpath_core::front::drawing::{build_paths, DrawnObject, RawPath};
+use millpath_core::front::drawing::{DrawnObject, RawPath};
 use millpath_core::front::text::objects_of;
 use millpath_core::load::config::{self, FileConfig, Have};
 use millpath_core::load::fs::{is_text_file, FileSystem};
 use millpath_core::{compile_file, Diags, Session, Settings};
 use millpath_syntax::{parse, File};
-use std::collections::HashMap;
+use std::collections::{BTreeSet, HashMap};
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
 pub use line_index::{LineIndex, Pos};
 
@@ -26,16 +27,26 @@ pub struct Workspace {
     pub client: FileConfig,
     /// Workspace folders (for references and workspace symbols).
     pub roots: Vec<PathBuf>,
+    /// Columns count UTF-8 bytes (negotiated `positionEncoding`), else UTF-16 code units.
+    pub utf8: bool,
 }
 
-/// The file system as the editor sees it: open buffers over the disk.
+/// The file system as the editor sees it: open text buffers over the disk. A DXF drawing is
+/// always read from the disk (an editor's text of it is decoded from its code page and no
+/// longer the drawing's bytes).
 pub struct WorkspaceFs<'a> {
     overlays: &'a HashMap<PathBuf, String>,
 }
 
+impl WorkspaceFs<'_> {
+    fn overlay(&self, path: &Path) -> Option<&String> {
+        self.overlays.get(path).filter(|_| is_text_file(path))
+    }
+}
+
 impl FileSystem for WorkspaceFs<'_> {
     fn read(&self, path: &Path) -> std::io::Result<Vec<u8>> {
-        match self.overlays.get(path) {
+        match self.overlay(path) {
             Some(t) => Ok(t.clone().into_bytes()),
             None => std::fs::read(path),
         }
@@ -56,7 +67,7 @@ impl FileSystem for WorkspaceFs<'_> {
     }
     fn stamp(&self, path: &Path) -> Option<millpath_core::load::parse_cache::FileStamp> {
         use millpath_core::load::parse_cache::FileStamp;
-        match self.overlays.get(path) {
+        match self.overlay(path) {
             Some(t) => Some(FileStamp::of_contents(t.as_bytes())),
             None => FileStamp::of_disk_file(path),
         }
@@ -87,6 +98,7 @@ pub struct DocSettings {
     pub settings: Settings,
     pub feed: SettingSource,
     pub sweep_height: SettingSource,
+    pub sweep_speed: SettingSource,
     pub probe_feed: SettingSource,
     /// A `millpath.toml` that does not parse.
     pub config_error: Option<(PathBuf, String)>,
@@ -97,6 +109,11 @@ impl Workspace {
         WorkspaceFs {
             overlays: &self.overlays,
         }
+    }
+
+    /// A line index of a text with the negotiated column encoding.
+    pub fn line_index(&self, text: &str) -> LineIndex {
+        LineIndex::with_encoding(text, self.utf8)
     }
 
     pub fn text(&self, path: &Path) -> Option<String> {
@@ -114,6 +131,7 @@ impl Workspace {
             settings: Settings::default(),
             feed: SettingSource::Default,
             sweep_height: SettingSource::Default,
+            sweep_speed: SettingSource::Default,
             probe_feed: SettingSource::Default,
             config_error: None,
         };
@@ -132,6 +150,9 @@ impl Workspace {
                         if cfg.sweep_height.is_some() {
                             ds.sweep_height = src.clone();
                         }
+                        if cfg.sweep_speed.is_some() {
+                            ds.sweep_speed = src.clone();
+                        }
                         if cfg.probe_feed.is_some() {
                             ds.probe_feed = src;
                         }
@@ -149,6 +170,9 @@ impl Workspace {
         if self.client.sweep_height.is_some() {
             ds.sweep_height = SettingSource::Editor;
         }
+        if self.client.sweep_speed.is_some() {
+            ds.sweep_speed = SettingSource::Editor;
+        }
         if self.client.probe_feed.is_some() {
             ds.probe_feed = SettingSource::Editor;
         }
@@ -157,65 +181,207 @@ impl Workspace {
     }
 }
 
-/// Everything known about one text document.
+impl DocSettings {
+    /// The machine settings that neither `millpath.toml` nor the editor gives (`millpath
+    /// compile` refuses to run without them; the defaults F150, S15 are only placeholders).
+    pub fn missing_machine(&self) -> Vec<&'static str> {
+        [
+            ("feed", &self.feed),
+            ("sweep_speed", &self.sweep_speed),
+            ("sweep_height", &self.sweep_height),
+        ]
+        .into_iter()
+        .filter(|(_, s)| **s == SettingSource::Default)
+        .map(|(n, _)| n)
+        .collect()
+    }
+
+    /// The message for [`DocSettings::missing_machine`], `None` when nothing is missing.
+    pub fn missing_message(&self) -> Option<String> {
+        let m = self.missing_machine();
+        if m.is_empty() {
+            return None;
+        }
+        Some(match self.settings.lang {
+            millpath_core::Lang::De => format!(
+                "Maschinenwerte fehlen: {} (in millpath.toml oder den Editor-Einstellungen angeben); die Vorschau nimmt Platzhalter",
+                m.join(", ")
+            ),
+            millpath_core::Lang::En => format!(
+                "missing machine settings: {} (set them in millpath.toml or the editor settings); the preview uses placeholders",
+                m.join(", ")
+            ),
+        })
+    }
+}
+
+/// Everything known about one document (text, or a DXF drawing: diagnostics only).
 #[derive(Debug)]
 pub struct Analysis {
     pub path: PathBuf,
     pub src: String,
     pub index: LineIndex,
     pub ast: File,
-    /// Diagnostics located in this document (syntax and compiler), in order.
+    /// Diagnostics located in this document (syntax and compiler), in order: exactly what
+    /// `millpath check` reports for the file.
     pub diagnostics: Vec<Diagnostic>,
     pub objects: Vec<DrawnObject>,
     pub paths: Vec<RawPath>,
     pub settings: DocSettings,
+    /// Every other file the analysis read or looked at (subpaths, `millpath.toml`): a change
+    /// of one of them makes this analysis stale.
+    pub deps: BTreeSet<PathBuf>,
+    /// Folders searched for subpaths: a file appearing there may resolve a missing one.
+    pub dirs: BTreeSet<PathBuf>,
+    /// The text parsed without syntax errors (the next version may reuse the tree).
+    pub syntax_ok: bool,
+    /// Drawn object index by the byte offset of its element.
+    pub(crate) object_at: HashMap<usize, usize>,
+    /// Per path: segment object → index of the first segment of its chain (computed once).
+    pub(crate) chain_first: Mutex<HashMap<String, Arc<HashMap<usize, usize>>>>,
+    /// Previews computed for this version (code lenses, the preview request).
+    pub(crate) previews: Mutex<HashMap<Option<String>, Result<features::Preview, String>>>,
+}
+
+/// The workspace file system, recording what an analysis reads (its dependencies).
+struct Recorder<'a> {
+    inner: WorkspaceFs<'a>,
+    files: Mutex<BTreeSet<PathBuf>>,
+    dirs: Mutex<BTreeSet<PathBuf>>,
+}
+
+impl Recorder<'_> {
+    fn file(&self, p: &Path) {
+        if let Ok(mut f) = self.files.lock() {
+            f.insert(p.to_path_buf());
+        }
+    }
+    fn dir(&self, p: &Path) {
+        if let Ok(mut f) = self.dirs.lock() {
+            f.insert(p.to_path_buf());
+        }
+    }
+}
+
+impl FileSystem for Recorder<'_> {
+    fn read(&self, path: &Path) -> std::io::Result<Vec<u8>> {
+        self.file(path);
+        self.inner.read(path)
+    }
+    fn list_dir(&self, dir: &Path) -> std::io::Result<Vec<PathBuf>> {
+        self.dir(dir);
+        self.inner.list_dir(dir)
+    }
+    fn is_dir(&self, dir: &Path) -> bool {
+        self.dir(dir);
+        self.inner.is_dir(dir)
+    }
+    fn stamp(&self, path: &Path) -> Option<millpath_core::load::parse_cache::FileStamp> {
+        self.file(path);
+        self.inner.stamp(path)
+    }
 }
 
 /// Analyses a document: parses it and runs the compiler's check over every path in it.
 pub fn analyze(ws: &Workspace, path: &Path) -> Analysis {
-    let src = ws.text(path).unwrap_or_default();
+    analyze_with(ws, path, &|| false).expect("not cancelled")
+}
+
+/// [`analyze`] that gives up (`None`) when `cancelled()` turns true between its stages
+/// (a newer edit made the result useless).
+///
+/// The diagnostics go through the same code as `millpath check`: one [`Session`] in check
+/// mode, the text's paths read by [`Session::text_paths`] (the buffer is parsed once and the
+/// tree kept for the editor features), DXF drawings loaded by the session itself, then
+/// [`compile_file`].
+pub fn analyze_with(ws: &Workspace, path: &Path, cancelled: &dyn Fn() -> bool) -> Option<Analysis> {
+    analyze_from(ws, path, None, cancelled)
+}
+
+/// [`analyze_with`] that parses incrementally from the previous analysis of the document
+/// (a keystroke in one element line parses that line only, see [`reparse`]).
+pub fn analyze_from(
+    ws: &Workspace,
+    path: &Path,
+    prev: Option<&Analysis>,
+    cancelled: &dyn Fn() -> bool,
+) -> Option<Analysis> {
+    let is_text = is_text_file(path);
+    let src = if is_text {
+        ws.text(path).unwrap_or_default()
+    } else {
+        // a drawing: its lines, for positions only
+        ws.fs()
+            .read(path)
+            .map(|b| String::from_utf8_lossy(&b).into_owned())
+            .unwrap_or_default()
+    };
     let settings = ws.settings_for(path);
-    let (ast, syntax_errors) = parse(&src);
+    let (ast, syntax_errors) = if is_text {
+        let prev = prev
+            .filter(|p| p.syntax_ok && p.path == path)
+            .map(|p| reparse::Previous {
+                src: &p.src,
+                ast: &p.ast,
+            });
+        reparse::reparse(prev, &src)
+    } else {
+        parse("")
+    };
+    let syntax_ok = syntax_errors.is_empty();
+    if cancelled() {
+        return None;
+    }
     let file = FileRef::new(path.to_path_buf());
-    let mut local = Diags::default();
-    let s = &settings.settings;
-    let mut abort = None;
-    let text = match objects_of(&ast, syntax_errors, &src, &file, &mut local) {
-        Ok(t) => t,
-        Err(d) => {
-            abort = Some(d);
-            Default::default()
-        }
+    let fs = Recorder {
+        inner: ws.fs(),
+        files: Mutex::default(),
+        dirs: Mutex::default(),
     };
-    let paths = match millpath_core::load::names::Patterns::shared(&s.path_pattern, &s.file_pattern)
-    {
-        Ok(p) => build_paths(
-            &text.objects,
-            &file,
-            &p.path_cs,
-            &s.path_pattern,
-            &mut local,
-        )
-        .unwrap_or_else(|d| {
-            abort = Some(d);
-            Vec::new()
-        }),
-        Err(_) => Vec::new(),
-    };
-    text.check_declared_kinds(&paths, &mut local);
-    let mut diagnostics = local.list;
-    diagnostics.extend(abort);
-    // the compiler's check over every path, with this buffer as parsed above
-    let fs = ws.fs();
     let mut check = settings.settings.clone();
     check.check = true;
+    let mut objects = Vec::new();
+    let mut paths = Vec::new();
+    let mut diagnostics;
     match Session::new(check, &fs) {
         Ok(mut session) => {
-            session.add_paths(path, paths.clone());
+            if is_text {
+                let mut local = Diags::default();
+                match session.text_paths(&ast, syntax_errors, &src, &file, &mut local) {
+                    Ok((text, p)) => {
+                        objects = text.objects;
+                        paths = p.clone();
+                        local.list.into_iter().for_each(|d| session.diags.push(d));
+                        session.add_paths(path, p);
+                    }
+                    Err(abort) => {
+                        local.list.into_iter().for_each(|d| session.diags.push(d));
+                        session.diags.push(abort);
+                        session.add_paths(path, Vec::new());
+                    }
+                }
+                if cancelled() {
+                    return None;
+                }
+            }
             compile_file(&mut session, path, &millpath_core::banner());
-            diagnostics.extend(session.diags.list.into_iter().filter(|d| in_file(d, path)));
+            diagnostics = session.diags.list;
+            diagnostics.retain(|d| in_file(d, path));
         }
-        Err(errs) => diagnostics.extend(errs),
+        Err(errs) => {
+            // invalid patterns: no paths, but the tree's objects for the editor
+            diagnostics = errs;
+            let mut local = Diags::default();
+            if is_text {
+                if let Ok(t) = objects_of(&ast, syntax_errors, &src, &file, &mut local) {
+                    objects = t.objects;
+                }
+            }
+            diagnostics.extend(local.list);
+        }
+    }
+    if cancelled() {
+        return None;
     }
     if let Some((cfg, e)) = &settings.config_error {
         diagnostics.push(Diagnostic::error(
@@ -224,16 +390,42 @@ pub fn analyze(ws: &Workspace, path: &Path) -> Analysis {
             millpath_core::args![cfg.display(), e],
         ));
     }
-    let index = LineIndex::new(&src);
-    Analysis {
+    let index = ws.line_index(&src);
+    let object_at = objects
+        .iter()
+        .enumerate()
+        .filter_map(|(i, o)| match &o.origin {
+            Origin::Span { start, .. } => Some((*start, i)),
+            _ => None,
+        })
+        .collect();
+    let mut deps = fs.files.into_inner().unwrap_or_default();
+    deps.remove(path);
+    // the settings: any `millpath.toml` above the file
+    deps.extend(path.ancestors().skip(1).map(|d| d.join(config::FILE_NAME)));
+    let dirs = fs.dirs.into_inner().unwrap_or_default();
+    Some(Analysis {
         path: path.to_path_buf(),
         src,
         index,
         ast,
         diagnostics,
-        objects: text.objects,
+        objects,
         paths,
         settings,
+        deps,
+        dirs,
+        syntax_ok,
+        object_at,
+        chain_first: Mutex::default(),
+        previews: Mutex::default(),
+    })
+}
+
+impl Analysis {
+    /// Whether a change of `changed` (a buffer or a file on disk) can change this analysis.
+    pub fn depends_on(&self, changed: &Path) -> bool {
+        self.deps.contains(changed) || changed.parent().is_some_and(|d| self.dirs.contains(d))
     }
 }
 

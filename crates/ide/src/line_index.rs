@@ -1,12 +1,14 @@
-//! Byte offsets ↔ (line, UTF-16 column), as editors count.
+//! Byte offsets ↔ (line, column), columns in UTF-16 code units (the LSP default) or in
+//! UTF-8 bytes (when the client negotiated `positionEncoding: utf-8`).
 
 #[derive(Debug, Clone)]
 pub struct LineIndex {
     starts: Vec<usize>,
     text: String,
+    utf8: bool,
 }
 
-/// A 0-based line and UTF-16 column.
+/// A 0-based line and column (UTF-16 code units, or bytes for a UTF-8 index).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub struct Pos {
     pub line: u32,
@@ -15,12 +17,22 @@ pub struct Pos {
 
 impl LineIndex {
     pub fn new(text: &str) -> LineIndex {
+        LineIndex::with_encoding(text, false)
+    }
+
+    /// An index counting columns in UTF-8 bytes (`utf8`) or UTF-16 code units.
+    pub fn with_encoding(text: &str, utf8: bool) -> LineIndex {
         let mut starts = vec![0];
         starts.extend(text.match_indices('\n').map(|(i, _)| i + 1));
         LineIndex {
             starts,
             text: text.to_string(),
+            utf8,
         }
+    }
+
+    pub fn text(&self) -> &str {
+        &self.text
     }
 
     pub fn pos(&self, offset: usize) -> Pos {
@@ -31,7 +43,11 @@ impl LineIndex {
         while !self.text.is_char_boundary(end) {
             end -= 1;
         }
-        let col = self.text[start..end].encode_utf16().count();
+        let col = if self.utf8 {
+            end - start
+        } else {
+            self.text[start..end].encode_utf16().count()
+        };
         Pos {
             line: line as u32,
             col: col as u32,
@@ -51,7 +67,11 @@ impl LineIndex {
             if units >= pos.col {
                 return start + i;
             }
-            units += c.len_utf16() as u32;
+            units += if self.utf8 {
+                c.len_utf8()
+            } else {
+                c.len_utf16()
+            } as u32;
         }
         line_end
     }
@@ -76,5 +96,16 @@ mod tests {
         assert_eq!(idx.offset(Pos { line: 1, col: 1 }), 5);
         assert_eq!(idx.offset(Pos { line: 9, col: 0 }), 12);
         assert_eq!(idx.offset(Pos { line: 0, col: 99 }), 2);
+    }
+
+    #[test]
+    fn utf8_columns() {
+        let idx = LineIndex::with_encoding("ab\nüx𝄞y\n", true);
+        assert_eq!(idx.pos(5), Pos { line: 1, col: 2 });
+        assert_eq!(idx.pos(10), Pos { line: 1, col: 7 });
+        assert_eq!(idx.offset(Pos { line: 1, col: 7 }), 10);
+        assert_eq!(idx.offset(Pos { line: 1, col: 2 }), 5);
+        // inside a character: the next one
+        assert_eq!(idx.offset(Pos { line: 1, col: 1 }), 5);
     }
 }

@@ -361,3 +361,27 @@ fn preview_follows_the_dialect_of_the_settings() {
     assert!(pv.gcode.contains("\nG01 F150.000 Z1.500\n"));
     assert!(pv.gcode.ends_with("M5\nM30\n"));
 }
+
+/// Without machine settings the preview says so (compile would refuse); the placeholders
+/// F150/S15 are never used silently.
+#[test]
+fn preview_without_machine_settings_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("2001.mpath"), PART).unwrap();
+    let ws = Workspace::default();
+    let pv = preview(&ws, &p(dir.path(), "2001.mpath"), None).unwrap();
+    assert!(
+        pv.errors
+            .iter()
+            .any(|e| e.starts_with("missing machine settings: feed, sweep_speed, sweep_height")),
+        "{:?}",
+        pv.errors
+    );
+    // the editor's settings fill them
+    let mut ws = Workspace::default();
+    ws.client.feed = Some(300.0);
+    ws.client.sweep_speed = Some(1000.0);
+    ws.client.sweep_height = Some(10.0);
+    let pv = preview(&ws, &p(dir.path(), "2001.mpath"), None).unwrap();
+    assert!(pv.errors.is_empty(), "{:?}", pv.errors);
+}

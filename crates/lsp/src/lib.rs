@@ -5,7 +5,7 @@
 use millpath_core::diag::{Diagnostic as CoreDiagnostic, Origin, Severity};
 use millpath_core::load::config::FileConfig;
 use millpath_ide::features;
-use millpath_ide::{analyze, Analysis, LineIndex, Pos, Workspace};
+use millpath_ide::{analyze_from, Analysis, LineIndex, Pos, Workspace};
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use std::collections::HashMap;
@@ -38,11 +38,28 @@ pub struct PreviewResult {
     pub errors: Vec<String>,
 }
 
+/// One analysis of one version of an open document, shared by every request about it.
+struct Entry {
+    generation: u64,
+    ws: Arc<Workspace>,
+    cell: tokio::sync::OnceCell<Option<Arc<Analysis>>>,
+}
+
 struct State {
     ws: Workspace,
-    /// Bumped on every change; an analysis publishes only if it is still the latest.
-    generation: HashMap<Uri, u64>,
+    /// Bumped on every change of an open document (or of a file it depends on); an analysis
+    /// of an older generation is abandoned and never published.
+    generation: HashMap<PathBuf, u64>,
+    /// The client's version of each open document (sent back with its diagnostics).
+    versions: HashMap<PathBuf, i32>,
+    /// The analysis of the current (or last requested) generation of each open document.
+    entries: HashMap<PathBuf, Arc<Entry>>,
+    /// The last completed analysis of each open document: its dependencies (which files it
+    /// read for its subpaths, which folders it searched) form the dependency graph.
+    last: HashMap<PathBuf, Arc<Analysis>>,
     debounce: Duration,
+    /// The client can register `workspace/didChangeWatchedFiles` dynamically.
+    watch_files: bool,
 }
 
 pub struct Backend {
@@ -79,6 +96,28 @@ fn offset(a: &Analysis, p: Position) -> usize {
     })
 }
 
+fn internal_error_diagnostic() -> Vec<Diagnostic> {
+    vec![Diagnostic {
+        message: "millpath: internal error while analysing this file".into(),
+        severity: Some(DiagnosticSeverity::ERROR),
+        ..Default::default()
+    }]
+}
+
+/// Applies one incremental change (an LSP range in the negotiated encoding) to a text.
+pub fn apply_edit(text: &mut String, r: Range, new_text: &str, utf8: bool) {
+    let idx = LineIndex::with_encoding(text, utf8);
+    let at = |p: Position| {
+        idx.offset(Pos {
+            line: p.line,
+            col: p.character,
+        })
+    };
+    let (start, end) = (at(r.start), at(r.end));
+    let (start, end) = (start.min(end), end.max(start));
+    text.replace_range(start..end, new_text);
+}
+
 /// Runs a handler body, turning a panic into an error answer (the server goes on).
 fn guarded<T>(f: impl FnOnce() -> T) -> Result<T> {
     catch_unwind(AssertUnwindSafe(f)).map_err(|_| {
@@ -102,8 +141,21 @@ fn diagnostic_range(a: &Analysis, origin: &Origin) -> Range {
             Some(p) => range(&a.index, p.name.span.start, p.name.span.end),
             None => Range::default(),
         },
+        // a drawing: the entity's DXF line (1-based, as `millpath check` reports it)
+        Origin::Entity(e) => line_range(a, e.line),
+        Origin::FileLine { line, .. } => line_range(a, *line),
         _ => Range::default(),
     }
+}
+
+/// The whole 1-based line `line` of the document.
+fn line_range(a: &Analysis, line: usize) -> Range {
+    let l = line.saturating_sub(1) as u32;
+    let start = a.index.offset(Pos { line: l, col: 0 });
+    let end = a.src[start..]
+        .find(['\r', '\n'])
+        .map_or(a.src.len(), |e| start + e);
+    range(&a.index, start, end)
 }
 
 fn location(origin: &Origin, ws: &Workspace) -> Option<Location> {
@@ -112,7 +164,7 @@ fn location(origin: &Origin, ws: &Workspace) -> Option<Location> {
             file, start, end, ..
         } => {
             let text = ws.text(&file.path)?;
-            let idx = LineIndex::new(&text);
+            let idx = ws.line_index(&text);
             Some(Location {
                 uri: to_uri(&file.path)?,
                 range: range(&idx, *start, *end),
@@ -199,72 +251,214 @@ fn client_settings(v: Option<&Value>) -> (FileConfig, Option<u64>) {
     (serde_json::from_value(v).unwrap_or_default(), debounce)
 }
 
+fn is_current(state: &Mutex<State>, path: &Path, generation: u64) -> bool {
+    state
+        .lock()
+        .map(|s| s.generation.get(path) == Some(&generation))
+        .unwrap_or(false)
+}
+
+fn content_modified() -> Error {
+    Error {
+        code: tower_lsp_server::jsonrpc::ErrorCode::ContentModified,
+        message: "the document changed; ask again".into(),
+        data: None,
+    }
+}
+
+/// Runs a heavy handler body on the blocking pool; the handler future only awaits it, so
+/// a `$/cancelRequest` drops the request at once (its result is discarded).
+async fn blocking<T: Send + 'static>(f: impl FnOnce() -> T + Send + 'static) -> Result<T> {
+    match tokio::task::spawn_blocking(move || guarded(f)).await {
+        Ok(r) => r,
+        Err(_) => Err(Error::internal_error()),
+    }
+}
+
 impl Backend {
     fn snapshot(&self) -> Workspace {
         self.state.lock().map(|s| s.ws.clone()).unwrap_or_default()
     }
 
-    fn analysis(&self, uri: &Uri) -> Result<(Analysis, Workspace)> {
+    /// The analysis of the current version of a document, made once and shared: the
+    /// diagnostics, hover, inlay hints, lenses, symbols and the preview all use it. Runs on
+    /// the blocking pool; gives up between its stages when a newer change arrives.
+    async fn analysis(&self, uri: &Uri) -> Result<(Arc<Analysis>, Arc<Workspace>)> {
         let path = to_path(uri).ok_or_else(|| Error::invalid_params("not a file URI"))?;
-        let ws = self.snapshot();
-        let a = guarded(|| analyze(&ws, &path))?;
-        Ok((a, ws))
+        let entry = {
+            let mut st = self.state.lock().map_err(|_| Error::internal_error())?;
+            match st.generation.get(&path).copied() {
+                // not open: analysed afresh each time
+                None => Arc::new(Entry {
+                    generation: u64::MAX,
+                    ws: Arc::new(st.ws.clone()),
+                    cell: Default::default(),
+                }),
+                Some(g) => match st.entries.get(&path) {
+                    Some(e) if e.generation == g => e.clone(),
+                    _ => {
+                        let e = Arc::new(Entry {
+                            generation: g,
+                            ws: Arc::new(st.ws.clone()),
+                            cell: Default::default(),
+                        });
+                        st.entries.insert(path.clone(), e.clone());
+                        e
+                    }
+                },
+            }
+        };
+        // the analysis runs in a task of its own: a cancelled request does not abort it
+        // for the others waiting on the same version
+        let shared = entry.clone();
+        let state = self.state.clone();
+        let task_path = path.clone();
+        let task = tokio::spawn(async move {
+            let e = shared.clone();
+            e.cell
+                .get_or_init(|| {
+                    let (state, ws, path, g) =
+                        (state, shared.ws.clone(), task_path, shared.generation);
+                    async move {
+                        let st = state.clone();
+                        let p = path.clone();
+                        let prev = state.lock().ok().and_then(|s| s.last.get(&path).cloned());
+                        let r = tokio::task::spawn_blocking(move || {
+                            catch_unwind(AssertUnwindSafe(|| {
+                                let cancelled = || g != u64::MAX && !is_current(&st, &p, g);
+                                analyze_from(&ws, &p, prev.as_deref(), &cancelled)
+                            }))
+                        })
+                        .await;
+                        let a = match r {
+                            Ok(Ok(Some(a))) => Arc::new(a),
+                            Ok(Ok(None)) => return None,
+                            // a panic: the error is reported by the caller
+                            _ => return None,
+                        };
+                        if g != u64::MAX {
+                            if let Ok(mut s) = state.lock() {
+                                if s.generation.contains_key(&path) {
+                                    s.last.insert(path, a.clone());
+                                }
+                            }
+                        }
+                        Some(a)
+                    }
+                })
+                .await
+                .clone()
+        });
+        let a = task.await.ok().flatten();
+        match a {
+            Some(a) => Ok((a, entry.ws.clone())),
+            None if entry.generation != u64::MAX
+                && !is_current(&self.state, &path, entry.generation) =>
+            {
+                Err(content_modified())
+            }
+            None => {
+                let mut e = Error::internal_error();
+                e.message = "millpath: internal error while analysing this file".into();
+                Err(e)
+            }
+        }
     }
 
-    /// Debounced analysis and publication; a newer change makes this one stale.
-    async fn schedule(&self, uri: Uri) {
-        let (generation, debounce) = {
-            let Ok(mut st) = self.state.lock() else {
-                return;
-            };
-            let g = st.generation.entry(uri.clone()).or_insert(0);
-            *g += 1;
-            (*g, st.debounce)
+    /// A new generation of an open document (it or a file it depends on changed).
+    fn bump(st: &mut State, path: &Path) -> Option<u64> {
+        let g = st.generation.get_mut(path)?;
+        *g += 1;
+        st.entries.remove(path);
+        Some(*g)
+    }
+
+    /// Open documents other than `changed` whose last analysis depends on it.
+    fn dependents(st: &State, changed: &Path) -> Vec<PathBuf> {
+        st.last
+            .iter()
+            .filter(|(p, a)| p.as_path() != changed && a.depends_on(changed))
+            .map(|(p, _)| p.clone())
+            .collect()
+    }
+
+    /// `changed` changed (buffer, disk, closed): re-analyse the open documents depending on
+    /// it and republish their diagnostics.
+    fn dependents_changed(&self, changed: &[PathBuf]) {
+        let mut todo = Vec::new();
+        if let Ok(mut st) = self.state.lock() {
+            for c in changed {
+                // an open drawing is read from the disk: its own change counts
+                if !millpath_core::load::fs::is_text_file(c) && st.generation.contains_key(c) {
+                    todo.push(c.clone());
+                }
+                for d in Self::dependents(&st, c) {
+                    if !todo.contains(&d) {
+                        todo.push(d);
+                    }
+                }
+            }
+            todo.retain(|d| Self::bump(&mut st, d).is_some());
+        }
+        for d in todo {
+            self.publish_later(d);
+        }
+    }
+
+    /// Debounced analysis and publication of the current generation of an open document;
+    /// a newer change makes it stale (abandoned, never published).
+    fn publish_later(&self, path: PathBuf) {
+        let Some(uri) = to_uri(&path) else { return };
+        // the client's version of exactly this generation
+        let Ok((generation, debounce, version)) = self.state.lock().map(|s| {
+            (
+                s.generation.get(&path).copied().unwrap_or(0),
+                s.debounce,
+                s.versions.get(&path).copied(),
+            )
+        }) else {
+            return;
         };
-        let state = self.state.clone();
-        let client = self.client.clone();
+        let this = Backend {
+            client: self.client.clone(),
+            state: self.state.clone(),
+        };
         tokio::spawn(async move {
-            tokio::time::sleep(debounce).await;
-            let current = |st: &Arc<Mutex<State>>| {
-                st.lock()
-                    .map(|s| s.generation.get(&uri) == Some(&generation))
-                    .unwrap_or(false)
-            };
-            if !current(&state) {
+            if !debounce.is_zero() {
+                tokio::time::sleep(debounce).await;
+            }
+            if !is_current(&this.state, &path, generation) {
                 return;
             }
-            let Some(path) = to_path(&uri) else { return };
-            let ws = match state.lock() {
-                Ok(s) => s.ws.clone(),
-                Err(_) => return,
+            let diags = match this.analysis(&uri).await {
+                Ok((a, ws)) => match blocking(move || lsp_diagnostics(&a, &ws)).await {
+                    Ok(d) => d,
+                    Err(_) => internal_error_diagnostic(),
+                },
+                Err(e) if e.code == tower_lsp_server::jsonrpc::ErrorCode::ContentModified => return,
+                Err(_) => internal_error_diagnostic(),
             };
-            let result = tokio::task::spawn_blocking(move || {
-                catch_unwind(AssertUnwindSafe(|| {
-                    let a = analyze(&ws, &path);
-                    lsp_diagnostics(&a, &ws)
-                }))
-            })
-            .await;
-            let diags = match result {
-                Ok(Ok(d)) => d,
-                _ => vec![Diagnostic {
-                    message: "millpath: internal error while analysing this file".into(),
-                    severity: Some(DiagnosticSeverity::ERROR),
-                    ..Default::default()
-                }],
-            };
-            if current(&state) {
-                client.publish_diagnostics(uri, diags, None).await;
+            if is_current(&this.state, &path, generation) {
+                this.client.publish_diagnostics(uri, diags, version).await;
             }
         });
     }
 
+    /// The document changed: a new generation, its diagnostics and its dependents'.
+    fn changed(&self, path: PathBuf) {
+        if let Ok(mut st) = self.state.lock() {
+            Self::bump(&mut st, &path);
+        }
+        self.publish_later(path.clone());
+        self.dependents_changed(&[path]);
+    }
+
     async fn gcode_preview(&self, params: PreviewParams) -> Result<PreviewResult> {
-        let path = to_path(&params.text_document.uri)
-            .ok_or_else(|| Error::invalid_params("not a file URI"))?;
-        let ws = self.snapshot();
-        let pv =
-            guarded(|| features::preview(&ws, &path, params.path.as_deref()))?.map_err(|e| {
+        let (a, ws) = self.analysis(&params.text_document.uri).await?;
+        let name = params.path;
+        let pv = blocking(move || features::preview_of(&a, &ws, name.as_deref()))
+            .await?
+            .map_err(|e| {
                 let mut err = Error::invalid_request();
                 err.message = e.into();
                 err
@@ -285,25 +479,55 @@ impl Backend {
         let path = to_path(&params.text_document.uri)
             .ok_or_else(|| Error::invalid_params("not a file URI"))?;
         let ws = self.snapshot();
-        guarded(|| features::toolpath(&ws, &path, params.path.as_deref()))?.map_err(|e| {
-            let mut err = Error::invalid_request();
-            err.message = e.into();
-            err
-        })
+        let name = params.path;
+        blocking(move || features::toolpath(&ws, &path, name.as_deref()))
+            .await?
+            .map_err(|e| {
+                let mut err = Error::invalid_request();
+                err.message = e.into();
+                err
+            })
     }
 }
 
 impl LanguageServer for Backend {
     async fn initialize(&self, params: InitializeParams) -> Result<InitializeResult> {
         let (client, debounce) = client_settings(params.initialization_options.as_ref());
+        let utf8 = params
+            .capabilities
+            .general
+            .as_ref()
+            .and_then(|g| g.position_encodings.as_ref())
+            .is_some_and(|e| e.contains(&PositionEncodingKind::UTF8));
         if let Ok(mut st) = self.state.lock() {
             st.ws.client = client;
+            st.ws.utf8 = utf8;
             if let Some(ms) = debounce {
                 st.debounce = Duration::from_millis(ms);
             }
-            for f in params.workspace_folders.unwrap_or_default() {
+            st.watch_files = params
+                .capabilities
+                .workspace
+                .as_ref()
+                .and_then(|w| w.did_change_watched_files.as_ref())
+                .and_then(|d| d.dynamic_registration)
+                .unwrap_or(false);
+            let folders = params.workspace_folders.unwrap_or_default();
+            for f in &folders {
                 if let Some(p) = to_path(&f.uri) {
                     st.ws.roots.push(p);
+                }
+            }
+            // older clients: rootUri, or the even older rootPath
+            #[allow(deprecated)]
+            if folders.is_empty() {
+                let root = params
+                    .root_uri
+                    .as_ref()
+                    .and_then(to_path)
+                    .or_else(|| params.root_path.as_ref().map(PathBuf::from));
+                if let Some(r) = root {
+                    st.ws.roots.push(r);
                 }
             }
         }
@@ -313,9 +537,26 @@ impl LanguageServer for Backend {
                 version: Some(env!("CARGO_PKG_VERSION").into()),
             }),
             capabilities: ServerCapabilities {
-                text_document_sync: Some(TextDocumentSyncCapability::Kind(
-                    TextDocumentSyncKind::FULL,
+                position_encoding: Some(if utf8 {
+                    PositionEncodingKind::UTF8
+                } else {
+                    PositionEncodingKind::UTF16
+                }),
+                text_document_sync: Some(TextDocumentSyncCapability::Options(
+                    TextDocumentSyncOptions {
+                        open_close: Some(true),
+                        change: Some(TextDocumentSyncKind::INCREMENTAL),
+                        save: Some(TextDocumentSyncSaveOptions::Supported(true)),
+                        ..Default::default()
+                    },
                 )),
+                workspace: Some(WorkspaceServerCapabilities {
+                    workspace_folders: Some(WorkspaceFoldersServerCapabilities {
+                        supported: Some(true),
+                        change_notifications: Some(OneOf::Left(true)),
+                    }),
+                    file_operations: None,
+                }),
                 hover_provider: Some(HoverProviderCapability::Simple(true)),
                 completion_provider: Some(CompletionOptions {
                     trigger_characters: Some(vec![">".into(), " ".into()]),
@@ -357,41 +598,123 @@ impl LanguageServer for Backend {
         })
     }
 
+    async fn initialized(&self, _: InitializedParams) {
+        let watch = self.state.lock().map(|s| s.watch_files).unwrap_or(false);
+        if !watch {
+            return;
+        }
+        let client = self.client.clone();
+        // not awaited here: the client answers while we go on
+        tokio::spawn(async move {
+            let watchers = ["**/*.{mpath,dxf,DXF}", "**/millpath.toml"]
+                .iter()
+                .map(|g| FileSystemWatcher {
+                    glob_pattern: GlobPattern::String(g.to_string()),
+                    kind: None,
+                })
+                .collect();
+            let options = DidChangeWatchedFilesRegistrationOptions { watchers };
+            let _ = client
+                .register_capability(vec![Registration {
+                    id: "millpath-watch".into(),
+                    method: "workspace/didChangeWatchedFiles".into(),
+                    register_options: serde_json::to_value(options).ok(),
+                }])
+                .await;
+        });
+    }
+
     async fn shutdown(&self) -> Result<()> {
+        SHUT_DOWN.store(true, std::sync::atomic::Ordering::SeqCst);
         Ok(())
     }
 
     async fn did_open(&self, params: DidOpenTextDocumentParams) {
         let uri = params.text_document.uri;
-        if let (Some(p), Ok(mut st)) = (to_path(&uri), self.state.lock()) {
-            st.ws.overlays.insert(p, params.text_document.text);
+        let Some(p) = to_path(&uri) else { return };
+        // the same text as on disk changes nothing for the files depending on it
+        let as_on_disk = std::fs::read_to_string(&p).is_ok_and(|t| t == params.text_document.text);
+        if let Ok(mut st) = self.state.lock() {
+            st.ws.overlays.insert(p.clone(), params.text_document.text);
+            st.versions.insert(p.clone(), params.text_document.version);
+            st.generation.entry(p.clone()).or_insert(0);
+            Self::bump(&mut st, &p);
         }
-        self.schedule(uri).await;
+        self.publish_later(p.clone());
+        if !as_on_disk {
+            self.dependents_changed(&[p]);
+        }
     }
 
     async fn did_change(&self, params: DidChangeTextDocumentParams) {
         let uri = params.text_document.uri;
-        if let (Some(p), Some(change), Ok(mut st)) = (
-            to_path(&uri),
-            params.content_changes.into_iter().last(),
-            self.state.lock(),
-        ) {
-            st.ws.overlays.insert(p, change.text);
+        let Some(p) = to_path(&uri) else { return };
+        if let Ok(mut st) = self.state.lock() {
+            let utf8 = st.ws.utf8;
+            let mut text = st.ws.overlays.remove(&p).unwrap_or_default();
+            for change in params.content_changes {
+                match change.range {
+                    Some(r) => apply_edit(&mut text, r, &change.text, utf8),
+                    None => text = change.text,
+                }
+            }
+            st.ws.overlays.insert(p.clone(), text);
+            st.versions.insert(p.clone(), params.text_document.version);
         }
-        self.schedule(uri).await;
+        self.changed(p);
+    }
+
+    async fn did_save(&self, params: DidSaveTextDocumentParams) {
+        if let Some(p) = to_path(&params.text_document.uri) {
+            self.dependents_changed(&[p]);
+        }
     }
 
     async fn did_close(&self, params: DidCloseTextDocumentParams) {
         let uri = params.text_document.uri;
         if let (Some(p), Ok(mut st)) = (to_path(&uri), self.state.lock()) {
             st.ws.overlays.remove(&p);
-            st.generation.remove(&uri);
+            st.generation.remove(&p);
+            st.versions.remove(&p);
+            st.entries.remove(&p);
+            st.last.remove(&p);
+            drop(st);
+            // its dependents now see the file on disk
+            self.dependents_changed(&[p]);
         }
         self.client.publish_diagnostics(uri, Vec::new(), None).await;
     }
 
+    async fn did_change_watched_files(&self, params: DidChangeWatchedFilesParams) {
+        let changed: Vec<PathBuf> = params
+            .changes
+            .iter()
+            .filter_map(|c| to_path(&c.uri))
+            .collect();
+        self.dependents_changed(&changed);
+    }
+
+    async fn did_change_workspace_folders(&self, params: DidChangeWorkspaceFoldersParams) {
+        if let Ok(mut st) = self.state.lock() {
+            for f in &params.event.removed {
+                if let Some(p) = to_path(&f.uri) {
+                    st.ws.roots.retain(|r| *r != p);
+                }
+            }
+            for f in &params.event.added {
+                if let Some(p) = to_path(&f.uri) {
+                    if !st.ws.roots.contains(&p) {
+                        st.ws.roots.push(p);
+                    }
+                }
+            }
+        }
+    }
+
     async fn hover(&self, params: HoverParams) -> Result<Option<Hover>> {
-        let (a, ws) = self.analysis(&params.text_document_position_params.text_document.uri)?;
+        let (a, ws) = self
+            .analysis(&params.text_document_position_params.text_document.uri)
+            .await?;
         let at = offset(&a, params.text_document_position_params.position);
         guarded(|| {
             features::hover(&a, &ws, at).map(|h| Hover {
@@ -405,7 +728,9 @@ impl LanguageServer for Backend {
     }
 
     async fn completion(&self, params: CompletionParams) -> Result<Option<CompletionResponse>> {
-        let (a, ws) = self.analysis(&params.text_document_position.text_document.uri)?;
+        let (a, ws) = self
+            .analysis(&params.text_document_position.text_document.uri)
+            .await?;
         let at = offset(&a, params.text_document_position.position);
         guarded(|| {
             let items = features::completion(&a, &ws, at)
@@ -425,7 +750,9 @@ impl LanguageServer for Backend {
         &self,
         params: GotoDefinitionParams,
     ) -> Result<Option<GotoDefinitionResponse>> {
-        let (a, ws) = self.analysis(&params.text_document_position_params.text_document.uri)?;
+        let (a, ws) = self
+            .analysis(&params.text_document_position_params.text_document.uri)
+            .await?;
         let at = offset(&a, params.text_document_position_params.position);
         guarded(|| {
             let locs: Vec<Location> = features::definition(&a, &ws, at)
@@ -437,15 +764,18 @@ impl LanguageServer for Backend {
     }
 
     async fn references(&self, params: ReferenceParams) -> Result<Option<Vec<Location>>> {
-        let (a, ws) = self.analysis(&params.text_document_position.text_document.uri)?;
+        let (a, ws) = self
+            .analysis(&params.text_document_position.text_document.uri)
+            .await?;
         let at = offset(&a, params.text_document_position.position);
+        let with_declaration = params.context.include_declaration;
         guarded(|| {
-            Some(
-                features::references(&a, &ws, at)
-                    .iter()
-                    .filter_map(loc)
-                    .collect(),
-            )
+            let mut out = Vec::new();
+            if with_declaration {
+                out.extend(features::definition(&a, &ws, at).iter().filter_map(loc));
+            }
+            out.extend(features::references(&a, &ws, at).iter().filter_map(loc));
+            Some(out)
         })
     }
 
@@ -453,7 +783,7 @@ impl LanguageServer for Backend {
         &self,
         params: DocumentSymbolParams,
     ) -> Result<Option<DocumentSymbolResponse>> {
-        let (a, _) = self.analysis(&params.text_document.uri)?;
+        let (a, _) = self.analysis(&params.text_document.uri).await?;
         #[allow(deprecated)]
         fn conv(a: &Analysis, s: &features::Symbol) -> DocumentSymbol {
             DocumentSymbol {
@@ -505,7 +835,7 @@ impl LanguageServer for Backend {
     }
 
     async fn formatting(&self, params: DocumentFormattingParams) -> Result<Option<Vec<TextEdit>>> {
-        let (a, _) = self.analysis(&params.text_document.uri)?;
+        let (a, _) = self.analysis(&params.text_document.uri).await?;
         guarded(|| {
             features::format(&a).filter(|f| *f != a.src).map(|f| {
                 vec![TextEdit {
@@ -518,7 +848,7 @@ impl LanguageServer for Backend {
 
     async fn code_action(&self, params: CodeActionParams) -> Result<Option<CodeActionResponse>> {
         let uri = params.text_document.uri.clone();
-        let (a, _) = self.analysis(&uri)?;
+        let (a, _) = self.analysis(&uri).await?;
         let (s, e) = (offset(&a, params.range.start), offset(&a, params.range.end));
         guarded(|| {
             let actions = features::code_actions(&a, s, e)
@@ -542,10 +872,11 @@ impl LanguageServer for Backend {
     }
 
     async fn inlay_hint(&self, params: InlayHintParams) -> Result<Option<Vec<InlayHint>>> {
-        let (a, _) = self.analysis(&params.text_document.uri)?;
+        let (a, _) = self.analysis(&params.text_document.uri).await?;
+        let (start, end) = (offset(&a, params.range.start), offset(&a, params.range.end));
         guarded(|| {
             Some(
-                features::inlay_hints(&a)
+                features::inlay_hints_in(&a, start, end)
                     .into_iter()
                     .map(|h| InlayHint {
                         position: pos(a.index.pos(h.offset)),
@@ -566,7 +897,7 @@ impl LanguageServer for Backend {
         &self,
         params: SemanticTokensParams,
     ) -> Result<Option<SemanticTokensResult>> {
-        let (a, _) = self.analysis(&params.text_document.uri)?;
+        let (a, _) = self.analysis(&params.text_document.uri).await?;
         guarded(|| {
             let mut data = Vec::new();
             let (mut line, mut col) = (0u32, 0u32);
@@ -597,8 +928,8 @@ impl LanguageServer for Backend {
 
     async fn code_lens(&self, params: CodeLensParams) -> Result<Option<Vec<CodeLens>>> {
         let uri = params.text_document.uri;
-        let (a, ws) = self.analysis(&uri)?;
-        guarded(|| {
+        let (a, ws) = self.analysis(&uri).await?;
+        blocking(move || {
             Some(
                 features::code_lenses(&a, &ws)
                     .into_iter()
@@ -620,6 +951,7 @@ impl LanguageServer for Backend {
                     .collect(),
             )
         })
+        .await
     }
 
     async fn execute_command(&self, params: ExecuteCommandParams) -> Result<Option<Value>> {
@@ -654,7 +986,11 @@ pub fn service() -> (LspService<Backend>, tower_lsp_server::ClientSocket) {
         state: Arc::new(Mutex::new(State {
             ws: Workspace::default(),
             generation: HashMap::new(),
-            debounce: Duration::from_millis(10),
+            versions: HashMap::new(),
+            entries: HashMap::new(),
+            last: HashMap::new(),
+            debounce: Duration::ZERO,
+            watch_files: false,
         })),
     })
     .custom_method("millpath/gcodePreview", Backend::gcode_preview)
@@ -662,14 +998,18 @@ pub fn service() -> (LspService<Backend>, tower_lsp_server::ClientSocket) {
     .finish()
 }
 
-/// Serves LSP over standard input and output until the client exits.
-pub fn run_stdio() {
+/// `shutdown` was received (the exit status of [`run_stdio`]).
+static SHUT_DOWN: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Serves LSP over standard input and output until the client exits; the exit status is 0
+/// after `shutdown`, 1 when the client exits (or the input ends) without it.
+pub fn run_stdio() -> u8 {
     let Ok(rt) = tokio::runtime::Builder::new_multi_thread()
         .enable_all()
         .build()
     else {
         eprintln!("millpath lsp: cannot start the runtime");
-        return;
+        return 1;
     };
     rt.block_on(async {
         let (service, socket) = service();
@@ -677,4 +1017,7 @@ pub fn run_stdio() {
             .serve(service)
             .await;
     });
+    // blocking analyses still running are not waited for
+    rt.shutdown_background();
+    u8::from(!SHUT_DOWN.load(std::sync::atomic::Ordering::SeqCst))
 }

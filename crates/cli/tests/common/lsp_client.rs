@@ -14,6 +14,10 @@ pub struct Client {
     next_id: i64,
     /// Notifications received while waiting for responses.
     pub notifications: Vec<Value>,
+    /// Responses received while waiting for something else.
+    pub responses: Vec<Value>,
+    /// Requests the server sent (e.g. `client/registerCapability`), answered with null.
+    pub server_requests: Vec<Value>,
 }
 
 impl Client {
@@ -68,6 +72,8 @@ impl Client {
             rx,
             next_id: 1,
             notifications: Vec::new(),
+            responses: Vec::new(),
+            server_requests: Vec::new(),
         }
     }
 
@@ -81,28 +87,55 @@ impl Client {
         self.send(&json!({ "jsonrpc": "2.0", "method": method, "params": params }));
     }
 
-    /// Sends a request and waits for its response (`result` or `error`).
-    pub fn request(&mut self, method: &str, params: Value) -> Value {
+    /// Sends a request without waiting; returns its id.
+    pub fn send_request(&mut self, method: &str, params: Value) -> i64 {
         let id = self.next_id;
         self.next_id += 1;
         self.send(&json!({ "jsonrpc": "2.0", "id": id, "method": method, "params": params }));
-        let deadline = Instant::now() + Duration::from_secs(30);
+        id
+    }
+
+    /// The next message, answering requests of the server (null) on the way.
+    fn recv(&mut self, deadline: Instant) -> Option<Value> {
         loop {
             let v = self
                 .rx
                 .recv_timeout(deadline.saturating_duration_since(Instant::now()))
-                .expect("response in time");
-            if v.get("id") == Some(&json!(id)) && v.get("method").is_none() {
-                return v;
-            }
+                .ok()?;
             if v.get("method").is_some() && v.get("id").is_some() {
-                // a request from the server (e.g. workspace/configuration): answer null
                 let rid = v["id"].clone();
                 self.send(&json!({ "jsonrpc": "2.0", "id": rid, "result": null }));
+                self.server_requests.push(v);
                 continue;
             }
-            self.notifications.push(v);
+            return Some(v);
         }
+    }
+
+    /// Waits for the response to request `id` (`None` after the timeout).
+    pub fn wait_response(&mut self, id: i64, timeout: Duration) -> Option<Value> {
+        if let Some(i) = self.responses.iter().position(|r| r["id"] == json!(id)) {
+            return Some(self.responses.remove(i));
+        }
+        let deadline = Instant::now() + timeout;
+        loop {
+            let v = self.recv(deadline)?;
+            if v.get("method").is_none() {
+                if v["id"] == json!(id) {
+                    return Some(v);
+                }
+                self.responses.push(v);
+            } else {
+                self.notifications.push(v);
+            }
+        }
+    }
+
+    /// Sends a request and waits for its response (`result` or `error`).
+    pub fn request(&mut self, method: &str, params: Value) -> Value {
+        let id = self.send_request(method, params);
+        self.wait_response(id, Duration::from_secs(30))
+            .expect("response in time")
     }
 
     /// Waits for the next notification of `method` (already received ones first).
@@ -116,15 +149,47 @@ impl Client {
         }
         let deadline = Instant::now() + timeout;
         loop {
-            let v = self
-                .rx
-                .recv_timeout(deadline.saturating_duration_since(Instant::now()))
-                .ok()?;
+            let v = self.recv(deadline)?;
             if v["method"] == method {
                 return Some(v);
             }
-            self.notifications.push(v);
+            if v.get("method").is_none() {
+                self.responses.push(v);
+            } else {
+                self.notifications.push(v);
+            }
         }
+    }
+
+    /// Waits for diagnostics of the document `uri` (others are kept).
+    pub fn wait_diagnostics(&mut self, uri: &str, timeout: Duration) -> Option<Value> {
+        let want = decode_uri(uri);
+        let is = |n: &Value| {
+            n["method"] == "textDocument/publishDiagnostics"
+                && n["params"]["uri"].as_str().map(decode_uri) == Some(want.clone())
+        };
+        if let Some(i) = self.notifications.iter().position(is) {
+            return Some(self.notifications.remove(i));
+        }
+        let deadline = Instant::now() + timeout;
+        loop {
+            let v = self.recv(deadline)?;
+            if is(&v) {
+                return Some(v);
+            }
+            if v.get("method").is_none() {
+                self.responses.push(v);
+            } else {
+                self.notifications.push(v);
+            }
+        }
+    }
+
+    /// `initialize` with parameters of the caller's, then `initialized`.
+    pub fn initialize_with(&mut self, params: Value) -> Value {
+        let r = self.request("initialize", params);
+        self.notify("initialized", json!({}));
+        r
     }
 
     pub fn initialize(&mut self, root: &std::path::Path, options: Value) -> Value {
@@ -137,6 +202,13 @@ impl Client {
         r
     }
 
+    /// `exit` without `shutdown` (the server must exit with status 1).
+    pub fn exit_without_shutdown(mut self) -> std::process::ExitStatus {
+        self.notify("exit", Value::Null);
+        drop(self.stdin);
+        self.child.wait().unwrap()
+    }
+
     pub fn shutdown(mut self) -> std::process::ExitStatus {
         let _ = self.request("shutdown", Value::Null);
         self.notify("exit", Value::Null);
@@ -145,6 +217,34 @@ impl Client {
     }
 }
 
+/// The `file:` URI of a path, percent-encoded (spaces, umlauts).
 pub fn uri(p: &std::path::Path) -> String {
-    format!("file://{}", p.display())
+    let mut out = String::from("file://");
+    for b in p.to_string_lossy().bytes() {
+        if b.is_ascii_alphanumeric() || b"-._~/".contains(&b) {
+            out.push(b as char);
+        } else {
+            out.push_str(&format!("%{b:02X}"));
+        }
+    }
+    out
+}
+
+/// A URI with its percent-escapes decoded (servers may escape differently).
+pub fn decode_uri(s: &str) -> String {
+    let b = s.as_bytes();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < b.len() {
+        if b[i] == b'%' && i + 2 < b.len() {
+            if let Ok(v) = u8::from_str_radix(&s[i + 1..i + 3], 16) {
+                out.push(v);
+                i += 3;
+                continue;
+            }
+        }
+        out.push(b[i]);
+        i += 1;
+    }
+    String::from_utf8_lossy(&out).into_owned()
 }

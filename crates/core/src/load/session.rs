@@ -179,6 +179,37 @@ impl<'a> Session<'a> {
         }
     }
 
+    /// The paths of a parsed text file with every check of reading it (syntax, kinds, path
+    /// names): the one code for `check`/`compile` and the editor, which keeps the tree.
+    pub fn text_paths(
+        &self,
+        ast: &millpath_syntax::File,
+        errors: Vec<millpath_syntax::SyntaxError>,
+        src: &str,
+        file: &Arc<FileRef>,
+        diags: &mut Diags,
+    ) -> Result<(crate::front::text::TextDrawing, Vec<RawPath>), Diagnostic> {
+        let text = crate::front::text::objects_of(ast, errors, src, file, diags)?;
+        let paths = crate::front::drawing::build_paths(
+            &text.objects,
+            file,
+            &self.patterns.path_cs,
+            &self.settings.path_pattern,
+            diags,
+        )?;
+        text.check_declared_kinds(&paths, diags);
+        for p in &paths {
+            if !self.patterns.path_full.is_match(&p.name) {
+                diags.error(
+                    Msg::PathNameNoMatch,
+                    p.origin(),
+                    args![p.name, self.settings.path_pattern],
+                );
+            }
+        }
+        Ok((text, paths))
+    }
+
     pub(crate) fn parse_drawing(
         &self,
         bytes: &[u8],
@@ -194,25 +225,8 @@ impl<'a> Session<'a> {
         if is_text_file(&file.path) {
             info.push(format!("---- {verb} {}", file.path.display()));
             let src = String::from_utf8_lossy(bytes);
-            let text = crate::front::text::text_objects(&src, file, diags)?;
-            let objects = &text.objects;
-            let paths = crate::front::drawing::build_paths(
-                objects,
-                file,
-                &self.patterns.path_cs,
-                &self.settings.path_pattern,
-                diags,
-            )?;
-            text.check_declared_kinds(&paths, diags);
-            for p in &paths {
-                if !self.patterns.path_full.is_match(&p.name) {
-                    diags.error(
-                        Msg::PathNameNoMatch,
-                        p.origin(),
-                        args![p.name, self.settings.path_pattern],
-                    );
-                }
-            }
+            let (ast, errors) = millpath_syntax::parse(&src);
+            let (_, paths) = self.text_paths(&ast, errors, &src, file, diags)?;
             return Ok(crate::front::drawing::DrawingFile {
                 paths,
                 debug: Vec::new(),
