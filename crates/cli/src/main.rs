@@ -511,6 +511,15 @@ fn run_compile(m: &MachineArgs, files: &[String]) -> u8 {
         flush_info(&mut session);
         write_outputs(&outcome.outputs, lang, &mut write_errors);
         print_stats(&outcome, lang);
+        if let (Some(v), false) = (outcome.removed_volume, outcome.outputs.is_empty()) {
+            // not in pathdxf2gcode's output, which stays the reference's
+            let label = if lang == Lang::De {
+                "Abgetragenes Volumen"
+            } else {
+                "Removed volume"
+            };
+            eprintln!("  {label}: {v:.0} mm³");
+        }
     }
     let all: Vec<Diagnostic> = session
         .diags

@@ -428,3 +428,42 @@ fn render_without_machine_settings_refuses() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("missing machine settings"));
     assert!(!dir.path().join("t.svg").exists());
 }
+
+/// `compile` reports the volume the written program removes (the second opinion's stock
+/// model); the reference command line's output stays the reference's.
+#[test]
+fn compile_reports_the_removed_volume() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("1234.1P.dxf"), example()).unwrap();
+    let out = millpath(
+        dir.path(),
+        &[
+            "compile",
+            "--feed",
+            "150",
+            "--sweep-speed",
+            "500",
+            "--sweep-height",
+            "15",
+            "1234.1P.dxf",
+        ],
+    );
+    assert!(out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    let line = err
+        .lines()
+        .find(|l| l.contains("Removed volume:"))
+        .unwrap_or_else(|| panic!("{err}"));
+    let mm3: f64 = line
+        .split_whitespace()
+        .rev()
+        .nth(1)
+        .and_then(|v| v.parse().ok())
+        .unwrap();
+    assert!(mm3 > 0.0, "{line}");
+    let compat = millpath(
+        dir.path(),
+        &["pathdxf2gcode", "/f150", "/v500", "/s15", "1234.1P.dxf"],
+    );
+    assert!(!String::from_utf8_lossy(&compat.stderr).contains("Removed volume"));
+}

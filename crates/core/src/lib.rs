@@ -42,6 +42,8 @@ pub struct FileOutcome {
     pub outputs: Vec<OutputFile>,
     /// Statistics of the compiled path(s).
     pub stats: Vec<(String, Stats)>,
+    /// Material removed by the written program (mm³, the second opinion's stock model).
+    pub removed_volume: Option<f64>,
 }
 
 /// The input argument completed like the reference does: `.dxf` appended when missing.
@@ -148,9 +150,11 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
     };
     let lang = session.lang();
     let dialect = session.settings.dialect;
-    for d in second_opinion::review(program, &model, &generated.line_sources, lang, dialect) {
+    let review = second_opinion::review(program, &model, &generated.line_sources, lang, dialect);
+    for d in review.diagnostics {
         session.diags.push(d);
     }
+    outcome.removed_volume = review.removed_volume;
     if session.diags.has_errors() {
         // a controller dialect whose checker objects: nothing is written
         return outcome;

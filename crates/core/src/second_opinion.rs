@@ -39,7 +39,7 @@ pub fn review(
     line_sources: &[Option<Origin>],
     lang: Lang,
     dialect: crate::emit::dialect::Dialect,
-) -> Vec<Diagnostic> {
+) -> Review {
     use crate::emit::dialect::Dialect as Ours;
     let (checked_as, strict) = match dialect {
         Ours::Reference => (Dialect::Reference, false),
@@ -61,7 +61,7 @@ pub fn review(
         Lang::En => millpath_verify::Lang::En,
         Lang::De => millpath_verify::Lang::De,
     };
-    report
+    let diagnostics = report
         .findings
         .iter()
         .filter(|f| f.severity != Severity::Note)
@@ -77,5 +77,17 @@ pub fn review(
                 Diagnostic::warning(Msg::SecondOpinion, origin, args)
             }
         })
-        .collect()
+        .collect();
+    Review {
+        diagnostics,
+        removed_volume: report.stock.map(|_| report.removed_volume_mm3),
+    }
+}
+
+/// What the second opinion says about one program.
+pub struct Review {
+    /// Findings located at their elements.
+    pub diagnostics: Vec<Diagnostic>,
+    /// Material the program removes, mm³, by the checker's stock model.
+    pub removed_volume: Option<f64>,
 }
