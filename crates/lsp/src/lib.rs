@@ -50,8 +50,43 @@ pub struct Backend {
     state: Arc<Mutex<State>>,
 }
 
+/// Buffers opened with the language id `millpath` whose file name is not `*.mpath`.
+static TEXT_BUFFERS: Mutex<Vec<String>> = Mutex::new(Vec::new());
+
+/// The path of a document. A `file:` URI is its path; any other (an editor's `untitled:`
+/// buffer, …) and a buffer opened as `millpath` get a made-up `*.mpath` path: text, never a
+/// drawing to load.
 fn to_path(uri: &Uri) -> Option<PathBuf> {
-    uri.to_file_path().map(|p| p.into_owned())
+    let text = TEXT_BUFFERS
+        .lock()
+        .is_ok_and(|b| b.iter().any(|u| u == uri.as_str()));
+    if uri.scheme().as_str() != "file" {
+        let name: String = uri
+            .as_str()
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '-' || c == '.' {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .collect();
+        return Some(
+            std::env::temp_dir()
+                .join("millpath-buffers")
+                .join(format!("{name}.mpath")),
+        );
+    }
+    let p = uri.to_file_path()?.into_owned();
+    Some(if text && !millpath_core::load::fs::is_text_file(&p) {
+        p.with_extension(format!(
+            "{}.mpath",
+            p.extension().and_then(|e| e.to_str()).unwrap_or("")
+        ))
+    } else {
+        p
+    })
 }
 
 fn to_uri(path: &Path) -> Option<Uri> {
@@ -332,7 +367,7 @@ impl LanguageServer for Backend {
                     resolve_provider: Some(false),
                 }),
                 execute_command_provider: Some(ExecuteCommandOptions {
-                    commands: vec!["millpath.preview".into()],
+                    commands: vec!["millpath.server.preview".into()],
                     ..Default::default()
                 }),
                 semantic_tokens_provider: Some(
@@ -363,6 +398,13 @@ impl LanguageServer for Backend {
 
     async fn did_open(&self, params: DidOpenTextDocumentParams) {
         let uri = params.text_document.uri;
+        if params.text_document.language_id == "millpath" {
+            if let Ok(mut b) = TEXT_BUFFERS.lock() {
+                if !b.iter().any(|u| u == uri.as_str()) {
+                    b.push(uri.as_str().to_string());
+                }
+            }
+        }
         if let (Some(p), Ok(mut st)) = (to_path(&uri), self.state.lock()) {
             st.ws.overlays.insert(p, params.text_document.text);
         }
@@ -386,6 +428,9 @@ impl LanguageServer for Backend {
         if let (Some(p), Ok(mut st)) = (to_path(&uri), self.state.lock()) {
             st.ws.overlays.remove(&p);
             st.generation.remove(&uri);
+        }
+        if let Ok(mut b) = TEXT_BUFFERS.lock() {
+            b.retain(|u| u != uri.as_str());
         }
         self.client.publish_diagnostics(uri, Vec::new(), None).await;
     }
@@ -623,7 +668,7 @@ impl LanguageServer for Backend {
     }
 
     async fn execute_command(&self, params: ExecuteCommandParams) -> Result<Option<Value>> {
-        if params.command != "millpath.preview" {
+        if params.command != "millpath.server.preview" {
             return Err(Error::method_not_found());
         }
         let uri = params
