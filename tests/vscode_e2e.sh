@@ -21,7 +21,7 @@ tmp="$(mktemp -d)"
 pid=""
 cleanup() {
   if [ -n "$pid" ]; then kill "$pid" 2>/dev/null || true; wait "$pid" 2>/dev/null || true; fi
-  rm -rf "$tmp"
+  if [ -n "${KEEP_TMP:-}" ]; then echo "kept $tmp"; else rm -rf "$tmp"; fi
 }
 trap cleanup EXIT
 ws="$tmp/workspace"
@@ -39,6 +39,8 @@ cat > "$tmp/user/User/settings.json" <<'JSON'
   "extensions.autoUpdate": false,
   "extensions.ignoreRecommendations": true,
   "editor.codeLens": true,
+  "millpath.trace.server": "messages",
+  "files.autoSave": "off",
   "editor.minimap.enabled": false,
   "editor.hover.delay": 100,
   "files.simpleDialog.enable": true,
@@ -47,7 +49,7 @@ cat > "$tmp/user/User/settings.json" <<'JSON'
   "workbench.secondarySideBar.defaultVisibility": "hidden"
 }
 JSON
-cs=("$code_server" --user-data-dir "$tmp/user" --extensions-dir "$tmp/extensions")
+cs=("$code_server" --config "$tmp/config.yaml" --user-data-dir "$tmp/user" --extensions-dir "$tmp/extensions")
 "${cs[@]}" --install-extension "$vsix" >"$tmp/install.log" 2>&1 || { cat "$tmp/install.log"; exit 1; }
 port="$(python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1",0)); print(s.getsockname()[1])')"
 "${cs[@]}" --auth none --bind-addr "127.0.0.1:$port" --disable-telemetry --disable-update-check \
