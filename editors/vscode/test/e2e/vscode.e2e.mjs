@@ -187,7 +187,7 @@ try {
     return text.trim();
   });
 
-  await check('hover shows the effective values and their origin', 'hover', async () => {
+  await check('hover shows the effective values and their origin', null, async () => {
     await goTo(7, 4);
     await page.keyboard.press('Control+K');
     await page.keyboard.press('Control+I');
@@ -197,6 +197,7 @@ try {
       return /path start/.test(t) && t;
     }, 15000);
     expect(text, `hover: ${await hover.innerText().catch(() => 'none')}`);
+    await page.screenshot({ path: join(artifacts, 'vscode-hover.png') });
     await page.keyboard.press('Escape');
     return text.split('\n').find((l) => /-0,2/.test(l))?.trim();
   });
