@@ -24,6 +24,32 @@ function settings(): MachineSettings {
 
 let log: vscode.OutputChannel | undefined;
 
+/** The extension's own commands. */
+const OWN_COMMANDS = ['millpath.preview', 'millpath.toolpath', 'millpath.dxfToText', 'millpath.textToDxf'];
+
+/** A language client that never registers a server command under the name of one of ours:
+ *  vscode-languageclient registers every command the server advertises
+ *  (`executeCommandProvider`) as a VS Code command, and a second registration of a name fails
+ *  ("command 'millpath.preview' already exists"). Our server says `millpath.server.preview`;
+ *  this keeps an older or foreign server from breaking the extension. */
+class MillpathClient extends LanguageClient {
+  override registerFeature(feature: Parameters<LanguageClient['registerFeature']>[0]): void {
+    const f = feature as { registrationType?: { method?: string }; register?: (data: any) => void };
+    if (f.registrationType?.method === 'workspace/executeCommand' && typeof f.register === 'function') {
+      const register = f.register.bind(feature);
+      f.register = (data: any) => {
+        const commands = ((data?.registerOptions?.commands ?? []) as string[]).filter((c) => {
+          if (!OWN_COMMANDS.includes(c)) return true;
+          log?.appendLine(`[warn] the server's command ${c} has the name of one of the extension's: not registered`);
+          return false;
+        });
+        register({ ...data, registerOptions: { ...data?.registerOptions, commands } });
+      };
+    }
+    super.registerFeature(feature);
+  }
+}
+
 /** The server binary (setting, bundled in the .vsix, PATH), or an error saying there is none. */
 function server(ctx: vscode.ExtensionContext): ServerLookup {
   const exe = process.platform === 'win32' ? 'millpath.exe' : 'millpath';
@@ -216,7 +242,7 @@ export async function activate(ctx: vscode.ExtensionContext): Promise<void> {
       initializationOptions: initializationOptions(settings()),
       outputChannel: log,
     };
-    const c = new LanguageClient('millpath', 'MillPath', serverOptions, clientOptions);
+    const c = new MillpathClient('millpath', 'MillPath', serverOptions, clientOptions);
     try {
       await c.start();
       client = c;
