@@ -127,7 +127,7 @@ function exthostLogs() {
     for (const e of readdirSync(d)) {
       const p = join(d, e);
       if (statSync(p).isDirectory()) walk(p);
-      else if (/exthost.*\.log$/i.test(e)) out.push(p);
+      else if (/exthost.*\.log$/i.test(e) || /MillPath\.log$/.test(e)) out.push(p); // + the extension's output channel
     }
   };
   walk(join(userData, 'logs'));
