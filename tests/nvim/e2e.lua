@@ -79,6 +79,26 @@ local ok, err = pcall(function()
     return table.concat(vim.api.nvim_buf_get_lines(pbuf, 0, -1, false), '\n') .. '\n' ~= preview
   end, 50)
   check('preview follows edits', table.concat(vim.api.nvim_buf_get_lines(pbuf, 0, -1, false), '\n') .. '\n' ~= preview, 'unchanged')
+  -- running the code lens of the path opens its preview (a client-side command)
+  vim.api.nvim_buf_delete(pbuf, { force = true })
+  vim.api.nvim_win_set_cursor(0, { 1, 0 })
+  vim.lsp.codelens.refresh({ bufnr = 0 })
+  vim.wait(10000, function() return #vim.lsp.codelens.get(0) > 0 end, 50)
+  local lenses = vim.lsp.codelens.get(0)
+  check('a code lens on the path', #lenses > 0 and lenses[1].command and lenses[1].command.command == 'millpath.preview', vim.inspect(lenses))
+  local lens_err
+  local notify = vim.notify
+  vim.notify = function(msg, level)
+    if level and level >= vim.log.levels.WARN then lens_err = msg end
+  end
+  vim.lsp.codelens.run()
+  vim.notify = notify
+  local lbuf
+  vim.wait(10000, function()
+    lbuf = vim.b.millpath_preview
+    return lbuf and vim.api.nvim_buf_is_valid(lbuf) and vim.api.nvim_buf_get_lines(lbuf, 0, 1, false)[1] == '%'
+  end, 50)
+  check('running the code lens opens the G-code preview', lbuf and vim.api.nvim_buf_is_valid(lbuf) and vim.api.nvim_buf_get_lines(lbuf, 0, 1, false)[1] == '%', lens_err or 'no preview')
   -- the toolpath page with the server's data (the browser opener is replaced here)
   vim.ui = vim.ui or {}
   local opened

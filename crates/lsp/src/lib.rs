@@ -67,12 +67,66 @@ pub struct Backend {
     state: Arc<Mutex<State>>,
 }
 
+/// Buffers opened with the language id `millpath` whose file name is not `*.mpath`.
+static TEXT_BUFFERS: Mutex<Vec<String>> = Mutex::new(Vec::new());
+
+/// Made-up paths and the documents they stand for, so answers go back to the editor's URI.
+static MADE_UP: Mutex<Vec<(PathBuf, String)>> = Mutex::new(Vec::new());
+
+fn made_up(path: PathBuf, uri: &Uri) -> PathBuf {
+    if let Ok(mut m) = MADE_UP.lock() {
+        if !m.iter().any(|(p, _)| *p == path) {
+            m.push((path.clone(), uri.as_str().to_string()));
+        }
+    }
+    path
+}
+
+/// The path of a document. A `file:` URI is its path; any other (an editor's `untitled:`
+/// buffer, …) and a buffer opened as `millpath` get a made-up `*.mpath` path: text, never a
+/// drawing to load.
 fn to_path(uri: &Uri) -> Option<PathBuf> {
-    uri.to_file_path().map(|p| p.into_owned())
+    let text = TEXT_BUFFERS
+        .lock()
+        .is_ok_and(|b| b.iter().any(|u| u == uri.as_str()));
+    if uri.scheme().as_str() != "file" {
+        let name: String = uri
+            .as_str()
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '-' || c == '.' {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .collect();
+        return Some(made_up(
+            std::env::temp_dir()
+                .join("millpath-buffers")
+                .join(format!("{name}.mpath")),
+            uri,
+        ));
+    }
+    let p = uri.to_file_path()?.into_owned();
+    Some(if text && !millpath_core::load::fs::is_text_file(&p) {
+        let ext = format!(
+            "{}.mpath",
+            p.extension().and_then(|e| e.to_str()).unwrap_or("")
+        );
+        made_up(p.with_extension(ext), uri)
+    } else {
+        p
+    })
 }
 
 fn to_uri(path: &Path) -> Option<Uri> {
-    Uri::from_file_path(path)
+    let original = MADE_UP.lock().ok().and_then(|m| {
+        m.iter()
+            .find(|(p, _)| p == path)
+            .and_then(|(_, u)| u.parse::<Uri>().ok())
+    });
+    original.or_else(|| Uri::from_file_path(path))
 }
 
 fn pos(p: Pos) -> Position {
@@ -573,7 +627,7 @@ impl LanguageServer for Backend {
                     resolve_provider: Some(false),
                 }),
                 execute_command_provider: Some(ExecuteCommandOptions {
-                    commands: vec!["millpath.preview".into()],
+                    commands: vec!["millpath.server.preview".into()],
                     ..Default::default()
                 }),
                 semantic_tokens_provider: Some(
@@ -631,6 +685,13 @@ impl LanguageServer for Backend {
 
     async fn did_open(&self, params: DidOpenTextDocumentParams) {
         let uri = params.text_document.uri;
+        if params.text_document.language_id == "millpath" {
+            if let Ok(mut b) = TEXT_BUFFERS.lock() {
+                if !b.iter().any(|u| u == uri.as_str()) {
+                    b.push(uri.as_str().to_string());
+                }
+            }
+        }
         let Some(p) = to_path(&uri) else { return };
         // the same text as on disk changes nothing for the files depending on it
         let as_on_disk = std::fs::read_to_string(&p).is_ok_and(|t| t == params.text_document.text);
@@ -681,6 +742,9 @@ impl LanguageServer for Backend {
             drop(st);
             // its dependents now see the file on disk
             self.dependents_changed(&[p]);
+        }
+        if let Ok(mut b) = TEXT_BUFFERS.lock() {
+            b.retain(|u| u != uri.as_str());
         }
         self.client.publish_diagnostics(uri, Vec::new(), None).await;
     }
@@ -955,7 +1019,7 @@ impl LanguageServer for Backend {
     }
 
     async fn execute_command(&self, params: ExecuteCommandParams) -> Result<Option<Value>> {
-        if params.command != "millpath.preview" {
+        if params.command != "millpath.server.preview" {
             return Err(Error::method_not_found());
         }
         let uri = params

@@ -6,7 +6,7 @@ import * as path from 'node:path';
 import { execFile } from 'node:child_process';
 import { LanguageClient, LanguageClientOptions, ServerOptions } from 'vscode-languageclient/node';
 import {
-  initializationOptions, serverCommand, previewUri, parsePreviewUri, pathAtLine, statusText, isSourceRef, PREVIEW_SCHEME, MachineSettings,
+  initializationOptions, findServer, ServerLookup, previewUri, parsePreviewUri, pathAtLine, statusText, isSourceRef, PREVIEW_SCHEME, MachineSettings,
 } from './logic';
 
 let client: LanguageClient | undefined;
@@ -22,10 +22,64 @@ function settings(): MachineSettings {
   };
 }
 
-function command(ctx: vscode.ExtensionContext): string {
+let log: vscode.OutputChannel | undefined;
+
+/** The extension's own commands. */
+const OWN_COMMANDS = ['millpath.preview', 'millpath.toolpath', 'millpath.dxfToText', 'millpath.textToDxf'];
+
+/** A language client that never registers a server command under the name of one of ours:
+ *  vscode-languageclient registers every command the server advertises
+ *  (`executeCommandProvider`) as a VS Code command, and a second registration of a name fails
+ *  ("command 'millpath.preview' already exists"). Our server says `millpath.server.preview`;
+ *  this keeps an older or foreign server from breaking the extension. */
+class MillpathClient extends LanguageClient {
+  override registerFeature(feature: Parameters<LanguageClient['registerFeature']>[0]): void {
+    const f = feature as { registrationType?: { method?: string }; register?: (data: any) => void };
+    if (f.registrationType?.method === 'workspace/executeCommand' && typeof f.register === 'function') {
+      const register = f.register.bind(feature);
+      f.register = (data: any) => {
+        const commands = ((data?.registerOptions?.commands ?? []) as string[]).filter((c) => {
+          if (!OWN_COMMANDS.includes(c)) return true;
+          log?.appendLine(`[warn] the server's command ${c} has the name of one of the extension's: not registered`);
+          return false;
+        });
+        register({ ...data, registerOptions: { ...data?.registerOptions, commands } });
+      };
+    }
+    super.registerFeature(feature);
+  }
+}
+
+/** The server binary (setting, bundled in the .vsix, PATH), or an error saying there is none. */
+function server(ctx: vscode.ExtensionContext): ServerLookup {
   const exe = process.platform === 'win32' ? 'millpath.exe' : 'millpath';
   const bundled = ctx.asAbsolutePath(path.join('server', exe));
-  return serverCommand(vscode.workspace.getConfiguration('millpath').get<string>('server.path') ?? '', bundled, fs.existsSync);
+  const setting = vscode.workspace.getConfiguration('millpath').get<string>('server.path') ?? '';
+  return findServer(setting, bundled, process.env.PATH, process.platform, fs.existsSync);
+}
+
+function command(ctx: vscode.ExtensionContext): string {
+  const s = server(ctx);
+  if ('error' in s) throw new Error(s.error);
+  return s.command;
+}
+
+/** Shows an error (and logs it) instead of losing it in the extension host. */
+function report(what: string, e: unknown): void {
+  const msg = e instanceof Error ? e.message : String(e);
+  log?.appendLine(`[error] ${what}: ${msg}`);
+  void vscode.window.showErrorMessage(`MillPath: ${what}: ${msg}`);
+}
+
+/** A command whose failure is shown to the user. */
+function guarded(name: string, f: (...args: any[]) => unknown): (...args: any[]) => Promise<void> {
+  return async (...args: any[]) => {
+    try {
+      await f(...args);
+    } catch (e) {
+      report(name, e);
+    }
+  };
 }
 
 interface Preview { path: string; gcode: string; stats: string[]; errors: string[] }
@@ -52,45 +106,58 @@ function run(ctx: vscode.ExtensionContext, args: string[]): Promise<string> {
 }
 
 export async function activate(ctx: vscode.ExtensionContext): Promise<void> {
-  const serverOptions: ServerOptions = { command: command(ctx), args: ['lsp'] };
-  const clientOptions: LanguageClientOptions = {
-    documentSelector: [{ language: 'millpath' }],
-    initializationOptions: initializationOptions(settings()),
-  };
-  client = new LanguageClient('millpath', 'MillPath', serverOptions, clientOptions);
-  await client.start();
-
+  // Everything that later code relies on exists before anything that can fail.
+  log = vscode.window.createOutputChannel('MillPath');
+  ctx.subscriptions.push(log);
+  const status = vscode.window.createStatusBarItem('millpath.status', vscode.StatusBarAlignment.Left, 50);
+  status.name = 'MillPath';
+  status.command = 'millpath.preview';
+  ctx.subscriptions.push(status);
   const provider = new PreviewProvider();
-  ctx.subscriptions.push(vscode.workspace.registerTextDocumentContentProvider(PREVIEW_SCHEME, provider));
   const open = new Set<string>();
   let timer: NodeJS.Timeout | undefined;
-  ctx.subscriptions.push(
-    vscode.workspace.onDidChangeTextDocument((e) => {
-      if (e.document.languageId !== 'millpath') return;
-      clearTimeout(timer);
-      timer = setTimeout(() => {
-        for (const u of open) {
-          if (parsePreviewUri(u)?.source === e.document.uri.toString()) provider.changed.fire(vscode.Uri.parse(u));
-        }
-        void updateStatus();
-      }, 150);
-    }),
-  );
 
-  ctx.subscriptions.push(
-    vscode.commands.registerCommand('millpath.preview', async (uriArg?: string, pathArg?: string) => {
+  async function updateStatus() {
+    const editor = vscode.window.activeTextEditor;
+    if (!editor || editor.document.languageId !== 'millpath') {
+      status.hide();
+      return;
+    }
+    const name = pathAtLine(editor.document.getText(), editor.selection.active.line);
+    if (!client) {
+      status.text = '$(warning) millpath: no server';
+      status.tooltip = 'The millpath language server is not running: see the MillPath output.';
+    } else {
+      try {
+        const r = await client.sendRequest<Preview>('millpath/gcodePreview', { textDocument: { uri: editor.document.uri.toString() }, path: name });
+        status.text = `$(tools) ${statusText(r.path, r.stats)}`;
+        status.tooltip = r.stats.join('\n');
+      } catch {
+        status.text = `$(tools) ${name ?? 'millpath'}: no G-code`;
+        status.tooltip = undefined;
+      }
+    }
+    status.show();
+  }
+
+  // client-side commands (the server's own command is `millpath.server.preview`, so the
+  // language client's registration of it does not collide with these)
+  const commands: [string, (...args: any[]) => unknown][] = [
+    ['millpath.preview', async (uriArg?: string | vscode.Uri, pathArg?: string) => {
       const editor = vscode.window.activeTextEditor;
-      const source = uriArg ?? editor?.document.uri.toString();
-      if (!source) return;
-      const name = pathArg ?? (editor ? pathAtLine(editor.document.getText(), editor.selection.active.line) : undefined);
+      const source = uriArg ? uriArg.toString() : editor?.document.uri.toString();
+      if (!source) throw new Error('no MillPath document to preview');
+      const doc = source === editor?.document.uri.toString() ? editor.document : undefined;
+      const name = pathArg ?? (doc && editor ? pathAtLine(doc.getText(), editor.selection.active.line) : undefined);
       const u = previewUri(source, name);
       open.add(u);
-      const doc = await vscode.workspace.openTextDocument(vscode.Uri.parse(u));
-      await vscode.window.showTextDocument(doc, { viewColumn: vscode.ViewColumn.Beside, preview: false, preserveFocus: true });
-    }),
-    vscode.commands.registerCommand('millpath.toolpath', async () => {
+      const pdoc = await vscode.workspace.openTextDocument(vscode.Uri.parse(u));
+      await vscode.window.showTextDocument(pdoc, { viewColumn: vscode.ViewColumn.Beside, preview: false, preserveFocus: true });
+    }],
+    ['millpath.toolpath', async () => {
       const editor = vscode.window.activeTextEditor;
-      if (!editor || !client) return;
+      if (!editor || editor.document.languageId !== 'millpath') throw new Error('no MillPath document in the editor');
+      if (!client) throw new Error('the language server is not running');
       const name = pathAtLine(editor.document.getText(), editor.selection.active.line);
       const panel = vscode.window.createWebviewPanel('millpathToolpath', `Toolpath ${name ?? ''}`, vscode.ViewColumn.Beside, { enableScripts: true });
       panel.webview.html = fs.readFileSync(ctx.asAbsolutePath('media/toolpath.html'), 'utf8');
@@ -103,67 +170,86 @@ export async function activate(ctx: vscode.ExtensionContext): Promise<void> {
         }
       };
       panel.webview.onDidReceiveMessage(async (m) => {
-        if (m?.type === 'ready') await send();
-        if (m?.type === 'reveal' && isSourceRef(m.source)) {
-          const doc = await vscode.workspace.openTextDocument(vscode.Uri.file(m.source.file));
-          const pos = new vscode.Position(m.source.line, m.source.character);
-          await vscode.window.showTextDocument(doc, { viewColumn: vscode.ViewColumn.One, selection: new vscode.Range(pos, pos) });
+        try {
+          if (m?.type === 'ready') await send();
+          if (m?.type === 'reveal' && isSourceRef(m.source)) {
+            const same = editor.document.uri.scheme !== 'file' || editor.document.uri.fsPath === m.source.file;
+            const doc = same ? editor.document : await vscode.workspace.openTextDocument(vscode.Uri.file(m.source.file));
+            const pos = new vscode.Position(m.source.line, m.source.character);
+            await vscode.window.showTextDocument(doc, { viewColumn: editor.viewColumn ?? vscode.ViewColumn.One, selection: new vscode.Range(pos, pos) });
+          }
+        } catch (e) {
+          report('toolpath', e);
         }
       });
       const sub = vscode.workspace.onDidChangeTextDocument((e) => {
         if (e.document.uri.toString() === editor.document.uri.toString()) void send();
       });
       panel.onDidDispose(() => sub.dispose());
-    }),
-    vscode.commands.registerCommand('millpath.dxfToText', async (uri?: vscode.Uri) => {
+    }],
+    ['millpath.dxfToText', async (uri?: vscode.Uri) => {
       const file = uri?.fsPath ?? (await vscode.window.showOpenDialog({ filters: { DXF: ['dxf', 'DXF'] } }))?.[0]?.fsPath;
       if (!file) return;
-      try {
-        const text = await run(ctx, ['dxf2text', file]);
-        const doc = await vscode.workspace.openTextDocument({ language: 'millpath', content: text });
-        await vscode.window.showTextDocument(doc);
-      } catch (e) {
-        void vscode.window.showErrorMessage(`millpath dxf2text: ${(e as Error).message}`);
-      }
-    }),
-    vscode.commands.registerCommand('millpath.textToDxf', async () => {
+      const text = await run(ctx, ['dxf2text', file]);
+      const doc = await vscode.workspace.openTextDocument({ language: 'millpath', content: text });
+      await vscode.window.showTextDocument(doc);
+    }],
+    ['millpath.textToDxf', async () => {
       const editor = vscode.window.activeTextEditor;
       if (!editor) return;
       await editor.document.save();
       const target = await vscode.window.showSaveDialog({ defaultUri: vscode.Uri.file(editor.document.uri.fsPath.replace(/\.mpath$/i, '.dxf')), filters: { DXF: ['dxf'] } });
       if (!target) return;
-      try {
-        await run(ctx, ['text2dxf', editor.document.uri.fsPath, '-o', target.fsPath]);
-        void vscode.window.showInformationMessage(`Written ${target.fsPath}`);
-      } catch (e) {
-        void vscode.window.showErrorMessage(`millpath text2dxf: ${(e as Error).message}`);
-      }
-    }),
-  );
-
-  const status = vscode.window.createStatusBarItem(vscode.StatusBarAlignment.Left, 50);
-  status.command = 'millpath.preview';
-  ctx.subscriptions.push(status);
-  async function updateStatus() {
-    const editor = vscode.window.activeTextEditor;
-    if (!editor || editor.document.languageId !== 'millpath' || !client) {
-      status.hide();
-      return;
-    }
-    const name = pathAtLine(editor.document.getText(), editor.selection.active.line);
+      await run(ctx, ['text2dxf', editor.document.uri.fsPath, '-o', target.fsPath]);
+      void vscode.window.showInformationMessage(`Written ${target.fsPath}`);
+    }],
+  ];
+  for (const [name, f] of commands) {
     try {
-      const r = await client.sendRequest<Preview>('millpath/gcodePreview', { textDocument: { uri: editor.document.uri.toString() }, path: name });
-      status.text = `$(tools) ${statusText(r.path, r.stats)}`;
-      status.tooltip = r.stats.join('\n');
-    } catch {
-      status.text = `$(tools) ${name ?? 'millpath'}: no G-code`;
+      ctx.subscriptions.push(vscode.commands.registerCommand(name, guarded(name, f)));
+    } catch (e) {
+      report(`registering ${name}`, e);
     }
-    status.show();
   }
   ctx.subscriptions.push(
+    vscode.workspace.registerTextDocumentContentProvider(PREVIEW_SCHEME, provider),
+    vscode.workspace.onDidChangeTextDocument((e) => {
+      if (e.document.languageId !== 'millpath') return;
+      clearTimeout(timer);
+      timer = setTimeout(() => {
+        for (const u of open) {
+          if (parsePreviewUri(u)?.source === e.document.uri.toString()) provider.changed.fire(vscode.Uri.parse(u));
+        }
+        void updateStatus();
+      }, 150);
+    }),
+    vscode.workspace.onDidCloseTextDocument((d) => {
+      if (d.uri.scheme === PREVIEW_SCHEME) open.delete(d.uri.toString());
+    }),
     vscode.window.onDidChangeActiveTextEditor(() => void updateStatus()),
     vscode.window.onDidChangeTextEditorSelection(() => void updateStatus()),
   );
+
+  // the language client last: without a server the commands above still say what is wrong
+  const found = server(ctx);
+  if ('error' in found) {
+    report('language server', found.error);
+  } else {
+    log.appendLine(`millpath server: ${found.command} (${found.source})`);
+    const serverOptions: ServerOptions = { command: found.command, args: ['lsp'] };
+    const clientOptions: LanguageClientOptions = {
+      documentSelector: [{ language: 'millpath' }],
+      initializationOptions: initializationOptions(settings()),
+      outputChannel: log,
+    };
+    const c = new MillpathClient('millpath', 'MillPath', serverOptions, clientOptions);
+    try {
+      await c.start();
+      client = c;
+    } catch (e) {
+      report(`starting ${found.command} lsp`, e);
+    }
+  }
   void updateStatus();
 }
 

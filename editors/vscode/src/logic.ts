@@ -32,6 +32,42 @@ export function serverCommand(setting: string, bundled: string | undefined, exis
   return 'millpath';
 }
 
+/** Where the server comes from, or why there is none. */
+export type ServerLookup =
+  | { command: string; source: 'setting' | 'bundled' | 'PATH' }
+  | { error: string };
+
+/** The server binary: the setting `millpath.server.path`, else the one in the .vsix for this
+ *  platform, else `millpath` on PATH; an error that says so when there is none. */
+export function findServer(
+  setting: string,
+  bundled: string | undefined,
+  pathEnv: string | undefined,
+  platform: string,
+  exists: (p: string) => boolean,
+): ServerLookup {
+  const s = (setting ?? '').trim();
+  if (s) {
+    if (exists(s)) return { command: s, source: 'setting' };
+    return { error: `millpath.server.path is set to '${s}', which does not exist.` };
+  }
+  if (bundled && exists(bundled)) return { command: bundled, source: 'bundled' };
+  const win = platform === 'win32';
+  const names = win ? ['millpath.exe', 'millpath.cmd', 'millpath'] : ['millpath'];
+  for (const dir of (pathEnv ?? '').split(win ? ';' : ':')) {
+    if (!dir) continue;
+    for (const n of names) {
+      const p = `${dir.replace(/[\\/]+$/, '')}${win ? '\\' : '/'}${n}`;
+      if (exists(p)) return { command: p, source: 'PATH' };
+    }
+  }
+  return {
+    error:
+      `No millpath language server: this extension brings none for ${platform}, and there is no 'millpath' on PATH. ` +
+      'Install millpath (cargo install --path crates/cli) or set millpath.server.path.',
+  };
+}
+
 export const PREVIEW_SCHEME = 'millpath-preview';
 
 /** `millpath-preview:/<name>.gcode?<encoded source uri>#<path>` — one virtual document per

@@ -20,6 +20,17 @@ test('server command: setting, bundled binary, PATH', () => {
   assert.equal(logic.serverCommand('', '/ext/server/millpath', () => false), 'millpath');
 });
 
+test('server lookup: setting, the .vsix server, PATH, else a clear error', () => {
+  const has = (...ps) => (p) => ps.includes(p);
+  assert.deepEqual(logic.findServer(' /opt/mp ', '/ext/server/millpath', '/usr/bin', 'linux', has('/opt/mp')), { command: '/opt/mp', source: 'setting' });
+  assert.match(logic.findServer('/opt/mp', '/ext/server/millpath', '/usr/bin', 'linux', has()).error, /millpath\.server\.path is set to '\/opt\/mp'/);
+  assert.deepEqual(logic.findServer('', '/ext/server/millpath', '/usr/bin', 'linux', has('/ext/server/millpath', '/usr/bin/millpath')), { command: '/ext/server/millpath', source: 'bundled' });
+  assert.deepEqual(logic.findServer('', '/ext/server/millpath', '/bin:/usr/local/bin/', 'linux', has('/usr/local/bin/millpath')), { command: '/usr/local/bin/millpath', source: 'PATH' });
+  assert.deepEqual(logic.findServer('', undefined, 'C:\\bin;D:\\mp', 'win32', has('D:\\mp\\millpath.exe')), { command: 'D:\\mp\\millpath.exe', source: 'PATH' });
+  const none = logic.findServer('', '/ext/server/millpath', '/usr/bin', 'darwin', has());
+  assert.match(none.error, /brings none for darwin.*no 'millpath' on PATH.*millpath\.server\.path/);
+});
+
 test('preview URIs round-trip source and path', () => {
   const src = 'file:///home/me/parts/2010 a.mpath';
   const u = logic.previewUri(src, '2010.1P');

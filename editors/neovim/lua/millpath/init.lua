@@ -33,6 +33,16 @@ end
 function M.setup(opts)
   M.config = vim.tbl_deep_extend('force', M.config, opts or {})
   local cfg = M.config
+  -- the code lenses' command is a client-side one (arguments: document URI, path name): it
+  -- opens the preview of that path (the server's own command is millpath.server.preview)
+  vim.lsp.commands['millpath.preview'] = function(command)
+    local args = command.arguments or {}
+    local bufnr = args[1] and vim.uri_to_bufnr(args[1]) or vim.api.nvim_get_current_buf()
+    if bufnr ~= vim.api.nvim_get_current_buf() then
+      vim.api.nvim_set_current_buf(bufnr)
+    end
+    M.preview(args[2])
+  end
   if cfg.parser_path and vim.treesitter and vim.treesitter.language and vim.treesitter.language.add then
     pcall(vim.treesitter.language.add, 'millpath', { path = cfg.parser_path })
   end

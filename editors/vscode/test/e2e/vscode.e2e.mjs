@@ -1,0 +1,365 @@
+// The extension inside a real VS Code (code-server, started by tests/vscode_e2e.sh), driven in
+// Debian's chromium through playwright-core as a person would: keyboard, command palette,
+// clicks. Each check prints `ok - …` or `not ok - …`; the last line is `N passed, M failed`.
+// Screenshots: test-artifacts/vscode-*.png.
+import { chromium } from 'playwright-core';
+import { mkdirSync, readdirSync, readFileSync, statSync } from 'node:fs';
+import { dirname, join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const here = dirname(fileURLToPath(import.meta.url));
+const artifacts = join(here, '../../test-artifacts');
+mkdirSync(artifacts, { recursive: true });
+const url = process.env.VSCODE_URL;
+const ws = process.env.WORKSPACE;
+const userData = process.env.USER_DATA_DIR;
+if (!url || !ws || !userData) {
+  console.error('VSCODE_URL, WORKSPACE and USER_DATA_DIR are needed (run tests/vscode_e2e.sh)');
+  process.exit(2);
+}
+
+let passed = 0;
+let failed = 0;
+const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+const norm = (s) => s.replace(/\u00a0/g, ' ');
+
+/** Polls f until it returns a truthy value (returned) or the time is up (the last value). */
+async function until(f, ms = 15000, step = 250) {
+  const end = Date.now() + ms;
+  let v;
+  for (;;) {
+    try {
+      v = await f();
+    } catch (e) {
+      v = undefined;
+    }
+    if (v || Date.now() > end) return v;
+    await sleep(step);
+  }
+}
+
+const browser = await chromium.launch({
+  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+  args: [
+    '--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
+    '--disable-component-update', '--disable-sync', '--disable-dev-shm-usage',
+  ],
+});
+const context = await browser.newContext({ viewport: { width: 1400, height: 900 } });
+const page = await context.newPage();
+
+async function check(name, shot, f) {
+  try {
+    const detail = await f();
+    passed++;
+    console.log(`ok - ${name}${detail ? ` (${detail})` : ''}`);
+  } catch (e) {
+    failed++;
+    console.log(`not ok - ${name}: ${String(e?.message ?? e).split('\n').slice(0, 4).join(' | ')}`);
+  }
+  if (shot) await page.screenshot({ path: join(artifacts, `vscode-${shot}.png`) }).catch(() => {});
+}
+
+function expect(cond, msg) {
+  if (!cond) throw new Error(msg);
+}
+
+// --- VS Code helpers ---------------------------------------------------------------------
+async function palette(title) {
+  await page.keyboard.press('Escape');
+  await page.keyboard.press('F1');
+  const input = page.locator('.quick-input-widget input');
+  await input.waitFor({ state: 'visible', timeout: 10000 });
+  await input.fill(`>${title}`);
+  // Enter only once the list is filtered and the focused row is that command
+  const focused = page.locator('.quick-input-list .monaco-list-row.focused').first();
+  const ok = await until(async () => ((await focused.getAttribute('aria-label', { timeout: 500 })) ?? '').startsWith(title), 10000, 100);
+  if (!ok) throw new Error(`no command '${title}' in the palette`);
+  await page.keyboard.press('Enter');
+}
+
+async function openFile(name) {
+  await page.keyboard.press('Escape');
+  await page.keyboard.press('Control+P');
+  const input = page.locator('.quick-input-widget input');
+  await input.waitFor({ state: 'visible', timeout: 10000 });
+  await input.fill(name);
+  const row = page.locator('.quick-input-list .monaco-list-row', { hasText: name }).first();
+  await row.waitFor({ state: 'visible', timeout: 15000 });
+  await sleep(200);
+  await page.keyboard.press('Enter');
+  await page.locator(`.tab.active[aria-label*="${name}"]`).first().waitFor({ timeout: 10000 });
+  await sleep(300);
+}
+
+async function goTo(line, col = 1) {
+  await page.keyboard.press('Control+G');
+  const input = page.locator('.quick-input-widget input');
+  await input.waitFor({ state: 'visible', timeout: 5000 });
+  await input.fill(`:${line}:${col}`);
+  await sleep(200);
+  await page.keyboard.press('Enter');
+  await sleep(200);
+}
+
+/** The visible text of the editor whose tab is active in the group holding tab `title`. */
+async function editorText(title) {
+  const group = page.locator('.editor-group-container', { has: page.locator(`.tab.active[aria-label*="${title}"]`) }).first();
+  return norm(await group.locator('.monaco-editor .view-lines').first().innerText());
+}
+
+async function activeEditorText() {
+  return norm(await page.locator('.editor-group-container.active .monaco-editor .view-lines').first().innerText());
+}
+
+async function problems() {
+  return norm(await page.locator('.markers-panel').first().innerText().catch(() => ''));
+}
+
+async function showProblems() {
+  await palette('View: Focus Problems');
+  await page.locator('.markers-panel').first().waitFor({ timeout: 10000 });
+}
+
+function exthostLogs() {
+  const out = [];
+  const walk = (d) => {
+    for (const e of readdirSync(d)) {
+      const p = join(d, e);
+      if (statSync(p).isDirectory()) walk(p);
+      else if (/exthost.*\.log$/i.test(e) || /MillPath\.log$/.test(e)) out.push(p); // + the extension's output channel
+    }
+  };
+  walk(join(userData, 'logs'));
+  return out;
+}
+
+function selection() {
+  return page.locator('.statusbar-item[id="status.editor.selection"]').innerText();
+}
+
+// --- the checks --------------------------------------------------------------------------
+const errorsSeen = [];
+page.on('pageerror', (e) => errorsSeen.push(String(e)));
+
+try {
+  await page.goto(url);
+  await page.locator('.monaco-workbench').waitFor({ timeout: 60000 });
+  await page.locator('.explorer-folders-view .monaco-list-row').first().waitFor({ timeout: 60000 });
+  await sleep(1500);
+  await openFile('2001.mpath');
+
+  await check('the extension activates without errors', 'activation', async () => {
+    const logs = await until(() => {
+      const l = exthostLogs();
+      return l.some((p) => /millpath\.millpath/.test(readFileSync(p, 'utf8'))) && l;
+    }, 30000);
+    expect(logs && logs.length, `no extension host log mentioning millpath.millpath under ${userData}/logs`);
+    const text = logs.map((p) => readFileSync(p, 'utf8')).join('\n');
+    const bad = text.split('\n').filter((l) => /already exists|Activating extension .?millpath\.millpath.? failed|Cannot access '.*' before initialization|\[error\].*millpath/i.test(l));
+    expect(bad.length === 0, bad.slice(0, 3).join(' | '));
+    const toasts = norm(await page.locator('.notifications-toasts').innerText().catch(() => ''));
+    expect(!/MillPath:|already exists/.test(toasts), `notification: ${toasts}`);
+    return `${logs.length} extension host log(s) clean`;
+  });
+
+  await check('syntax highlighting colours the tokens', 'highlighting', async () => {
+    const colours = await until(async () => {
+      const c = await page.locator('.editor-group-container.active .view-line span span').evaluateAll((spans) =>
+        [...new Set(spans.filter((s) => s.textContent.trim()).map((s) => getComputedStyle(s).color))]);
+      return c.length >= 4 && c;
+    }, 15000);
+    expect(colours, 'fewer than 4 colours in the editor');
+    const kw = await page.locator('.editor-group-container.active .view-line span span', { hasText: /^path$/ }).first().evaluate((s) => getComputedStyle(s).color);
+    const comment = await page.locator('.editor-group-container.active .view-line span span', { hasText: /^#\s*A\s+slot\s+part/ }).first().evaluate((s) => getComputedStyle(s).color);
+    expect(kw !== comment, `'path' and the comment share ${kw}`);
+    return `${colours.length} colours; path ${kw}, comment ${comment}`;
+  });
+
+  await check('the status bar shows the statistics of the path under the cursor', 'statusbar', async () => {
+    await goTo(6, 3);
+    const item = page.locator('.statusbar-item', { has: page.locator('.codicon-tools') }).first();
+    const text = await until(async () => {
+      const t = norm(await item.innerText());
+      return /2001\.1P .*mm/.test(t) && t;
+    }, 20000);
+    expect(text, `status bar item: ${await item.innerText().catch(() => 'none')}`);
+    return text.trim();
+  });
+
+  await check('hover shows the effective values and their origin', null, async () => {
+    await goTo(7, 4);
+    await page.keyboard.press('Control+K');
+    await page.keyboard.press('Control+I');
+    const hover = page.locator('.monaco-hover:not(.hidden)').first();
+    const text = await until(async () => {
+      const t = norm(await hover.innerText());
+      return /path start/.test(t) && t;
+    }, 15000);
+    expect(text, `hover: ${await hover.innerText().catch(() => 'none')}`);
+    await page.screenshot({ path: join(artifacts, 'vscode-hover.png') });
+    await page.keyboard.press('Escape');
+    return text.split('\n').find((l) => /-0,2/.test(l))?.trim();
+  });
+
+  await check('a code lens click opens the G-code preview', 'codelens', async () => {
+    const lens = page.locator('.editor-group-container.active .codelens-decoration a', { hasText: 'G-code' }).first();
+    await lens.waitFor({ timeout: 20000 });
+    const title = norm(await lens.innerText());
+    await lens.click();
+    const tab = page.locator('.tab[aria-label*="2001.1P.gcode"]').first();
+    await tab.waitFor({ timeout: 15000 });
+    const g = await until(async () => {
+      const t = await editorText('2001.1P.gcode');
+      return /G0?1 /.test(t) && t;
+    }, 15000);
+    expect(g, 'no G1 moves in the preview');
+    return title;
+  });
+
+  await check('an error shows in the Problems panel', 'problems', async () => {
+    await page.locator('.tab[aria-label*="2001.mpath"]').first().click();
+    await goTo(4, 1);
+    await page.keyboard.press('End');
+    for (let i = 0; i < 6; i++) await page.keyboard.press('Backspace');
+    await showProblems();
+    const p = await until(async () => {
+      const t = await problems();
+      return /B value missing/.test(t) && t;
+    }, 20000);
+    expect(p, `problems: ${await problems()}`);
+    return p.split('\n').find((l) => /B value missing/.test(l));
+  });
+
+  await check('a quick fix is applied', 'quickfix', async () => {
+    await page.locator('.tab[aria-label*="2001.mpath"]').first().click();
+    await goTo(7, 4);
+    await page.keyboard.press('Control+.');
+    const action = page.locator('.action-widget .monaco-list-row', { hasText: 'Add B' }).first();
+    await action.waitFor({ timeout: 15000 });
+    const title = norm(await action.getAttribute('aria-label'));
+    // the actions list: move the focus to our fix and apply it with Enter
+    for (let i = 0; i < 5 && !/\bfocused\b/.test((await action.getAttribute('class')) ?? ''); i++) await page.keyboard.press('ArrowDown');
+    await page.keyboard.press('Enter');
+    const text = await until(async () => {
+      const t = await activeEditorText();
+      return /I1,5 B0/.test(t) && t;
+    }, 10000);
+    expect(text, `editor: ${await activeEditorText()}`);
+    const cleared = await until(async () => !/B value missing/.test(await problems()), 15000);
+    expect(cleared, `still: ${await problems()}`);
+    return title.trim();
+  });
+
+  // back to the file as it is on disk (the server is told), then close everything
+  await page.locator('.tab[aria-label*="2001.mpath"]').first().click();
+  await palette('File: Revert File');
+  await sleep(1000);
+  await palette('View: Close All Editors');
+  await sleep(500);
+  const dontSave = page.locator('.monaco-dialog-box button', { hasText: "Don't Save" });
+  if (await dontSave.isVisible().catch(() => false)) await dontSave.click();
+
+  await check('Show G-code Preview opens beside the source and follows an edit', 'preview', async () => {
+    await openFile('2001.mpath');
+    await goTo(7, 3);
+    await palette('MillPath: Show G-code Preview');
+    const tab = page.locator('.tab[aria-label*="2001.1P.gcode"]').first();
+    await tab.waitFor({ timeout: 15000 });
+    const groups = await page.locator('.editor-group-container').count();
+    expect(groups >= 2, `${groups} editor group(s): not beside`);
+    const before = await until(async () => {
+      const t = await editorText('2001.1P.gcode');
+      return /G0?1 /.test(t) && t;
+    }, 15000);
+    expect(before, `no G-code in the preview: ${await editorText('2001.1P.gcode').catch(() => '')}`);
+    // infeed I1,5 becomes I1: other passes, other Z moves
+    await page.locator('.tab[aria-label*="2001.mpath"]').first().click();
+    await goTo(4, 33);
+    await page.keyboard.press('Backspace');
+    await page.keyboard.press('Backspace');
+    const after = await until(async () => {
+      const t = await editorText('2001.1P.gcode');
+      return t !== before && /G0?1 /.test(t) && t;
+    }, 15000);
+    expect(after, `the preview did not follow the edit: ${(await editorText('2001.1P.gcode').catch(() => '')).slice(0, 200)}`);
+    const z = (t) => t.split('\n').filter((l) => /^G01 Z/.test(l.trim())).map((l) => l.trim().slice(4)).join(' ');
+    return `G01 Z moves before: ${z(before)}; after: ${z(after)}`;
+  });
+
+  await check('Show Toolpath draws the moves and a click reveals the source line', 'toolpath', async () => {
+    await openFile('2010.mpath');
+    await goTo(6, 3);
+    await palette('MillPath: Show Toolpath');
+    const frame = await until(async () => {
+      for (const f of page.frames()) {
+        if ((await f.locator('svg .move.mill').count().catch(() => 0)) > 0) return f;
+      }
+      return undefined;
+    }, 30000);
+    expect(frame, 'no webview frame with toolpath moves');
+    const moves = await frame.locator('svg .move').count();
+    await page.screenshot({ path: join(artifacts, 'vscode-toolpath-view.png') });
+    await frame.locator('svg .move.mill').first().dispatchEvent('click');
+    const info = norm(await frame.locator('#info').innerText());
+    const m = /(\S+\.mpath):(\d+)/.exec(info);
+    expect(m, `info: ${info}`);
+    const shown = await until(async () => {
+      const active = await page.locator('.editor-group-container .tab.active').allInnerTexts();
+      const sel = await selection();
+      return active.some((t) => t.includes(m[1])) && sel.includes(`Ln ${m[2]},`) && sel;
+    }, 15000);
+    expect(shown, `after the click: ${await selection()}, tabs ${await page.locator('.tab.active').allInnerTexts()}`);
+    return `${moves} moves; click revealed ${m[1]} ${shown}`;
+  });
+
+  await check('Open DXF as Text opens the drawing as a MillPath text buffer', 'dxf-as-text', async () => {
+    await palette('View: Close All Editors');
+    await sleep(500);
+    const dontSave2 = page.locator('.monaco-dialog-box button', { hasText: "Don't Save" });
+    if (await dontSave2.isVisible().catch(() => false)) await dontSave2.click();
+    await palette('MillPath: Open DXF as Text');
+    const input = page.locator('.quick-input-widget input');
+    await input.waitFor({ state: 'visible', timeout: 10000 });
+    await sleep(500);
+    await input.fill(join(ws, '1234.1P.dxf'));
+    await sleep(500);
+    await page.keyboard.press('Enter');
+    const tab = page.locator('.tab.active[aria-label*="Untitled"]').first();
+    await tab.waitFor({ timeout: 20000 });
+    const text = await until(async () => {
+      const t = await activeEditorText();
+      return /path\s+1234/.test(t) && t;
+    }, 15000);
+    expect(text, `editor: ${await activeEditorText().catch(() => '')}`);
+    const mode = norm(await page.locator('.statusbar-item[id="status.editor.mode"]').innerText());
+    expect(/MillPath/.test(mode), `language mode ${mode}`);
+    await showProblems();
+    await sleep(3000);
+    const p = await problems();
+    expect(!/Cannot load DXF/i.test(p), `problems: ${p}`);
+    const item = page.locator('.statusbar-item', { has: page.locator('.codicon-tools') }).first();
+    const st = await until(async () => {
+      const t = norm(await item.innerText());
+      return /1234/.test(t) && t;
+    }, 15000);
+    expect(st, `status bar: ${await item.innerText().catch(() => 'none')}`);
+    return `${mode.trim()}; status ${st.trim()}`;
+  });
+
+  await check('no errors in the extension host log at the end', 'final', async () => {
+    const text = exthostLogs().map((p) => readFileSync(p, 'utf8')).join('\n');
+    const bad = text.split('\n').filter((l) => /already exists|Activating extension .?millpath\.millpath.? failed|before initialization|\[error\].*millpath/i.test(l));
+    expect(bad.length === 0, bad.slice(0, 3).join(' | '));
+    const toasts = norm(await page.locator('.notifications-toasts').innerText().catch(() => ''));
+    expect(!/MillPath:/.test(toasts), `notification: ${toasts}`);
+  });
+} catch (e) {
+  failed++;
+  console.log(`not ok - the session: ${String(e?.message ?? e).split('\n')[0]}`);
+  await page.screenshot({ path: join(artifacts, 'vscode-failure.png') }).catch(() => {});
+} finally {
+  await browser.close();
+}
+console.log(`${passed} passed, ${failed} failed`);
+process.exit(failed === 0 ? 0 : 1);
