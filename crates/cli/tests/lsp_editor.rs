@@ -24,7 +24,12 @@ fn example(name: &str) -> String {
 
 fn open(c: &mut Client, path: &Path, text: &str) -> String {
     let doc = uri(path);
-    c.notify("textDocument/didOpen", json!({ "textDocument": { "uri": doc, "languageId": "millpath", "version": 1, "text": text } }));
+    // as editors open them: a drawing is not the text language
+    let is_dxf = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("dxf"));
+    let language = if is_dxf { "dxf" } else { "millpath" };
+    c.notify("textDocument/didOpen", json!({ "textDocument": { "uri": doc, "languageId": language, "version": 1, "text": text } }));
     doc
 }
 
