@@ -57,10 +57,18 @@ fn closed_stdout_ends_quietly() {
     out.read_exact(&mut first).unwrap();
     drop(out); // like `| head -c1`
     let mut err = String::new();
-    child.stderr.take().unwrap().read_to_string(&mut err).unwrap();
+    child
+        .stderr
+        .take()
+        .unwrap()
+        .read_to_string(&mut err)
+        .unwrap();
     let status = child.wait().unwrap();
     assert_eq!(status.code(), Some(141), "{err}");
-    assert!(!err.contains("panicked") && !err.contains("Broken pipe"), "{err}");
+    assert!(
+        !err.contains("panicked") && !err.contains("Broken pipe"),
+        "{err}"
+    );
 }
 
 /// Item 2: SARIF URIs are RFC 3986 URIs relative to %SRCROOT%, or file:/// URIs.
@@ -70,21 +78,32 @@ fn sarif_uris_are_uris() {
     std::fs::create_dir(dir.path().join("d a")).unwrap();
     let (bad, _) = with_coordinate("NaN");
     std::fs::write(dir.path().join("d a/x #1 ü.dxf"), &bad).unwrap();
-    let o = millpath(dir.path(), &["check", "--format", "sarif", "./d a/x #1 ü.dxf"]);
+    let o = millpath(
+        dir.path(),
+        &["check", "--format", "sarif", "./d a/x #1 ü.dxf"],
+    );
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     let run = &v["runs"][0];
     let loc = &run["results"][0]["locations"][0]["physicalLocation"]["artifactLocation"];
     assert_eq!(loc["uri"], "d%20a/x%20%231%20%C3%BC.dxf");
     assert_eq!(loc["uriBaseId"], "%SRCROOT%");
-    let root = run["originalUriBaseIds"]["%SRCROOT%"]["uri"].as_str().unwrap();
-    assert!(root.starts_with("file:///") && root.ends_with('/'), "{root}");
+    let root = run["originalUriBaseIds"]["%SRCROOT%"]["uri"]
+        .as_str()
+        .unwrap();
+    assert!(
+        root.starts_with("file:///") && root.ends_with('/'),
+        "{root}"
+    );
     for r in run["tool"]["driver"]["rules"].as_array().unwrap() {
         let t = r["shortDescription"]["text"].as_str().unwrap();
         assert!(!t.contains("{0}") && !t.contains("{1}"), "{t}");
     }
     // an absolute input: a file:/// URI
     let abs = dir.path().join("d a/x #1 ü.dxf");
-    let o = millpath(dir.path(), &["check", "--format", "sarif", abs.to_str().unwrap()]);
+    let o = millpath(
+        dir.path(),
+        &["check", "--format", "sarif", abs.to_str().unwrap()],
+    );
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     let uri = v["runs"][0]["results"][0]["locations"][0]["physicalLocation"]["artifactLocation"]
         ["uri"]
@@ -125,7 +144,14 @@ fn textconv_survives_truncated_dxf() {
     assert!(git(d, &["init", "-q"]).status.success());
     git(d, &["config", "user.email", "t@example.com"]);
     git(d, &["config", "user.name", "t"]);
-    git(d, &["config", "diff.dxf.textconv", &format!("{} dxf2text --textconv", bin())]);
+    git(
+        d,
+        &[
+            "config",
+            "diff.dxf.textconv",
+            &format!("{} dxf2text --textconv", bin()),
+        ],
+    );
     std::fs::write(d.join(".gitattributes"), "*.dxf diff=dxf\n").unwrap();
     let full = example();
     std::fs::write(d.join("a.dxf"), &full[..full.len() / 2]).unwrap();
@@ -153,10 +179,16 @@ fn render_says_why() {
     let o = millpath(d, &["render", "nothere.mpath"]);
     let e = text(&o.stderr);
     assert_eq!(o.status.code(), Some(1));
-    assert!(e.contains("Cannot read file") && !e.contains("no path"), "{e}");
+    assert!(
+        e.contains("Cannot read file") && !e.contains("no path"),
+        "{e}"
+    );
     let o = millpath(d, &["render", "empty.dxf"]);
     let e = text(&o.stderr);
-    assert!(e.contains("Cannot load DXF file") && !e.contains("no path"), "{e}");
+    assert!(
+        e.contains("Cannot load DXF file") && !e.contains("no path"),
+        "{e}"
+    );
     let o = millpath(d, &["render", "bad.mpath"]);
     let e = text(&o.stderr);
     assert!(e.contains("bad.mpath:1:1") && !e.contains("no path"), "{e}");
@@ -169,13 +201,19 @@ fn compile_a_folder() {
     let d = dir.path();
     std::fs::create_dir(d.join("plate")).unwrap();
     std::fs::write(d.join("plate/1234.1P.dxf"), example()).unwrap();
-    let o = millpath(d, &["compile", "-f", "150", "-v", "500", "-s", "5", "plate"]);
+    let o = millpath(
+        d,
+        &["compile", "-f", "150", "-v", "500", "-s", "5", "plate"],
+    );
     let e = text(&o.stderr);
     assert_eq!(o.status.code(), Some(0), "{e}");
     assert!(d.join("plate/1234.1P_Milling.gcode").is_file(), "{e}");
     assert!(!e.contains("plate.dxf"), "{e}");
     std::fs::create_dir(d.join("none")).unwrap();
-    let o = millpath(d.join("none").as_path(), &["compile", "-f", "1", "-v", "1", "-s", "1", "."]);
+    let o = millpath(
+        d.join("none").as_path(),
+        &["compile", "-f", "1", "-v", "1", "-s", "1", "."],
+    );
     let e = text(&o.stderr);
     assert_eq!(o.status.code(), Some(3), "{e}");
     assert!(!e.contains("..dxf") && e.contains("no drawings"), "{e}");
@@ -220,7 +258,11 @@ fn check_without_drawings_is_exit_3() {
     std::fs::write(dir.path().join("notes.txt"), "x").unwrap();
     let o = millpath(dir.path(), &["check", "."]);
     assert_eq!(o.status.code(), Some(3));
-    assert!(text(&o.stderr).contains("no drawings"), "{}", text(&o.stderr));
+    assert!(
+        text(&o.stderr).contains("no drawings"),
+        "{}",
+        text(&o.stderr)
+    );
 }
 
 /// Item 10: a missing file is one message, located at the file, in every format.
@@ -228,25 +270,52 @@ fn check_without_drawings_is_exit_3() {
 fn missing_file_is_one_located_message() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    let o = millpath(d, &["compile", "-f", "1", "-v", "1", "-s", "1", "nothere.mpath"]);
+    let o = millpath(
+        d,
+        &["compile", "-f", "1", "-v", "1", "-s", "1", "nothere.mpath"],
+    );
     let e = text(&o.stderr);
     assert_eq!(e.matches("error[").count(), 1, "{e}");
-    assert!(e.contains("--> nothere.mpath") && !e.contains("Input") && !e.contains("DXF file"), "{e}");
+    assert!(
+        e.contains("--> nothere.mpath") && !e.contains("Input") && !e.contains("DXF file"),
+        "{e}"
+    );
     let o = millpath(d, &["check", "--format", "json", "nothere.mpath"]);
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(v["diagnostics"].as_array().unwrap().len(), 1);
     assert_eq!(v["diagnostics"][0]["location"]["file"], "nothere.mpath");
     let o = millpath(d, &["check", "--format", "sarif", "nothere.mpath"]);
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    assert_eq!(v["runs"][0]["results"][0]["locations"].as_array().unwrap().len(), 1);
+    assert_eq!(
+        v["runs"][0]["results"][0]["locations"]
+            .as_array()
+            .unwrap()
+            .len(),
+        1
+    );
     // a .mpath file with errors: not "DXF file"
     std::fs::write(d.join("bad.mpath"), "garbage ((\n").unwrap();
-    let o = millpath(d, &["compile", "-f", "1", "-v", "1", "-s", "1", "bad.mpath"]);
+    let o = millpath(
+        d,
+        &["compile", "-f", "1", "-v", "1", "-s", "1", "bad.mpath"],
+    );
     assert!(!text(&o.stderr).contains("DXF file"), "{}", text(&o.stderr));
     // a failed write: no "Writing" and no statistics before the error
     std::fs::write(d.join("1234.1P.dxf"), example()).unwrap();
     std::fs::create_dir(d.join("1234.1P_Milling.gcode")).unwrap();
-    let o = millpath(d, &["compile", "-f", "150", "-v", "500", "-s", "5", "1234.1P.dxf"]);
+    let o = millpath(
+        d,
+        &[
+            "compile",
+            "-f",
+            "150",
+            "-v",
+            "500",
+            "-s",
+            "5",
+            "1234.1P.dxf",
+        ],
+    );
     let e = text(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{e}");
     assert!(!e.contains("Writing") && !e.contains("length"), "{e}");
@@ -260,8 +329,14 @@ fn german_locations() {
     std::fs::write(dir.path().join("n.dxf"), s).unwrap();
     let o = millpath(dir.path(), &["check", "--lang", "de", "n.dxf"]);
     let out = text(&o.stdout);
-    assert!(out.contains("auf Layer") && out.contains("Handle") && out.contains("bei ["), "{out}");
-    assert!(out.contains("= Pfad ") && !out.contains("on layer") && !out.contains("error"), "{out}");
+    assert!(
+        out.contains("auf Layer") && out.contains("Handle") && out.contains("bei ["),
+        "{out}"
+    );
+    assert!(
+        out.contains("= Pfad ") && !out.contains("on layer") && !out.contains("error"),
+        "{out}"
+    );
 }
 
 /// Item 12: help everywhere, and only the options a command uses.
@@ -279,7 +354,10 @@ fn help_texts() {
     for cmd in ["dxf2text", "text2dxf"] {
         let o = millpath(dir.path(), &[cmd, "--help"]);
         let h = text(&o.stdout);
-        assert!(!h.contains("--feed") && !h.contains("--sweep") && h.contains("--lang"), "{h}");
+        assert!(
+            !h.contains("--feed") && !h.contains("--sweep") && h.contains("--lang"),
+            "{h}"
+        );
     }
 }
 
@@ -292,8 +370,14 @@ fn check_report_on_stdout() {
     let o = millpath(dir.path(), &["check", "."]);
     let out = text(&o.stdout);
     let err = text(&o.stderr);
-    assert!(out.contains("error[MP") && out.contains("checked 1 file(s)"), "{out}");
-    assert!(!err.contains("error[MP") && err.contains("---- Reading"), "{err}");
+    assert!(
+        out.contains("error[MP") && out.contains("checked 1 file(s)"),
+        "{out}"
+    );
+    assert!(
+        !err.contains("error[MP") && err.contains("---- Reading"),
+        "{err}"
+    );
 }
 
 /// Item 14: `-o -` is standard output.
@@ -323,7 +407,10 @@ fn language_doc_examples_compile() {
     let mut lines = doc.lines();
     while let Some(l) = lines.next() {
         if let Some(info) = l.strip_prefix("```") {
-            let body: Vec<&str> = lines.by_ref().take_while(|l| !l.starts_with("```")).collect();
+            let body: Vec<&str> = lines
+                .by_ref()
+                .take_while(|l| !l.starts_with("```"))
+                .collect();
             let info = info.trim();
             if info == "mpath" {
                 examples.push(body.join("\n") + "\n");
