@@ -541,8 +541,9 @@ fn lang_of(m: &MachineArgs) -> Lang {
 }
 
 fn print_human(diags: &[Diagnostic], lang: Lang) {
+    let color = report::use_color(std::io::IsTerminal::is_terminal(&std::io::stderr()));
     for d in diags {
-        eprintln!("{}", report::human(d, lang));
+        eprintln!("{}", report::human_rich(d, lang, color));
     }
 }
 
@@ -615,9 +616,7 @@ fn run_compile(m: &MachineArgs, files: &[String]) -> u8 {
         .cloned()
         .collect();
     let all = report::tidy(all);
-    for d in &all {
-        eprintln!("{}", report::human(d, lang));
-    }
+    print_human(&all, lang);
     u8::from(all.iter().any(|d| d.severity == Severity::Error))
 }
 
@@ -763,8 +762,9 @@ fn run_check(m: &MachineArgs, format: Format, quiet: bool, paths: &[PathBuf]) ->
     match format {
         Format::Human => {
             // diagnostics and the summary are the report (stdout); progress lines stay on stderr
+            let color = report::use_color(std::io::IsTerminal::is_terminal(&std::io::stdout()));
             for d in &all {
-                outln!("{}", report::human(d, lang));
+                outln!("{}", report::human_rich(d, lang, color));
             }
             let warnings = all.len() - errors;
             outln!(

@@ -33,6 +33,112 @@ pub fn human(d: &Diagnostic, lang: Lang) -> String {
     s
 }
 
+/// Whether reports on a stream that `is_terminal` get colour: only on a terminal, and never
+/// with `NO_COLOR` set (<https://no-color.org>).
+pub fn use_color(is_terminal: bool) -> bool {
+    is_terminal && std::env::var_os("NO_COLOR").is_none_or(|v| v.is_empty())
+}
+
+/// Like [`human`], but an error in a `.mpath` file shows its source line with the span
+/// underlined (ariadne; colour only when `color`).
+pub fn human_rich(d: &Diagnostic, lang: Lang, color: bool) -> String {
+    let Origin::Span {
+        file, start, end, ..
+    } = &d.origin
+    else {
+        return human(d, lang);
+    };
+    let Ok(src) = std::fs::read_to_string(&file.path) else {
+        return human(d, lang);
+    };
+    match snippet(
+        d,
+        lang,
+        color,
+        &file.path.display().to_string(),
+        &src,
+        *start,
+        *end,
+    ) {
+        Some(s) => s,
+        None => human(d, lang),
+    }
+}
+
+fn snippet(
+    d: &Diagnostic,
+    lang: Lang,
+    color: bool,
+    name: &str,
+    src: &str,
+    start: usize,
+    end: usize,
+) -> Option<String> {
+    use ariadne::{Color, Config, Label, Report, ReportKind, Source};
+    if start > src.len() || !src.is_char_boundary(start) {
+        return None;
+    }
+    // ariadne counts characters, the spans are bytes
+    let end = end.clamp(start, src.len());
+    let end = (end..=src.len()).find(|&e| src.is_char_boundary(e))?;
+    let a = src[..start].chars().count();
+    let b = (a + src[start..end].chars().count()).max(a + 1);
+    let (kind, label) = match (d.severity, lang) {
+        (Severity::Error, Lang::En) => (ReportKind::Custom("error", Color::Red), "error here"),
+        (Severity::Error, Lang::De) => (ReportKind::Custom("Fehler", Color::Red), "Fehler hier"),
+        (Severity::Warning, Lang::En) => {
+            (ReportKind::Custom("warning", Color::Yellow), "warning here")
+        }
+        (Severity::Warning, Lang::De) => {
+            (ReportKind::Custom("Warnung", Color::Yellow), "Warnung hier")
+        }
+    };
+    let mut label = Label::new((name, a..b)).with_message(label);
+    if color {
+        label = label.with_color(if d.severity == Severity::Error {
+            Color::Red
+        } else {
+            Color::Yellow
+        });
+    }
+    let mut buf = Vec::new();
+    Report::build(kind, name, a)
+        .with_config(Config::default().with_color(color))
+        .with_code(d.msg.code())
+        .with_message(d.message(lang))
+        .with_label(label)
+        .finish()
+        .write((name, Source::from(src)), &mut buf)
+        .ok()?;
+    let mut s = String::from_utf8_lossy(&buf).trim_end().to_string();
+    if !color {
+        // ariadne colours a custom report kind's name even without colour
+        s = strip_ansi(&s);
+    }
+    for r in &d.related {
+        s.push_str(&format!("\n   = {}: {}", r.note, location(&r.origin, lang)));
+    }
+    Some(s)
+}
+
+/// `s` without ANSI escape sequences (`ESC [ … letter`).
+fn strip_ansi(s: &str) -> String {
+    let mut out = String::new();
+    let mut chars = s.chars();
+    while let Some(c) = chars.next() {
+        if c == '\u{1b}' {
+            for c in chars.by_ref() {
+                if c.is_ascii_alphabetic() {
+                    break;
+                }
+            }
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
 /// A location a person can find, in the message language: `file:line (LINE on layer L,
 /// handle H, at [x y])`.
 pub fn location(o: &Origin, lang: Lang) -> String {

@@ -450,3 +450,38 @@ fn language_doc_examples_compile() {
         assert_eq!(o.status.code(), Some(0), "{ex}\n{}", text(&o.stderr));
     }
 }
+
+/// Item 15: an error in a .mpath file shows its source line with the span underlined,
+/// plain when piped or with NO_COLOR, in English and German.
+#[test]
+fn mpath_errors_show_the_source() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("e.mpath"),
+        "path 1234.1P {\n  start (0, 0)  T3 O2\n  mill (0, 0) -> (1 ü, 1)\n}\n",
+    )
+    .unwrap();
+    let o = millpath(dir.path(), &["check", "e.mpath"]);
+    let out = text(&o.stdout);
+    assert!(!out.contains('\u{1b}'), "{out}");
+    assert!(out.contains("e.mpath:3:21"), "{out}");
+    assert!(out.contains("  mill (0, 0) -> (1 ü, 1)"), "{out}");
+    let line = out
+        .lines()
+        .find(|l| l.contains("error here"))
+        .unwrap_or_default();
+    assert!(!line.is_empty(), "{out}");
+    let caret = out.lines().find(|l| l.contains('┬')).unwrap();
+    let src = out.lines().find(|l| l.contains("mill (0, 0)")).unwrap();
+    assert_eq!(
+        caret.chars().position(|c| c == '┬'),
+        src.chars().position(|c| c == 'ü'),
+        "{out}"
+    );
+    let o = millpath(dir.path(), &["check", "--lang", "de", "e.mpath"]);
+    let out = text(&o.stdout);
+    assert!(
+        out.contains("Fehler hier") && out.contains("Fehler"),
+        "{out}"
+    );
+}
