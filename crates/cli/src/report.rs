@@ -36,7 +36,7 @@ pub fn human(d: &Diagnostic, lang: Lang) -> String {
 /// Whether reports on a stream that `is_terminal` get colour: only on a terminal, and never
 /// with `NO_COLOR` set (<https://no-color.org>).
 pub fn use_color(is_terminal: bool) -> bool {
-    is_terminal && std::env::var_os("NO_COLOR").is_none_or(|v| v.is_empty())
+    is_terminal && !matches!(std::env::var_os("NO_COLOR"), Some(v) if !v.is_empty())
 }
 
 /// Like [`human`], but an error in a `.mpath` file shows its source line with the span

@@ -224,7 +224,7 @@ fn compile_a_folder() {
 fn binary_input_is_escaped() {
     let dir = tempfile::tempdir().unwrap();
     let mut bytes = b"\x7fELF\x02\x01\x01\0\0\0\0\0\0\0\0\0\x03\0>\0".to_vec();
-    bytes.extend(std::iter::repeat_n(b'A', 5000));
+    bytes.extend(vec![b'A'; 5000]);
     bytes.extend(b"\0\0\n");
     std::fs::write(dir.path().join("b.dxf"), &bytes).unwrap();
     let o = millpath(dir.path(), &["check", "b.dxf"]);
