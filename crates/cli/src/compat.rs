@@ -74,6 +74,11 @@ pub fn parse(args: &[String], tool: Tool) -> Parsed {
             p.files.push(arg.clone());
             continue;
         }
+        // GNU-style help is help too (exit 2 as for /h), not "Option /- not supported"
+        if arg.eq_ignore_ascii_case("--help") {
+            p.help = true;
+            break;
+        }
         if arg.len() == 1 {
             p.errors.push(Diagnostic::error(
                 Msg::MissingOptionValue,

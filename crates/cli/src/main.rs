@@ -1,5 +1,7 @@
 //! The `millpath` command line.
 
+#[macro_use]
+mod out;
 mod compat;
 mod config;
 mod report;
@@ -21,7 +23,7 @@ fn banner() -> String {
 #[command(
     name = "millpath",
     version,
-    about = "Compiles hand-drawn CNC milling paths (DXF) to G-code"
+    about = "Compiles hand-drawn CNC milling paths (DXF or .mpath) to G-code"
 )]
 struct Cli {
     #[command(subcommand)]
@@ -77,6 +79,40 @@ struct MachineArgs {
     spindle_dwell: Option<f64>,
 }
 
+/// The settings the conversions use: path and file names, the message language.
+#[derive(clap::Args, Clone, Default)]
+struct NameArgs {
+    /// Path-name pattern
+    #[arg(long)]
+    path_pattern: Option<String>,
+    /// File-name pattern
+    #[arg(long)]
+    file_pattern: Option<String>,
+    /// Message language
+    #[arg(long, value_enum)]
+    lang: Option<LangArg>,
+    /// Settings file (default: nearest millpath.toml above the input)
+    #[arg(long)]
+    config: Option<PathBuf>,
+}
+
+impl NameArgs {
+    fn machine(&self) -> MachineArgs {
+        MachineArgs {
+            path_pattern: self.path_pattern.clone(),
+            file_pattern: self.file_pattern.clone(),
+            lang: self.lang,
+            config: self.config.clone(),
+            ..MachineArgs::default()
+        }
+    }
+}
+
+/// `-o -` means standard output.
+fn stdout_dash(output: Option<PathBuf>) -> Option<PathBuf> {
+    output.filter(|p| p.as_os_str() != "-")
+}
+
 fn dialect_parser() -> impl clap::builder::TypedValueParser<Value = millpath_core::Dialect> {
     use clap::builder::TypedValueParser;
     let names = millpath_core::Dialect::ALL.map(|d| d.name());
@@ -116,14 +152,17 @@ enum VerifyFormat {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Compile DXF path drawings to G-code (one path per file)
+    /// Compile path drawings (DXF or .mpath) to G-code (one path per file; a folder: every
+    /// drawing below it)
     Compile {
         #[command(flatten)]
         machine: MachineArgs,
+        /// Drawings (.dxf or .mpath; a name without extension gets .dxf) or folders
         #[arg(required = true)]
         files: Vec<String>,
     },
-    /// Check every path of every file (directories: all DXF files below); writes nothing
+    /// Check every path of every drawing, DXF or .mpath (folders: all *.dxf and *.mpath
+    /// below); writes nothing
     Check {
         #[command(flatten)]
         machine: MachineArgs,
@@ -132,6 +171,7 @@ enum Command {
         /// No progress bar (it is shown only on a terminal, for many files)
         #[arg(long, short = 'q')]
         quiet: bool,
+        /// Drawings (.dxf or .mpath) or folders
         #[arg(required = true)]
         paths: Vec<PathBuf>,
     },
@@ -170,20 +210,24 @@ enum Command {
     /// Print a DXF drawing as MillPath text (usable as a git textconv driver)
     Dxf2text {
         file: PathBuf,
-        /// Write to this file instead of standard output
+        /// Write to this file instead of standard output (`-`: standard output)
         #[arg(short, long)]
         output: Option<PathBuf>,
+        /// As git's textconv driver: an unreadable drawing gives an error line as its text
+        /// (exit 0), so that `git diff` goes on
+        #[arg(long)]
+        textconv: bool,
         #[command(flatten)]
-        machine: MachineArgs,
+        names: NameArgs,
     },
     /// Write MillPath text as a DXF drawing
     Text2dxf {
         file: PathBuf,
-        /// The DXF file to write (default: FILE with .dxf)
+        /// The DXF file to write (default: FILE with .dxf; `-`: standard output)
         #[arg(short, long)]
         output: Option<PathBuf>,
         #[command(flatten)]
-        machine: MachineArgs,
+        names: NameArgs,
     },
     /// Format MillPath files in place (directories: all *.mpath below)
     Fmt {
@@ -274,13 +318,14 @@ fn main() -> ExitCode {
         Command::Dxf2text {
             file,
             output,
-            machine,
-        } => run_dxf2text(&file, output.as_deref(), &machine),
+            textconv,
+            names,
+        } => run_dxf2text(&file, stdout_dash(output), textconv, &names.machine()),
         Command::Text2dxf {
             file,
             output,
-            machine,
-        } => run_text2dxf(&file, output.as_deref(), &machine),
+            names,
+        } => run_text2dxf(&file, output.as_deref(), &names.machine()),
         Command::Fmt { check, paths } => run_fmt(check, &paths),
         Command::Render {
             file,
@@ -302,22 +347,29 @@ fn to_lang(l: LangArg) -> Lang {
     }
 }
 
-fn write_outputs(outputs: &[millpath_core::OutputFile], lang: Lang, diags: &mut Diags) {
+/// Writes the outputs; "Writing …" is printed only for a file that was written. False when
+/// any write failed.
+fn write_outputs(outputs: &[millpath_core::OutputFile], lang: Lang, diags: &mut Diags) -> bool {
     let verb = if lang == Lang::De {
         "Schreiben von"
     } else {
         "Writing"
     };
+    let mut ok = true;
     for o in outputs {
-        eprintln!("---- {verb} {}", o.path.display());
-        if let Err(e) = write::write_atomic(&o.path, &o.content) {
-            diags.error(
-                Msg::CannotWrite,
-                Origin::Options,
-                millpath_core::args![o.path.display(), e],
-            );
+        match write::write_atomic(&o.path, &o.content) {
+            Ok(()) => eprintln!("---- {verb} {}", o.path.display()),
+            Err(e) => {
+                ok = false;
+                diags.error(
+                    Msg::CannotWrite,
+                    Origin::Options,
+                    millpath_core::args![o.path.display(), e],
+                );
+            }
         }
     }
+    ok
 }
 
 fn print_stats(outcome: &millpath_core::FileOutcome, lang: Lang) {
@@ -375,8 +427,9 @@ fn run_dxf2gcode(args: &[String]) -> u8 {
         let input = complete_input(f);
         let outcome = compile_file(&mut session, &input, &banner());
         flush_info(&mut session);
-        write_outputs(&outcome.outputs, lang, &mut write_errors);
-        print_stats(&outcome, lang);
+        if write_outputs(&outcome.outputs, lang, &mut write_errors) {
+            print_stats(&outcome, lang);
+        }
     }
     let mut failed = false;
     for d in session.diags.list.iter().chain(write_errors.list.iter()) {
@@ -480,18 +533,58 @@ fn settings_for(
     Ok(s)
 }
 
+fn lang_of(m: &MachineArgs) -> Lang {
+    m.lang.map_or(Lang::En, to_lang)
+}
+
 fn print_human(diags: &[Diagnostic], lang: Lang) {
+    let color = report::use_color(std::io::IsTerminal::is_terminal(&std::io::stderr()));
     for d in diags {
-        eprintln!("{}", report::human(d, lang));
+        eprintln!("{}", report::human_rich(d, lang, color));
     }
 }
 
+/// The files `compile` compiles: a folder gives every drawing below it (never `folder.dxf`);
+/// a name without extension gets `.dxf` as in the reference.
+fn compile_inputs(files: &[String]) -> Result<Vec<PathBuf>, String> {
+    let mut inputs = Vec::new();
+    for f in files {
+        let p = Path::new(f);
+        if p.is_dir() {
+            let before = inputs.len();
+            collect_files(&[p.to_path_buf()], is_drawing, &mut inputs);
+            if inputs.len() == before {
+                return Err(f.clone());
+            }
+        } else {
+            inputs.push(complete_input(f));
+        }
+    }
+    Ok(inputs)
+}
+
 fn run_compile(m: &MachineArgs, files: &[String]) -> u8 {
-    let first = files.first().map(|f| complete_input(f));
-    let settings = match settings_for(m, first.as_deref(), true) {
+    let inputs = match compile_inputs(files) {
+        Ok(i) => i,
+        Err(dir) => {
+            eprintln!(
+                "{}",
+                match lang_of(m) {
+                    Lang::En => format!("error: no drawings (*.dxf, *.mpath) found in {dir}"),
+                    Lang::De =>
+                        format!("Fehler: keine Zeichnungen (*.dxf, *.mpath) in {dir} gefunden"),
+                }
+            );
+            return 3;
+        }
+    };
+    let settings = match settings_for(m, inputs.first().map(PathBuf::as_path), true) {
         Ok(s) => s,
         Err(e) => {
-            eprintln!("error: {e}");
+            eprintln!(
+                "{}: {e}",
+                report::severity_word(Severity::Error, lang_of(m))
+            );
             return 2;
         }
     };
@@ -505,20 +598,20 @@ fn run_compile(m: &MachineArgs, files: &[String]) -> u8 {
         }
     };
     let mut write_errors = Diags::default();
-    for f in files {
-        let input = complete_input(f);
+    for input in inputs {
         let outcome = compile_file(&mut session, &input, &banner());
         flush_info(&mut session);
-        write_outputs(&outcome.outputs, lang, &mut write_errors);
-        print_stats(&outcome, lang);
-        if let (Some(v), false) = (outcome.removed_volume, outcome.outputs.is_empty()) {
-            // not in pathdxf2gcode's output, which stays the reference's
-            let label = if lang == Lang::De {
-                "Abgetragenes Volumen"
-            } else {
-                "Removed volume"
-            };
-            eprintln!("  {label}: {v:.0} mm³");
+        if write_outputs(&outcome.outputs, lang, &mut write_errors) {
+            print_stats(&outcome, lang);
+            if let (Some(v), false) = (outcome.removed_volume, outcome.outputs.is_empty()) {
+                // not in pathdxf2gcode's output, which stays the reference's
+                let label = if lang == Lang::De {
+                    "Abgetragenes Volumen"
+                } else {
+                    "Removed volume"
+                };
+                eprintln!("  {label}: {v:.0} mm³");
+            }
         }
     }
     let all: Vec<Diagnostic> = session
@@ -528,6 +621,7 @@ fn run_compile(m: &MachineArgs, files: &[String]) -> u8 {
         .chain(write_errors.list.iter())
         .cloned()
         .collect();
+    let all = report::tidy(all);
     print_human(&all, lang);
     u8::from(all.iter().any(|d| d.severity == Severity::Error))
 }
@@ -624,12 +718,33 @@ fn run_check(m: &MachineArgs, format: Format, quiet: bool, paths: &[PathBuf]) ->
     let mut settings = match settings_for(m, inputs.first().map(PathBuf::as_path), false) {
         Ok(s) => s,
         Err(e) => {
-            eprintln!("error: {e}");
+            eprintln!(
+                "{}: {e}",
+                report::severity_word(Severity::Error, lang_of(m))
+            );
             return 2;
         }
     };
     settings.check = true;
     let lang = settings.lang;
+    if inputs.is_empty() {
+        // like the reference's "no files" (exit 3)
+        let shown: Vec<String> = paths.iter().map(|p| p.display().to_string()).collect();
+        eprintln!(
+            "{}",
+            match lang {
+                Lang::En => format!(
+                    "error: no drawings (*.dxf, *.mpath) found in {}",
+                    shown.join(", ")
+                ),
+                Lang::De => format!(
+                    "Fehler: keine Zeichnungen (*.dxf, *.mpath) in {} gefunden",
+                    shown.join(", ")
+                ),
+            }
+        );
+        return 3;
+    }
     let mut all = Vec::new();
     // Printed in input order, whatever order the workers finished in.
     for result in check_all(&settings, &inputs, quiet) {
@@ -648,12 +763,17 @@ fn run_check(m: &MachineArgs, format: Format, quiet: bool, paths: &[PathBuf]) ->
             }
         }
     }
+    let all = report::tidy(all);
     let errors = all.iter().filter(|d| d.severity == Severity::Error).count();
     match format {
         Format::Human => {
-            print_human(&all, lang);
+            // diagnostics and the summary are the report (stdout); progress lines stay on stderr
+            let color = report::use_color(std::io::IsTerminal::is_terminal(&std::io::stdout()));
+            for d in &all {
+                outln!("{}", report::human_rich(d, lang, color));
+            }
             let warnings = all.len() - errors;
-            eprintln!(
+            outln!(
                 "{}",
                 match lang {
                     Lang::En => format!(
@@ -670,15 +790,15 @@ fn run_check(m: &MachineArgs, format: Format, quiet: bool, paths: &[PathBuf]) ->
         Format::Json => {
             let v: Vec<serde_json::Value> =
                 all.iter().map(|d| report::json_value(d, lang)).collect();
-            println!("{}", serde_json::to_string_pretty(&serde_json::json!({ "files": inputs.len(), "errors": errors, "diagnostics": v })).unwrap_or_default());
+            outln!("{}", serde_json::to_string_pretty(&serde_json::json!({ "files": inputs.len(), "errors": errors, "diagnostics": v })).unwrap_or_default());
         }
         Format::Github => {
             for d in &all {
-                println!("{}", report::github(d, lang));
+                outln!("{}", report::github(d, lang));
             }
         }
         Format::Sarif => {
-            println!(
+            outln!(
                 "{}",
                 serde_json::to_string_pretty(&report::sarif(&all, lang)).unwrap_or_default()
             );
@@ -875,9 +995,8 @@ fn emit(output: Option<&Path>, content: &str, lang: Lang) -> u8 {
             }
         },
         None => {
-            use std::io::Write;
-            let mut out = std::io::stdout().lock();
-            u8::from(out.write_all(content.as_bytes()).is_err())
+            out::write(content);
+            0
         }
     }
 }
@@ -910,9 +1029,24 @@ fn conversion_input(
     Ok((patterns, lang, bytes))
 }
 
-fn run_dxf2text(file: &Path, output: Option<&Path>, m: &MachineArgs) -> u8 {
+fn run_dxf2text(file: &Path, output: Option<PathBuf>, textconv: bool, m: &MachineArgs) -> u8 {
+    let output = output.as_deref();
     let (patterns, lang, bytes) = match conversion_input(file, m) {
         Ok(x) => x,
+        Err(code) if textconv => {
+            // git shows this line as the file's text instead of giving up on the diff
+            let what = if lang_of(m) == Lang::De {
+                "nicht lesbar"
+            } else {
+                "unreadable"
+            };
+            return emit(
+                output,
+                &format!("# millpath: {} {what}\n", file.display()),
+                lang_of(m),
+            )
+            .max(u8::from(code == 2));
+        }
         Err(code) => return code,
     };
     let fref = millpath_core::diag::FileRef::new(file.to_path_buf());
@@ -920,6 +1054,16 @@ fn run_dxf2text(file: &Path, output: Option<&Path>, m: &MachineArgs) -> u8 {
         Ok((text, diags)) => {
             // what the text cannot carry (texts that belong to no element, …) is reported
             print_human(&diags, lang);
+            emit(output, &text, lang)
+        }
+        Err(d) if textconv => {
+            // the error as the text (one line per line of the message), exit 0: `git diff`
+            // shows what is wrong with the drawing instead of dying
+            eprintln!("{}", report::human(&d, lang));
+            let text: String = report::human(&d, lang)
+                .lines()
+                .map(|l| format!("# {l}\n"))
+                .collect();
             emit(output, &text, lang)
         }
         Err(d) => {
@@ -937,12 +1081,11 @@ fn run_text2dxf(file: &Path, output: Option<&Path>, m: &MachineArgs) -> u8 {
     let src = String::from_utf8_lossy(&bytes);
     let fref = millpath_core::diag::FileRef::new(file.to_path_buf());
     match millpath_core::convert::text_to_dxf(&src, &fref, &patterns) {
-        Ok(dxf) => {
-            let out = output
-                .map(Path::to_path_buf)
-                .unwrap_or_else(|| file.with_extension("dxf"));
-            emit(Some(&out), &dxf, lang)
-        }
+        Ok(dxf) => match output {
+            Some(o) if o.as_os_str() == "-" => emit(None, &dxf, lang),
+            Some(o) => emit(Some(o), &dxf, lang),
+            None => emit(Some(&file.with_extension("dxf")), &dxf, lang),
+        },
         Err(diags) => {
             print_human(&diags, lang);
             1
@@ -968,7 +1111,7 @@ fn run_fmt(check: bool, paths: &[PathBuf]) -> u8 {
             Ok(formatted) if formatted == src => {}
             Ok(formatted) => {
                 if check {
-                    println!("{}: not formatted", f.display());
+                    outln!("{}: not formatted", f.display());
                     status = 1;
                 } else if let Err(e) = write::write_atomic(&f, &formatted) {
                     eprintln!("error: {}: {e}", f.display());
@@ -1000,7 +1143,38 @@ fn run_render(file: &Path, path: Option<&str>, html: Option<PathBuf>, svg: Optio
     let data = match millpath_ide::features::toolpath(&ws, &abs, path) {
         Ok(d) => d,
         Err(e) => {
-            eprintln!("error: {}: {e}", file.display());
+            let lang = ws.settings_for(&abs).settings.lang;
+            // say why: a missing or unreadable file, a file that is not a drawing, syntax
+            // errors — not only that no path was found
+            if let Err(err) = std::fs::read(&file) {
+                let d = Diagnostic::error(
+                    Msg::CannotRead,
+                    Origin::File(millpath_core::diag::FileRef::new(file.clone())),
+                    millpath_core::args![file.display(), err],
+                );
+                eprintln!("{}", report::human(&d, lang));
+                return 1;
+            }
+            let errors: Vec<Diagnostic> = settings_for(&MachineArgs::default(), Some(&file), false)
+                .ok()
+                .and_then(|mut s| {
+                    s.check = true;
+                    check_file(&s, &file).ok()
+                })
+                .map(|c| report::tidy(c.diags))
+                .unwrap_or_default()
+                .into_iter()
+                .filter(|d| d.severity == Severity::Error)
+                .collect();
+            if errors.is_empty() {
+                eprintln!(
+                    "{}: {}: {e}",
+                    report::severity_word(Severity::Error, lang),
+                    file.display()
+                );
+            } else {
+                print_human(&errors, lang);
+            }
             return 1;
         }
     };

@@ -22,18 +22,171 @@ pub fn human(d: &Diagnostic, lang: Lang) -> String {
         d.msg.code(),
         d.message(lang)
     );
-    match d.origin.location() {
-        Some(loc) => s.push_str(&format!("\n  --> {loc}")),
-        None => s.push_str(&format!("\n  --> {}", d.origin.context())),
-    }
+    s.push_str(&format!("\n  --> {}", location(&d.origin, lang)));
     if let Origin::Entity(e) = &d.origin {
-        s.push_str(&format!("\n   = path {}", e.path));
+        let word = if lang == Lang::De { "Pfad" } else { "path" };
+        s.push_str(&format!("\n   = {word} {}", e.path));
     }
     for r in &d.related {
-        let loc = r.origin.location().unwrap_or_else(|| r.origin.context());
-        s.push_str(&format!("\n   = {}: {loc}", r.note));
+        s.push_str(&format!("\n   = {}: {}", r.note, location(&r.origin, lang)));
     }
     s
+}
+
+/// Whether reports on a stream that `is_terminal` get colour: only on a terminal, and never
+/// with `NO_COLOR` set (<https://no-color.org>).
+pub fn use_color(is_terminal: bool) -> bool {
+    is_terminal && !matches!(std::env::var_os("NO_COLOR"), Some(v) if !v.is_empty())
+}
+
+/// Like [`human`], but an error in a `.mpath` file shows its source line with the span
+/// underlined (ariadne; colour only when `color`).
+pub fn human_rich(d: &Diagnostic, lang: Lang, color: bool) -> String {
+    let Origin::Span {
+        file, start, end, ..
+    } = &d.origin
+    else {
+        return human(d, lang);
+    };
+    let Ok(src) = std::fs::read_to_string(&file.path) else {
+        return human(d, lang);
+    };
+    match snippet(
+        d,
+        lang,
+        color,
+        &file.path.display().to_string(),
+        &src,
+        *start,
+        *end,
+    ) {
+        Some(s) => s,
+        None => human(d, lang),
+    }
+}
+
+fn snippet(
+    d: &Diagnostic,
+    lang: Lang,
+    color: bool,
+    name: &str,
+    src: &str,
+    start: usize,
+    end: usize,
+) -> Option<String> {
+    use ariadne::{Color, Config, Label, Report, ReportKind, Source};
+    if start > src.len() || !src.is_char_boundary(start) {
+        return None;
+    }
+    // ariadne counts characters, the spans are bytes
+    let end = end.clamp(start, src.len());
+    let end = (end..=src.len()).find(|&e| src.is_char_boundary(e))?;
+    let a = src[..start].chars().count();
+    let b = (a + src[start..end].chars().count()).max(a + 1);
+    let (kind, label) = match (d.severity, lang) {
+        (Severity::Error, Lang::En) => (ReportKind::Custom("error", Color::Red), "error here"),
+        (Severity::Error, Lang::De) => (ReportKind::Custom("Fehler", Color::Red), "Fehler hier"),
+        (Severity::Warning, Lang::En) => {
+            (ReportKind::Custom("warning", Color::Yellow), "warning here")
+        }
+        (Severity::Warning, Lang::De) => {
+            (ReportKind::Custom("Warnung", Color::Yellow), "Warnung hier")
+        }
+    };
+    let mut label = Label::new((name, a..b)).with_message(label);
+    if color {
+        label = label.with_color(if d.severity == Severity::Error {
+            Color::Red
+        } else {
+            Color::Yellow
+        });
+    }
+    let mut buf = Vec::new();
+    Report::build(kind, name, a)
+        .with_config(Config::default().with_color(color))
+        .with_code(d.msg.code())
+        .with_message(d.message(lang))
+        .with_label(label)
+        .finish()
+        .write((name, Source::from(src)), &mut buf)
+        .ok()?;
+    let mut s = String::from_utf8_lossy(&buf).trim_end().to_string();
+    if !color {
+        // ariadne colours a custom report kind's name even without colour
+        s = strip_ansi(&s);
+    }
+    for r in &d.related {
+        s.push_str(&format!("\n   = {}: {}", r.note, location(&r.origin, lang)));
+    }
+    Some(s)
+}
+
+/// `s` without ANSI escape sequences (`ESC [ … letter`).
+fn strip_ansi(s: &str) -> String {
+    let mut out = String::new();
+    let mut chars = s.chars();
+    while let Some(c) = chars.next() {
+        if c == '\u{1b}' {
+            for c in chars.by_ref() {
+                if c.is_ascii_alphabetic() {
+                    break;
+                }
+            }
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
+/// A location a person can find, in the message language: `file:line (LINE on layer L,
+/// handle H, at [x y])`.
+pub fn location(o: &Origin, lang: Lang) -> String {
+    match (o, lang) {
+        (Origin::Entity(e), Lang::De) => format!(
+            "{}:{} ({} auf Layer {}{}, bei {})",
+            e.file.path.display(),
+            e.line,
+            e.code_name,
+            e.layer,
+            if e.handle.is_empty() {
+                String::new()
+            } else {
+                format!(", Handle {}", e.handle)
+            },
+            e.pos
+        ),
+        (Origin::Options, Lang::De) => "Optionen".into(),
+        (Origin::Input, Lang::De) => "Eingabe".into(),
+        _ => o.location().unwrap_or_else(|| o.context()),
+    }
+}
+
+/// The diagnostics as they are reported: a file that cannot be read is located at that file
+/// (not at "Input"), and it gets no second message that it has no error-free path.
+pub fn tidy(diags: Vec<Diagnostic>) -> Vec<Diagnostic> {
+    use millpath_core::diag::FileRef;
+    use millpath_core::Msg;
+    let unreadable: Vec<String> = diags
+        .iter()
+        .filter(|d| matches!(d.msg, Msg::CannotRead | Msg::CannotLoadDxf))
+        .filter_map(|d| d.args.first().cloned())
+        .collect();
+    diags
+        .into_iter()
+        .filter(|d| {
+            !(matches!(d.msg, Msg::NoErrorFreePath | Msg::NoErrorFreePathInFile)
+                && d.args.first().is_some_and(|f| unreadable.contains(f)))
+        })
+        .map(|mut d| {
+            if d.msg == Msg::CannotRead && matches!(d.origin, Origin::Input) {
+                if let Some(f) = d.args.first() {
+                    d.origin = Origin::File(FileRef::new(f.into()));
+                }
+            }
+            d
+        })
+        .collect()
 }
 
 fn location_fields(o: &Origin) -> serde_json::Value {
@@ -78,6 +231,46 @@ pub fn json_value(d: &Diagnostic, lang: Lang) -> serde_json::Value {
     })
 }
 
+/// Percent-encodes a path for a URI (RFC 3986): unreserved characters and `/` stay, every
+/// other byte of the UTF-8 text becomes `%XX`.
+pub fn percent_encode_path(p: &str) -> String {
+    let mut out = String::new();
+    for b in p.bytes() {
+        if b.is_ascii_alphanumeric() || b"-._~/".contains(&b) {
+            out.push(b as char);
+        } else {
+            out.push_str(&format!("%{b:02X}"));
+        }
+    }
+    out
+}
+
+/// A file path as a `file:///…` URI (absolute paths; `\` of Windows paths as `/`).
+pub fn file_uri(p: &std::path::Path) -> String {
+    let s = p.to_string_lossy().replace('\\', "/");
+    let s = if s.starts_with('/') {
+        s
+    } else {
+        format!("/{s}")
+    };
+    format!("file://{}", percent_encode_path(&s))
+}
+
+/// The SARIF artifact location of a file: relative paths relative to `%SRCROOT%` (the
+/// current directory), absolute paths as `file:///` URIs.
+fn artifact_location(file: &str) -> serde_json::Value {
+    let p = std::path::Path::new(file);
+    if p.is_absolute() {
+        return json!({ "uri": file_uri(p) });
+    }
+    let parts: Vec<String> = p
+        .components()
+        .filter(|c| !matches!(c, std::path::Component::CurDir))
+        .map(|c| c.as_os_str().to_string_lossy().into_owned())
+        .collect();
+    json!({ "uri": percent_encode_path(&parts.join("/")), "uriBaseId": "%SRCROOT%" })
+}
+
 fn sarif_location(o: &Origin) -> Option<serde_json::Value> {
     let (file, line, col) = match o {
         Origin::Entity(e) => (e.file.path.display().to_string(), e.line, 1),
@@ -90,10 +283,32 @@ fn sarif_location(o: &Origin) -> Option<serde_json::Value> {
     };
     Some(json!({
         "physicalLocation": {
-            "artifactLocation": { "uri": file },
+            "artifactLocation": artifact_location(&file),
             "region": { "startLine": line.max(1), "startColumn": col.max(1) }
         }
     }))
+}
+
+/// A message template with its placeholders shown as `…` (`{0} value missing` → `… value
+/// missing`), for rule descriptions.
+pub fn template_text(t: &str) -> String {
+    let mut out = String::new();
+    let mut rest = t;
+    while let Some(i) = rest.find('{') {
+        out.push_str(&rest[..i]);
+        match rest[i..].find('}') {
+            Some(j) if rest[i + 1..i + j].chars().all(|c| c.is_ascii_digit()) && j > 1 => {
+                out.push('…');
+                rest = &rest[i + j + 1..];
+            }
+            _ => {
+                out.push('{');
+                rest = &rest[i + 1..];
+            }
+        }
+    }
+    out.push_str(rest);
+    out
 }
 
 /// A SARIF 2.1.0 log of the diagnostics (for code-scanning tools).
@@ -120,6 +335,16 @@ pub fn sarif(diags: &[Diagnostic], lang: Lang) -> serde_json::Value {
             })
         })
         .collect();
+    let root = std::env::current_dir()
+        .map(|d| {
+            let u = file_uri(&d);
+            if u.ends_with('/') {
+                u
+            } else {
+                format!("{u}/")
+            }
+        })
+        .unwrap_or_else(|_| "file:///".into());
     json!({
         "version": "2.1.0",
         "$schema": "https://json.schemastore.org/sarif-2.1.0.json",
@@ -130,9 +355,10 @@ pub fn sarif(diags: &[Diagnostic], lang: Lang) -> serde_json::Value {
                 "rules": rules.iter().map(|d| json!({
                     "id": d.msg.code(),
                     "name": d.msg.name(),
-                    "shortDescription": { "text": d.msg.template(Lang::En) },
+                    "shortDescription": { "text": template_text(d.msg.template(Lang::En)) },
                 })).collect::<Vec<_>>(),
             }},
+            "originalUriBaseIds": { "%SRCROOT%": { "uri": root } },
             "results": results,
         }]
     })

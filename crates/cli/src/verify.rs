@@ -98,7 +98,7 @@ pub fn run(a: &Args) -> u8 {
                         Lang::En => "cannot read",
                         Lang::De => "kann nicht gelesen werden",
                     };
-                    println!("{shown}: {}: {verb}: {e}", Severity::Error.word(a.lang));
+                    outln!("{shown}: {}: {verb}: {e}", Severity::Error.word(a.lang));
                 }
                 continue;
             }
@@ -135,19 +135,19 @@ pub fn run(a: &Args) -> u8 {
                 Some(l) => format!("{shown}:{l}"),
                 None => shown.clone(),
             };
-            println!(
+            outln!(
                 "{place}: {}: {}",
                 f.severity.word(a.lang),
                 f.message(a.lang)
             );
             if !f.text.is_empty() {
-                println!("    | {}", f.text);
+                outln!("    | {}", f.text);
             }
         }
         eprintln!("{shown}: {}", summary(&report, a.lang));
     }
     if a.json {
-        println!(
+        outln!(
             "{}",
             serde_json::to_string_pretty(&json!({
                 "dialect": a.dialect.name(),

@@ -100,32 +100,29 @@ fn checking_many_files_reports_like_checking_them_one_by_one_in_order() {
         }
     }
 
-    // human: every file's progress lines in order, then every file's diagnostics in order
-    let human_singles: Vec<String> = files
-        .iter()
-        .map(|f| text(&run(&args_of("human", std::slice::from_ref(f)), None).stderr))
-        .collect();
+    // human: every file's progress lines in order on stderr, then every file's diagnostics in
+    // order and the summary on stdout
     let (mut info, mut diags) = (String::new(), String::new());
-    for s in &human_singles {
-        let mut lines: Vec<&str> = s.lines().collect();
+    for f in &files {
+        let o = run(&args_of("human", std::slice::from_ref(f)), None);
+        info.push_str(&text(&o.stderr));
+        let out = text(&o.stdout);
+        let mut lines: Vec<&str> = out.lines().collect();
         assert!(lines.pop().unwrap().starts_with("checked 1 file(s)"));
         for l in lines {
-            let to = if l.starts_with("---- ") {
-                &mut info
-            } else {
-                &mut diags
-            };
-            to.push_str(l);
-            to.push('\n');
+            diags.push_str(l);
+            diags.push('\n');
         }
     }
-    let whole = text(&run(&args_of("human", &["sub".into()]), None).stderr);
+    let whole_run = run(&args_of("human", &["sub".into()]), None);
+    let whole = text(&whole_run.stdout);
     let summary = whole.lines().last().unwrap().to_string();
     assert!(
         summary.starts_with(&format!("checked {} file(s): ", files.len())),
         "{summary}"
     );
-    assert_eq!(whole, format!("{info}{diags}{summary}\n"));
+    assert_eq!(whole, format!("{diags}{summary}\n"));
+    assert_eq!(text(&whole_run.stderr), info);
 
     // json: the same diagnostics in the same order, counted over all files
     let whole: serde_json::Value =

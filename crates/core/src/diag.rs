@@ -287,6 +287,7 @@ messages! {
     ExprResultRange = "Expression '{0}' does not give a finite height within ±1000000", "Ausdruck '{0}' ergibt keine endliche Höhe innerhalb von ±1000000";
     StaleMillingRemoved = "Removed {0}: it is not newer than {1}, and no new one was written", "{0} entfernt: die Datei ist nicht neuer als {1}, und es wurde keine neue geschrieben";
     CannotRemove = "Cannot remove outdated {0}: {1}", "Veraltete Datei {0} kann nicht entfernt werden: {1}";
+    NoErrorFreePathInFile = "File {0} contains no error-free path", "Datei {0} enthält keinen Pfad ohne Fehler";
 }
 
 impl Msg {

@@ -122,9 +122,15 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
         return outcome;
     }
     let Some(model) = built.pop() else {
+        // "DXF file" only for a DXF file
+        let msg = if crate::load::fs::is_text_file(input) {
+            Msg::NoErrorFreePathInFile
+        } else {
+            Msg::NoErrorFreePath
+        };
         session
             .diags
-            .error(Msg::NoErrorFreePath, file_origin, args![input.display()]);
+            .error(msg, file_origin, args![input.display()]);
         return outcome;
     };
     if session.diags.has_errors() {

@@ -156,13 +156,20 @@ impl fmt::Display for DxfError {
                 write!(f, "line {}: file ends in the middle of a group", self.line)
             }
             DxfErrorKind::BadGroupCode(s) => {
-                write!(f, "line {}: '{}' is not a group code", self.line, s)
+                write!(
+                    f,
+                    "line {}: '{}' is not a group code",
+                    self.line,
+                    excerpt(s)
+                )
             }
             DxfErrorKind::BadNumber { code, value } => {
                 write!(
                     f,
                     "line {}: value '{}' of group {} is not a number",
-                    self.line, value, code
+                    self.line,
+                    excerpt(value),
+                    code
                 )
             }
             DxfErrorKind::Binary => {
@@ -176,3 +183,22 @@ impl fmt::Display for DxfError {
 }
 
 impl std::error::Error for DxfError {}
+
+/// At most 40 characters of a line, control characters escaped (`\0`, `\u{7f}`): a binary
+/// file given as DXF shows a short readable excerpt, never raw bytes.
+fn excerpt(s: &str) -> String {
+    const MAX: usize = 40;
+    let mut out = String::new();
+    for (i, c) in s.chars().enumerate() {
+        if i == MAX {
+            out.push('…');
+            break;
+        }
+        match c {
+            '\0' => out.push_str("\\0"),
+            c if c.is_control() => out.extend(c.escape_default()),
+            c => out.push(c),
+        }
+    }
+    out
+}
