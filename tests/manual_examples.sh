@@ -5,13 +5,15 @@
 #                       write G-code
 #   ```mpath,check      a complete file that is not compiled on its own (a part with
 #                       variables, a library of several paths): `millpath check` must pass
-#   ```mpath,fail       a complete file that `millpath compile` must reject
+#   ```mpath,fail       a complete file that `millpath compile` must reject; a line
+#                       `# expect: CODE` in it names the error code that must be reported
 #   ```mpath,fragment   part of a file: not run
 #
 # A block whose first line is `# file: NAME.mpath` is written under that name, else as
 # exampleN.mpath. The blocks of one chapter share a folder (so a project finds the parts of
 # the blocks before it) with a millpath.toml holding feed and sweep settings.
-# Also checks that docs/src/param-table.md is the output of the param_table example (the
+# Complete blocks must also be in canonical form (millpath fmt --check), so that what readers
+# copy is what the formatter writes. Also checks that docs/src/param-table.md is the output of the param_table example (the
 # table the language server's hover uses). Prints "N passed, M failed".
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -71,11 +73,18 @@ for meta in "$work"/*.meta; do
     out="$(cd "$d" && "$bin" compile "$name" 2>&1)"
   fi
   status=$?
+  if [ "$kind" != fail ] && ! fmt="$(cd "$d" && "$bin" fmt --check "$name" 2>&1)"; then
+    out="$out
+not in canonical form (millpath fmt): $fmt"
+    status=99
+  fi
   if [ "$kind" = ok ] && [ $status -eq 0 ] && ls "$d/$stem"_*.gcode >/dev/null 2>&1; then
     passed=$((passed + 1))
   elif [ "$kind" = check ] && [ $status -eq 0 ]; then
     passed=$((passed + 1))
-  elif [ "$kind" = fail ] && [ $status -ne 0 ]; then
+  elif [ "$kind" = fail ] && [ $status -ne 0 ] &&
+       { ! code="$(grep -o '^# expect: *[A-Z0-9]*' "$d/$name" | sed 's/.*: *//')" ||
+         [ -z "$code" ] || grep -q "\[$code\]" <<<"$out"; }; then
     passed=$((passed + 1))
   else
     failed=$((failed + 1))
