@@ -12,6 +12,7 @@
 # A block whose first line is `# file: NAME.mpath` is written under that name, else as
 # exampleN.mpath. The blocks of one chapter share a folder (so a project finds the parts of
 # the blocks before it) with a millpath.toml holding feed and sweep settings.
+# A picture docs/src/img/STEM.svg must equal `millpath render STEM.mpath --svg` of the block.
 # Complete blocks must also be in canonical form (millpath fmt --check), so that what readers
 # copy is what the formatter writes. Also checks that docs/src/param-table.md is the output of the param_table example (the
 # table the language server's hover uses). Prints "N passed, M failed".
@@ -77,6 +78,14 @@ for meta in "$work"/*.meta; do
     out="$out
 not in canonical form (millpath fmt): $fmt"
     status=99
+  fi
+  # a toolpath picture in the manual (docs/src/img/STEM.svg) must be what render draws now
+  if [ "$kind" = ok ] && [ -f "docs/src/img/$stem.svg" ] &&
+     ! { (cd "$d" && "$bin" render "$name" --svg "$stem.svg" >/dev/null 2>&1) &&
+         cmp -s "$d/$stem.svg" "docs/src/img/$stem.svg"; }; then
+    out="$out
+docs/src/img/$stem.svg is not the output of: millpath render $name --svg $stem.svg"
+    status=98
   fi
   if [ "$kind" = ok ] && [ $status -eq 0 ] && ls "$d/$stem"_*.gcode >/dev/null 2>&1; then
     passed=$((passed + 1))
