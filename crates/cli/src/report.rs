@@ -143,22 +143,9 @@ fn strip_ansi(s: &str) -> String {
 /// handle H, at [x y])`.
 pub fn location(o: &Origin, lang: Lang) -> String {
     match (o, lang) {
-        (Origin::Entity(e), Lang::De) => format!(
-            "{}:{} ({} auf Layer {}{}, bei {})",
-            e.file.path.display(),
-            e.line,
-            e.code_name,
-            e.layer,
-            if e.handle.is_empty() {
-                String::new()
-            } else {
-                format!(", Handle {}", e.handle)
-            },
-            e.pos
-        ),
         (Origin::Options, Lang::De) => "Optionen".into(),
         (Origin::Input, Lang::De) => "Eingabe".into(),
-        _ => o.location().unwrap_or_else(|| o.context()),
+        _ => o.location_in(lang).unwrap_or_else(|| o.context()),
     }
 }
 

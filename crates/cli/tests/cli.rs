@@ -1,15 +1,9 @@
 //! The command line end to end: exit statuses, output files, settings, report formats.
 
-use std::path::Path;
-use std::process::{Command, Output};
+mod common;
 
-fn millpath(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_millpath"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap()
-}
+use common::millpath;
+use std::path::Path;
 
 fn example() -> String {
     std::fs::read_to_string(

@@ -1,16 +1,10 @@
 //! `--dialect`, `--plunge-feed`, `--spindle-rpm` and their `millpath.toml` keys end to end;
 //! the reference command line (`pathdxf2gcode`) always writes the reference dialect.
 
-use std::path::Path;
-use std::process::{Command, Output};
+mod common;
 
-fn millpath(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_millpath"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap()
-}
+use common::millpath;
+use std::path::Path;
 
 fn plate(dir: &Path) {
     let example = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/plate/1234.1P.dxf");

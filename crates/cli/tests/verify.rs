@@ -3,17 +3,11 @@
 //! independent checker with the drawing's material top T and tool diameter O; a broken
 //! program fails with `file:line:` findings.
 
+mod common;
+
+use common::millpath;
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn millpath(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_millpath"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap()
-}
 
 fn repo() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")

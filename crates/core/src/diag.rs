@@ -108,9 +108,18 @@ impl Origin {
 
     /// A location a person can find: `file:line (layer L, handle H)` for DXF entities.
     pub fn location(&self) -> Option<String> {
+        self.location_in(Lang::En)
+    }
+
+    /// [`Origin::location`] in the message language.
+    pub fn location_in(&self, lang: Lang) -> Option<String> {
+        let (on_layer, handle, at) = match lang {
+            Lang::En => ("on layer", "handle", "at"),
+            Lang::De => ("auf Layer", "Handle", "bei"),
+        };
         match self {
             Origin::Entity(e) => Some(format!(
-                "{}:{} ({} on layer {}{}, at {})",
+                "{}:{} ({} {on_layer} {}{}, {at} {})",
                 e.file.path.display(),
                 e.line,
                 e.code_name,
@@ -118,7 +127,7 @@ impl Origin {
                 if e.handle.is_empty() {
                     String::new()
                 } else {
-                    format!(", handle {}", e.handle)
+                    format!(", {handle} {}", e.handle)
                 },
                 e.pos
             )),
