@@ -15,17 +15,20 @@ use lsp_client::{uri, Client};
 use serde_json::json;
 use std::time::{Duration, Instant};
 
-/// A path of `n` elements: a zig-zag of mill lines and sweeps.
-pub fn big_file(n: usize, infeed: &str) -> String {
+/// A path of `n` elements: a zig-zag of segments of the kind `kind(i)` gives.
+fn zigzag(n: usize, infeed: &str, kind: impl Fn(usize) -> &'static str) -> String {
     let mut s = format!("path 3000.1P {{\n  start (0, 0)  M10x3 O2 T3 I{infeed} B-0,2\n");
     let segments = n - 2;
     let mut x = 0.0;
     let mut lines = Vec::new();
     for i in 0..segments {
-        let kind = if i % 4 == 3 { "sweep" } else { "mill" };
         let y0 = if i % 2 == 0 { 0.0 } else { 5.0 };
         let y1 = 5.0 - y0;
-        lines.push(format!("  {kind} ({x}, {y0}) -> ({}, {y1})\n", x + 1.0));
+        lines.push(format!(
+            "  {} ({x}, {y0}) -> ({}, {y1})\n",
+            kind(i),
+            x + 1.0
+        ));
         x += 1.0;
     }
     let y_end = if segments.is_multiple_of(2) { 0.0 } else { 5.0 };
@@ -37,25 +40,14 @@ pub fn big_file(n: usize, infeed: &str) -> String {
     s
 }
 
+/// A path of `n` elements: mill lines in short chains between sweeps.
+pub fn big_file(n: usize, infeed: &str) -> String {
+    zigzag(n, infeed, |i| if i % 4 == 3 { "sweep" } else { "mill" })
+}
+
 /// A path of `n` elements that is one long mill chain.
 pub fn long_chain(n: usize, infeed: &str) -> String {
-    let mut s = format!("path 3000.1P {{\n  start (0, 0)  M10x3 O2 T3 I{infeed} B-0,2\n");
-    let segments = n - 2;
-    let mut lines = Vec::new();
-    let mut x = 0.0;
-    for i in 0..segments {
-        let y0 = if i % 2 == 0 { 0.0 } else { 5.0 };
-        let y1 = 5.0 - y0;
-        lines.push(format!("  mill ({x}, {y0}) -> ({}, {y1})\n", x + 1.0));
-        x += 1.0;
-    }
-    let y_end = if segments.is_multiple_of(2) { 0.0 } else { 5.0 };
-    s.push_str(&format!("  end ({x}, {y_end})\n"));
-    for l in lines {
-        s.push_str(&l);
-    }
-    s.push_str("}\n");
-    s
+    zigzag(n, infeed, |_| "mill")
 }
 
 fn ms(d: Duration) -> f64 {

@@ -94,10 +94,16 @@ impl Settings {
             .into_iter()
             .filter(|(_, v)| !finite(*v))
             .map(|(name, v)| {
+                // 1e300 as written, not as three hundred digits
+                let shown = if v.is_finite() {
+                    format!("{v:e}")
+                } else {
+                    v.to_string()
+                };
                 Diagnostic::error(
                     Msg::SettingNotFinite,
                     Origin::Options,
-                    args![name, v, MAX_MAGNITUDE],
+                    args![name, shown, MAX_MAGNITUDE],
                 )
             })
             .collect();
