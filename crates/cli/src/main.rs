@@ -1140,7 +1140,7 @@ fn run_render(file: &Path, path: Option<&str>, html: Option<PathBuf>, svg: Optio
         );
         return 2;
     }
-    let data = match millpath_ide::features::toolpath(&ws, &abs, path) {
+    let data = match millpath_ide::toolpath(&ws, &abs, path) {
         Ok(d) => d,
         Err(e) => {
             let lang = ws.settings_for(&abs).settings.lang;
@@ -1190,19 +1190,11 @@ fn run_render(file: &Path, path: Option<&str>, html: Option<PathBuf>, svg: Optio
     let mut status = 0;
     if let Some(out) = html {
         eprintln!("---- Writing {}", out.display());
-        status |= emit(
-            Some(&out),
-            &millpath_ide::features::toolpath_html(&data),
-            lang,
-        );
+        status |= emit(Some(&out), &millpath_ide::toolpath_html(&data), lang);
     }
     if let Some(out) = svg {
         eprintln!("---- Writing {}", out.display());
-        status |= emit(
-            Some(&out),
-            &millpath_ide::features::toolpath_svg(&data),
-            lang,
-        );
+        status |= emit(Some(&out), &millpath_ide::toolpath_svg(&data), lang);
     }
     status
 }

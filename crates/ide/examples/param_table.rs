@@ -1,10 +1,10 @@
 //! Prints the manual's table of parameter letters (docs/src/param-table.md) from the same
-//! table the language server's hover uses (`millpath_ide::features::param_doc`), so the two
+//! table the language server's hover uses (`millpath_ide::param_doc`), so the two
 //! cannot drift apart. `tests/manual_examples.sh` checks that the committed file is its output.
 //!
 //! cargo run -q -p millpath-ide --example param_table [-- --de] > docs/src/param-table.md
 
-use millpath_ide::features::param_doc;
+use millpath_ide::param_doc;
 
 fn main() {
     let german = std::env::args().any(|a| a == "--de");

@@ -2,9 +2,36 @@
 //! diagnostics, hover, G-code preview, inlay hints, navigation, symbols, completion,
 //! formatting, code actions, semantic tokens and code lenses. Only `millpath-lsp` knows LSP.
 
-pub mod features;
+mod code_actions;
+mod code_lens;
+mod common;
+mod completion;
+mod formatting;
+mod hover;
+mod inlay_hints;
 pub mod line_index;
+mod navigation;
+mod param_doc;
+mod preview;
+mod provenance;
 pub mod reparse;
+mod semantic_tokens;
+mod symbols;
+mod toolpath;
+
+pub use code_actions::{code_actions, Action};
+pub use code_lens::{code_lenses, Lens};
+pub use common::{element_at, Location, TextEdit};
+pub use completion::{completion, Completion};
+pub use formatting::format;
+pub use hover::{hover, Hover};
+pub use inlay_hints::{inlay_hints, inlay_hints_in, Hint};
+pub use navigation::{definition, references};
+pub use param_doc::param_doc;
+pub use preview::{preview, preview_of, Preview};
+pub use semantic_tokens::{semantic_tokens, SemToken, TOKEN_TYPES};
+pub use symbols::{document_symbols, workspace_symbols, Symbol};
+pub use toolpath::{toolpath, toolpath_html, toolpath_svg};
 
 use millpath_core::diag::{Diagnostic, FileRef, Origin};
 use millpath_core::front::drawing::{DrawnObject, RawPath};
@@ -240,7 +267,7 @@ pub struct Analysis {
     /// Per path: segment object → index of the first segment of its chain (computed once).
     pub(crate) chain_first: Mutex<HashMap<String, Arc<HashMap<usize, usize>>>>,
     /// Previews computed for this version (code lenses, the preview request).
-    pub(crate) previews: Mutex<HashMap<Option<String>, Result<features::Preview, String>>>,
+    pub(crate) previews: Mutex<HashMap<Option<String>, Result<Preview, String>>>,
 }
 
 /// The workspace file system, recording what an analysis reads (its dependencies).
@@ -479,4 +506,9 @@ pub fn workspace_files(ws: &Workspace) -> Vec<PathBuf> {
 /// A file reference for core APIs.
 pub fn file_ref(path: &Path) -> Arc<FileRef> {
     FileRef::new(path.to_path_buf())
+}
+
+/// Re-analyses a document (convenience for tests and the server).
+pub fn reanalyze(ws: &Workspace, path: &Path) -> Analysis {
+    analyze(ws, path)
 }

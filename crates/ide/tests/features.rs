@@ -1,6 +1,6 @@
 //! Every editor feature in-process, on a small workspace of text files.
 
-use millpath_ide::features::*;
+use millpath_ide::*;
 use millpath_ide::{analyze, Pos, Workspace};
 use std::path::{Path, PathBuf};
 

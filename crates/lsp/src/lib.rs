@@ -4,7 +4,6 @@
 
 use millpath_core::diag::{Diagnostic as CoreDiagnostic, Origin, Severity};
 use millpath_core::load::config::FileConfig;
-use millpath_ide::features;
 use millpath_ide::{analyze_from, Analysis, LineIndex, Pos, Workspace};
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
@@ -275,14 +274,14 @@ pub fn lsp_diagnostics(a: &Analysis, ws: &Workspace) -> Vec<Diagnostic> {
         .collect()
 }
 
-fn edit(a: &Analysis, e: &features::TextEdit) -> TextEdit {
+fn edit(a: &Analysis, e: &millpath_ide::TextEdit) -> TextEdit {
     TextEdit {
         range: range(&a.index, e.start, e.end),
         new_text: e.text.clone(),
     }
 }
 
-fn loc(l: &features::Location) -> Option<Location> {
+fn loc(l: &millpath_ide::Location) -> Option<Location> {
     Some(Location {
         uri: to_uri(&l.path)?,
         range: Range {
@@ -510,7 +509,7 @@ impl Backend {
     async fn gcode_preview(&self, params: PreviewParams) -> Result<PreviewResult> {
         let (a, ws) = self.analysis(&params.text_document.uri).await?;
         let name = params.path;
-        let pv = blocking(move || features::preview_of(&a, &ws, name.as_deref()))
+        let pv = blocking(move || millpath_ide::preview_of(&a, &ws, name.as_deref()))
             .await?
             .map_err(|e| {
                 let mut err = Error::invalid_request();
@@ -534,7 +533,7 @@ impl Backend {
             .ok_or_else(|| Error::invalid_params("not a file URI"))?;
         let ws = self.snapshot();
         let name = params.path;
-        blocking(move || features::toolpath(&ws, &path, name.as_deref()))
+        blocking(move || millpath_ide::toolpath(&ws, &path, name.as_deref()))
             .await?
             .map_err(|e| {
                 let mut err = Error::invalid_request();
@@ -634,7 +633,7 @@ impl LanguageServer for Backend {
                     SemanticTokensServerCapabilities::SemanticTokensOptions(
                         SemanticTokensOptions {
                             legend: SemanticTokensLegend {
-                                token_types: features::TOKEN_TYPES
+                                token_types: millpath_ide::TOKEN_TYPES
                                     .iter()
                                     .map(|t| SemanticTokenType::new(t))
                                     .collect(),
@@ -781,7 +780,7 @@ impl LanguageServer for Backend {
             .await?;
         let at = offset(&a, params.text_document_position_params.position);
         guarded(|| {
-            features::hover(&a, &ws, at).map(|h| Hover {
+            millpath_ide::hover(&a, &ws, at).map(|h| Hover {
                 contents: HoverContents::Markup(MarkupContent {
                     kind: MarkupKind::Markdown,
                     value: h.markdown,
@@ -797,7 +796,7 @@ impl LanguageServer for Backend {
             .await?;
         let at = offset(&a, params.text_document_position.position);
         guarded(|| {
-            let items = features::completion(&a, &ws, at)
+            let items = millpath_ide::completion(&a, &ws, at)
                 .into_iter()
                 .map(|c| CompletionItem {
                     label: c.label,
@@ -819,7 +818,7 @@ impl LanguageServer for Backend {
             .await?;
         let at = offset(&a, params.text_document_position_params.position);
         guarded(|| {
-            let locs: Vec<Location> = features::definition(&a, &ws, at)
+            let locs: Vec<Location> = millpath_ide::definition(&a, &ws, at)
                 .iter()
                 .filter_map(loc)
                 .collect();
@@ -836,9 +835,9 @@ impl LanguageServer for Backend {
         guarded(|| {
             let mut out = Vec::new();
             if with_declaration {
-                out.extend(features::definition(&a, &ws, at).iter().filter_map(loc));
+                out.extend(millpath_ide::definition(&a, &ws, at).iter().filter_map(loc));
             }
-            out.extend(features::references(&a, &ws, at).iter().filter_map(loc));
+            out.extend(millpath_ide::references(&a, &ws, at).iter().filter_map(loc));
             Some(out)
         })
     }
@@ -849,7 +848,7 @@ impl LanguageServer for Backend {
     ) -> Result<Option<DocumentSymbolResponse>> {
         let (a, _) = self.analysis(&params.text_document.uri).await?;
         #[allow(deprecated)]
-        fn conv(a: &Analysis, s: &features::Symbol) -> DocumentSymbol {
+        fn conv(a: &Analysis, s: &millpath_ide::Symbol) -> DocumentSymbol {
             DocumentSymbol {
                 name: s.name.clone(),
                 detail: Some(s.detail.clone()),
@@ -867,7 +866,7 @@ impl LanguageServer for Backend {
         }
         guarded(|| {
             Some(DocumentSymbolResponse::Nested(
-                features::document_symbols(&a)
+                millpath_ide::document_symbols(&a)
                     .iter()
                     .map(|s| conv(&a, s))
                     .collect(),
@@ -881,7 +880,7 @@ impl LanguageServer for Backend {
     ) -> Result<Option<WorkspaceSymbolResponse>> {
         let ws = self.snapshot();
         guarded(|| {
-            let out: Vec<WorkspaceSymbol> = features::workspace_symbols(&ws, &params.query)
+            let out: Vec<WorkspaceSymbol> = millpath_ide::workspace_symbols(&ws, &params.query)
                 .into_iter()
                 .filter_map(|(name, l)| {
                     Some(WorkspaceSymbol {
@@ -901,7 +900,7 @@ impl LanguageServer for Backend {
     async fn formatting(&self, params: DocumentFormattingParams) -> Result<Option<Vec<TextEdit>>> {
         let (a, _) = self.analysis(&params.text_document.uri).await?;
         guarded(|| {
-            features::format(&a).filter(|f| *f != a.src).map(|f| {
+            millpath_ide::format(&a).filter(|f| *f != a.src).map(|f| {
                 vec![TextEdit {
                     range: range(&a.index, 0, a.src.len()),
                     new_text: f,
@@ -915,7 +914,7 @@ impl LanguageServer for Backend {
         let (a, _) = self.analysis(&uri).await?;
         let (s, e) = (offset(&a, params.range.start), offset(&a, params.range.end));
         guarded(|| {
-            let actions = features::code_actions(&a, s, e)
+            let actions = millpath_ide::code_actions(&a, s, e)
                 .into_iter()
                 .map(|act| {
                     let mut changes = HashMap::new();
@@ -940,7 +939,7 @@ impl LanguageServer for Backend {
         let (start, end) = (offset(&a, params.range.start), offset(&a, params.range.end));
         guarded(|| {
             Some(
-                features::inlay_hints_in(&a, start, end)
+                millpath_ide::inlay_hints_in(&a, start, end)
                     .into_iter()
                     .map(|h| InlayHint {
                         position: pos(a.index.pos(h.offset)),
@@ -965,7 +964,7 @@ impl LanguageServer for Backend {
         guarded(|| {
             let mut data = Vec::new();
             let (mut line, mut col) = (0u32, 0u32);
-            for t in features::semantic_tokens(&a) {
+            for t in millpath_ide::semantic_tokens(&a) {
                 let s = a.index.pos(t.start);
                 let e = a.index.pos(t.end);
                 if e.line != s.line {
@@ -995,7 +994,7 @@ impl LanguageServer for Backend {
         let (a, ws) = self.analysis(&uri).await?;
         blocking(move || {
             Some(
-                features::code_lenses(&a, &ws)
+                millpath_ide::code_lenses(&a, &ws)
                     .into_iter()
                     .map(|l| {
                         let p = pos(a.index.pos(l.offset));

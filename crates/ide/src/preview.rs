@@ -1,0 +1,149 @@
+//! The G-code preview of a path, as `millpath compile` writes it.
+
+use crate::{Analysis, Workspace};
+use millpath_core::emit::{generate_for, Controller, Output};
+use millpath_core::{Lang, Session};
+use std::path::Path;
+
+/// The G-code of one path as `millpath compile` writes it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Preview {
+    pub path: String,
+    /// `_Milling.gcode`, or `_Clean.gcode` when the path has probes.
+    pub gcode: String,
+    pub probing: Option<String>,
+    pub z_txt: Option<String>,
+    /// The five statistics lines.
+    pub stats: Vec<String>,
+    /// Errors that would stop `millpath compile` from writing the files.
+    pub errors: Vec<String>,
+}
+
+/// A path built as `millpath compile` builds it, with the errors of the build.
+pub(crate) struct TopModel {
+    pub model: std::sync::Arc<millpath_core::model::Model>,
+    pub lang: Lang,
+    pub sweep_speed: f64,
+    pub controller: Controller,
+    pub errors: Vec<String>,
+}
+
+/// Builds `name` (default: the first path of the file) with the file's settings.
+pub(crate) fn top_model(
+    ws: &Workspace,
+    path: &Path,
+    name: Option<&str>,
+) -> Result<TopModel, String> {
+    let ds = ws.settings_for(path);
+    let missing = ds.missing_message();
+    let lang = ds.settings.lang;
+    let sweep_speed = ds.settings.sweep_speed;
+    let controller = Controller::of(&ds.settings);
+    let fs = ws.fs();
+    let joined = |e: &[millpath_core::Diagnostic]| {
+        e.iter()
+            .map(|d| d.message(lang))
+            .collect::<Vec<_>>()
+            .join("; ")
+    };
+    let mut session = Session::new(ds.settings, &fs).map_err(|e| joined(&e))?;
+    let names = session.load_file(path);
+    let name = match name {
+        Some(n) => n.to_string(),
+        None => names.first().cloned().ok_or("no path in this file")?,
+    };
+    match session.build_top(&name) {
+        Ok(Some(model)) => Ok(TopModel {
+            model,
+            lang,
+            sweep_speed,
+            controller,
+            // not silent: `millpath compile` would refuse without them
+            errors: missing
+                .into_iter()
+                .chain(messages(&session, lang))
+                .collect(),
+        }),
+        Ok(None) => Err(format!(
+            "path {name} cannot be built: {}",
+            messages(&session, lang).join("; ")
+        )),
+        Err(abort) => Err(abort.message(lang)),
+    }
+}
+
+/// Preview of `name` (default: the first path of the document).
+pub fn preview(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<Preview, String> {
+    let TopModel {
+        model,
+        lang,
+        sweep_speed,
+        controller,
+        errors,
+    } = top_model(ws, path, name)?;
+    let name = model.name().to_string();
+    let file_name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let g = generate_for(
+        &model,
+        &file_name,
+        &millpath_core::banner(),
+        sweep_speed,
+        lang,
+        &controller,
+    )
+    .map_err(|e| {
+        e.iter()
+            .map(|d| d.message(lang))
+            .collect::<Vec<_>>()
+            .join("; ")
+    })?;
+    let stats = g.stats.lines(lang).to_vec();
+    Ok(match g.output {
+        Output::Milling(gcode) => Preview {
+            path: name,
+            gcode,
+            probing: None,
+            z_txt: None,
+            stats,
+            errors,
+        },
+        Output::Probing {
+            probing,
+            z_txt,
+            clean,
+        } => Preview {
+            path: name,
+            gcode: clean,
+            probing: Some(probing),
+            z_txt: Some(z_txt),
+            stats,
+            errors,
+        },
+    })
+}
+
+pub(crate) fn messages(session: &Session, lang: Lang) -> Vec<String> {
+    session
+        .diags
+        .list
+        .iter()
+        .filter(|d| d.severity == millpath_core::Severity::Error)
+        .map(|d| d.reference_line(lang))
+        .collect()
+}
+
+/// [`preview`] computed once per analysis: `ws` must be the workspace `a` was made from.
+pub fn preview_of(a: &Analysis, ws: &Workspace, name: Option<&str>) -> Result<Preview, String> {
+    let key = name.map(str::to_string);
+    if let Some(p) = a.previews.lock().ok().and_then(|c| c.get(&key).cloned()) {
+        return p;
+    }
+    let p = preview(ws, &a.path, name);
+    if let Ok(mut c) = a.previews.lock() {
+        c.insert(key, p.clone());
+    }
+    p
+}
