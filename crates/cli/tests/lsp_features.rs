@@ -130,9 +130,8 @@ fn rename_with_prepare_in_both_encodings() {
         let project = project();
         // prepareRename on the second embedding (after the emoji): the name without `>`
         let p = s.pos(&project, ">2001.1P  # zwei", 3);
-        let r = s
-            .c
-            .request("textDocument/prepareRename", s.at(&s.project.clone(), p));
+        let r =
+            s.c.request("textDocument/prepareRename", s.at(&s.project.clone(), p));
         let want = {
             let line = 8;
             let from = s.col(&SUB2[..SUB2.find(">2001").unwrap() + 1]);
@@ -231,9 +230,7 @@ fn folding_links_highlights_and_selection_in_both_encodings() {
         }
         // highlight: every use of the name
         let p = s.pos(&project, ">2001.1P", 2);
-        let r = s
-            .c
-            .request("textDocument/documentHighlight", s.at(&doc, p));
+        let r = s.c.request("textDocument/documentHighlight", s.at(&doc, p));
         let hs = result(&r).as_array().unwrap().clone();
         assert_eq!(hs.len(), 2, "{r}");
         assert_eq!(
@@ -276,9 +273,8 @@ fn range_formatting_definition_and_symbols() {
         // definition from an embedding: the `path` header, not the start marker
         let project = project();
         let p = s.pos(&project, ">2001.1P", 3);
-        let r = s
-            .c
-            .request("textDocument/definition", s.at(&s.project.clone(), p));
+        let r =
+            s.c.request("textDocument/definition", s.at(&s.project.clone(), p));
         assert_eq!(result(&r)[0]["range"], s.range(PART, "2001.1P"), "{r}");
         // symbols: the selection range is the name
         let r = s.c.request(
@@ -308,8 +304,14 @@ fn range_formatting_definition_and_symbols() {
             edits[0]["newText"],
             "path 2001.2P {  # ä😀\n  mill (0, 0) -> (1, 1)  B1\n}"
         );
-        assert_eq!(edits[0]["range"]["start"], json!({ "line": 9, "character": 0 }));
-        assert_eq!(edits[0]["range"]["end"], json!({ "line": 11, "character": 1 }));
+        assert_eq!(
+            edits[0]["range"]["start"],
+            json!({ "line": 9, "character": 0 })
+        );
+        assert_eq!(
+            edits[0]["range"]["end"],
+            json!({ "line": 11, "character": 1 })
+        );
         let r = s.c.request("textDocument/rangeFormatting", json!({ "textDocument": { "uri": s.part },
             "range": { "start": { "line": 0, "character": 0 }, "end": { "line": 7, "character": 1 } },
             "options": { "tabSize": 2, "insertSpaces": true } }));

@@ -332,3 +332,32 @@ fn a_diagnostic_range_stops_before_the_trailing_comment() {
     let (s, e) = diagnostic_range(&a, &d.origin).unwrap();
     assert_eq!(&src[s..e], "mill (5, 0) -> (25, 0)  B-0,2 T7");
 }
+
+/// The lenses' statistics say when they come from placeholder machine settings.
+#[test]
+fn code_lenses_say_when_machine_settings_are_missing() {
+    let (dir, ws) = setup();
+    let a = analyze(&ws, &p(dir.path(), "2001.mpath"));
+    let title = &code_lenses(&a, &ws)[0].title;
+    assert!(!title.contains("missing"), "{title}");
+    std::fs::remove_file(dir.path().join("millpath.toml")).unwrap();
+    let a = analyze(&ws, &p(dir.path(), "2001.mpath"));
+    let title = &code_lenses(&a, &ws)[0].title;
+    assert!(
+        title.contains("machine settings missing (placeholders)"),
+        "{title}"
+    );
+}
+
+/// The toolpath view says when it shows placeholder machine settings.
+#[test]
+fn toolpath_says_when_machine_settings_are_missing() {
+    let (dir, ws) = setup();
+    let data = toolpath(&ws, &p(dir.path(), "2001.mpath"), None).unwrap();
+    assert_eq!(data["warnings"], serde_json::json!([]));
+    std::fs::remove_file(dir.path().join("millpath.toml")).unwrap();
+    let data = toolpath(&ws, &p(dir.path(), "2001.mpath"), None).unwrap();
+    let w = data["warnings"][0].as_str().unwrap_or_default();
+    assert!(w.starts_with("missing machine settings: feed"), "{data}");
+    assert!(toolpath_html(&data).contains("data.warnings"));
+}

@@ -74,13 +74,11 @@ pub(crate) async fn document_link(
         Some(
             millpath_ide::document_links(&a, &ws)
                 .into_iter()
-                .filter_map(|l| {
-                    Some(DocumentLink {
-                        range: range(&a.index, l.start, l.end),
-                        target: to_uri(&l.target),
-                        tooltip: Some(format!("{}:{}", l.target.display(), l.line + 1)),
-                        data: None,
-                    })
+                .map(|l| DocumentLink {
+                    range: range(&a.index, l.start, l.end),
+                    target: to_uri(&l.target),
+                    tooltip: Some(format!("{}:{}", l.target.display(), l.line + 1)),
+                    data: None,
                 })
                 .collect(),
         )
