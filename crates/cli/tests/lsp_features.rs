@@ -171,6 +171,7 @@ fn rename_with_prepare_in_both_encodings() {
         let r = s.c.request("textDocument/rename", params);
         let msg = r["error"]["message"].as_str().unwrap_or_default();
         assert!(msg.contains("not a valid path name"), "{r}");
+        assert_eq!(r["error"]["code"], -32803, "RequestFailed");
         // refused: a drawing embeds the name
         let mut w = millpath_dxf::writer::DxfWriter::new();
         w.circle("2040_1P", Some("PHANTOM"), (0.0, 0.0), 0.5)

@@ -30,7 +30,8 @@ pub(crate) async fn rename(b: &Backend, params: RenameParams) -> Result<Option<W
     let edits = blocking(move || millpath_ide::rename(&a, &ws, at, &new_name))
         .await?
         .map_err(|message| Error {
-            code: tower_lsp_server::jsonrpc::ErrorCode::InvalidRequest,
+            // RequestFailed: the request was valid, the rename cannot be done (the reason)
+            code: tower_lsp_server::jsonrpc::ErrorCode::ServerError(-32803),
             message: message.into(),
             data: None,
         })?;
