@@ -56,10 +56,11 @@ pub fn hover(a: &Analysis, ws: &Workspace, offset: usize) -> Option<Hover> {
         if german { "Pfad" } else { "path" },
         path.name
     );
+    // left-aligned columns: renderers centre the headers of `---` columns
     md.push_str(if german {
-        "| Parameter | Wert | Herkunft |\n|---|---|---|\n"
+        "| Parameter | Wert | Herkunft |\n|:--|:--|:--|\n"
     } else {
-        "| parameter | value | from |\n|---|---|---|\n"
+        "| parameter | value | from |\n|:--|:--|:--|\n"
     });
     for r in &rows {
         md.push_str(&format!(
