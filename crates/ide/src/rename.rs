@@ -74,9 +74,13 @@ pub fn rename(
     let (mut exists, mut lost) = (None, None);
     for f in workspace_files(ws) {
         if !is_text_file(&f) {
-            let uses = objects_of_file(ws, &f)
+            let objects = objects_of_file(ws, &f);
+            let uses = objects
                 .iter()
                 .any(|o| o.path == old || o.text.as_ref().and_then(|t| t.raw('>')) == Some(old));
+            if objects.iter().any(|o| o.path == new) && exists.is_none() {
+                exists = Some(in_use(new, &f, german));
+            }
             if uses {
                 drawings.push(f);
             }
@@ -97,11 +101,7 @@ pub fn rename(
         };
         for p in ast.paths() {
             if p.name.value == new && exists.is_none() {
-                exists = Some(if german {
-                    format!("in {} gibt es schon einen Pfad {new}", f.display())
-                } else {
-                    format!("a path named {new} already exists in {}", f.display())
-                });
+                exists = Some(in_use(new, &f, german));
             }
             if p.name.value == old {
                 if lost.is_none() {
@@ -140,6 +140,14 @@ pub fn rename(
     match lost {
         Some(e) => Err(e),
         None => Ok(edits),
+    }
+}
+
+fn in_use(new: &str, file: &Path, german: bool) -> String {
+    if german {
+        format!("in {} gibt es schon einen Pfad {new}", file.display())
+    } else {
+        format!("a path named {new} already exists in {}", file.display())
     }
 }
 

@@ -138,6 +138,17 @@ fn rename_refuses_invalid_names_names_in_use_and_names_in_drawings() {
     let c = analyze(&ws, &p(dir.path(), "2030.mpath"));
     let e = rename(&c, &ws, 7, "2030.2P").unwrap_err();
     assert!(e.contains("2030.dxf"), "{e}");
+    // a name a drawing defines is in use
+    let e = rename(&a, &ws, 7, "2001.9P").unwrap();
+    assert_eq!(e.len(), 3);
+    let mut w = millpath_dxf::writer::DxfWriter::new();
+    w.circle("2001_9P", Some("PHANTOM"), (0.0, 0.0), 0.5);
+    std::fs::write(dir.path().join("2001.9.dxf"), w.finish()).unwrap();
+    let e = rename(&a, &ws, 7, "2001.9P").unwrap_err();
+    assert!(
+        e.contains("already exists in") && e.contains("2001.9.dxf"),
+        "{e}"
+    );
 }
 
 #[test]
