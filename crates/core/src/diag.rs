@@ -301,6 +301,15 @@ messages! {
 
 impl Msg {
     /// A stable, machine-readable code (`MP` + index), used in JSON and SARIF reports.
+    /// The wording for people. Where the reference's text is an internal one (kept
+    /// byte-exact in the `****` lines, RO §16), it says what happened instead.
+    pub fn human_template(self, lang: Lang) -> &'static str {
+        match (self, lang) {
+            (Msg::NotNear, Lang::En) => "The toolpath does not continue here: {0} and {1} should be the same point (an internal consistency check); the element is skipped",
+            (Msg::NotNear, Lang::De) => "Die Werkzeugbahn setzt hier nicht fort: {0} und {1} müssten derselbe Punkt sein (interne Konsistenzprüfung); das Element wird übersprungen",
+            _ => self.template(lang),
+        }
+    }
     pub fn code(self) -> String {
         let idx = Msg::ALL.iter().position(|m| *m == self).unwrap_or(0);
         format!("MP{:03}", idx + 1)
@@ -376,7 +385,12 @@ impl Diagnostic {
         });
         self
     }
+    /// The message for people (editor, human and JSON reports).
     pub fn message(&self, lang: Lang) -> String {
+        fill(self.msg.human_template(lang), &self.args)
+    }
+    /// The message exactly as the reference prints it in its `****` lines.
+    pub fn reference_message(&self, lang: Lang) -> String {
         fill(self.msg.template(lang), &self.args)
     }
     /// The reference's error line: `**** <context>: <message>` (CR LF in contexts → `|`).
@@ -387,7 +401,7 @@ impl Diagnostic {
         } else {
             "++++"
         };
-        format!("{mark} {ctx}: {}", self.message(lang))
+        format!("{mark} {ctx}: {}", self.reference_message(lang))
     }
 }
 
@@ -470,5 +484,41 @@ mod tests {
             d.list[0].reference_line(Lang::De),
             "**** Options: Start-Markierung fehlt"
         );
+    }
+
+    /// The reference's internal consistency text stays byte-exact in `****` lines; people
+    /// (editor, human and JSON reports) read what happened, in both languages.
+    #[test]
+    fn the_consistency_message_is_worded_for_people_outside_reference_lines() {
+        let d = Diagnostic::error(
+            Msg::NotNear,
+            Origin::Options,
+            args!["[35.000 0.000]", "[5.000 0.000]"],
+        );
+        assert_eq!(
+            d.reference_line(Lang::En),
+            "**** Options: ![35.000 0.000].Near([5.000 0.000])"
+        );
+        assert_eq!(
+            d.reference_line(Lang::De),
+            "**** Options: ![35.000 0.000].Near([5.000 0.000])"
+        );
+        for lang in [Lang::En, Lang::De] {
+            let m = d.message(lang);
+            assert!(!m.contains(".Near("), "{m}");
+            assert!(
+                m.contains("[35.000 0.000]") && m.contains("[5.000 0.000]"),
+                "{m}"
+            );
+        }
+        assert!(d.message(Lang::De).contains("übersprungen"));
+        for m in Msg::ALL {
+            let (en, de) = (m.human_template(Lang::En), m.human_template(Lang::De));
+            for i in 0..5 {
+                let p = format!("{{{i}}}");
+                assert_eq!(en.contains(&p), m.template(Lang::En).contains(&p), "{m:?}");
+                assert_eq!(de.contains(&p), m.template(Lang::De).contains(&p), "{m:?}");
+            }
+        }
     }
 }

@@ -10,8 +10,17 @@ pub struct Lens {
     pub path: String,
 }
 
-/// One lens per path: its statistics, with the preview as command.
+/// One lens per path: its statistics, with the preview as command. Without the machine
+/// settings `millpath compile` asks for, the statistics come from the placeholders (F150,
+/// S15): the lens says so instead of showing them as real.
 pub fn code_lenses(a: &Analysis, ws: &Workspace) -> Vec<Lens> {
+    let placeholders = (!a.settings.missing_machine().is_empty()).then(|| {
+        if crate::common::de(a) {
+            " · ⚠ Maschinenwerte fehlen (Platzhalter)"
+        } else {
+            " · ⚠ machine settings missing (placeholders)"
+        }
+    });
     a.ast
         .paths()
         .map(|p| {
@@ -27,7 +36,7 @@ pub fn code_lenses(a: &Analysis, ws: &Workspace) -> Vec<Lens> {
             };
             Lens {
                 offset: p.span.start,
-                title: format!("▶ G-code · {title}"),
+                title: format!("▶ G-code · {title}{}", placeholders.unwrap_or("")),
                 path: p.name.value.clone(),
             }
         })

@@ -61,7 +61,26 @@ pub(crate) fn lookup(ws: &Workspace, from: &Path, name: &str) -> Option<std::syn
     session.lookup(name, from)
 }
 
+/// Where a path is defined: the name in its `path NAME` header in a text file, the start
+/// marker's entity line in a drawing.
 pub(crate) fn location_of(ws: &Workspace, raw: &RawPath) -> Location {
+    if millpath_core::load::fs::is_text_file(&raw.file.path) {
+        if let Some(text) = ws.text(&raw.file.path) {
+            let (ast, _) = millpath_syntax::parse(&text);
+            let name = ast
+                .paths()
+                .find(|p| p.name.value == raw.name)
+                .map(|p| p.name.span.clone());
+            if let Some(span) = name {
+                let idx = ws.line_index(&text);
+                return Location {
+                    path: raw.file.path.clone(),
+                    start: idx.pos(span.start),
+                    end: idx.pos(span.end),
+                };
+            }
+        }
+    }
     let origin = raw.start_origin();
     match origin {
         Origin::Span {
@@ -106,4 +125,11 @@ pub(crate) fn path_at(a: &Analysis, offset: usize) -> Option<&PathBlock> {
     a.ast
         .paths()
         .find(|p| p.span.start <= offset && offset <= p.span.end)
+}
+
+/// A span without the line break (and blanks) its syntax node ends with.
+pub(crate) fn trimmed(a: &Analysis, span: &std::ops::Range<usize>) -> (usize, usize) {
+    let end = span.end.min(a.src.len());
+    let start = span.start.min(end);
+    (start, start + a.src[start..end].trim_end().len())
 }

@@ -85,6 +85,8 @@ pub fn completion(a: &Analysis, ws: &Workspace, offset: usize) -> Vec<Completion
     }
     keys_for(&el.kind.value)
         .chars()
+        // C (the G81 depth) is accepted for old drawings but has no effect: not offered
+        .filter(|k| *k != 'C')
         .filter(|k| *k == ':' || !el.params.iter().any(|p| p.value.starts_with(*k)))
         .filter_map(|k| {
             let (meaning, unit, _) = param_doc(k, german)?;

@@ -56,20 +56,33 @@ pub fn hover(a: &Analysis, ws: &Workspace, offset: usize) -> Option<Hover> {
         if german { "Pfad" } else { "path" },
         path.name
     );
+    // left-aligned columns: renderers centre the headers of `---` columns
     md.push_str(if german {
-        "| Wert | | Herkunft |\n|---|---|---|\n"
+        "| Parameter | Wert | Herkunft |\n|:--|:--|:--|\n"
     } else {
-        "| value | | from |\n|---|---|---|\n"
+        "| parameter | value | from |\n|:--|:--|:--|\n"
     });
     for r in &rows {
-        md.push_str(&format!("| {} | {} | {} |\n", r.key, r.value, r.source));
+        md.push_str(&format!(
+            "| {} | {} | {} |\n",
+            cell(&r.key.to_string()),
+            cell(&r.value),
+            cell(&r.source)
+        ));
     }
-    md.push_str(&derived_facts(a, el, &rows, german));
+    // a blank line ends the table (a line right after it would become a row)
+    md.push('\n');
+    md.push_str(derived_facts(a, el, &rows, german).trim_start_matches('\n'));
     Some(Hover {
         markdown: md,
         start: el.kind.span.start,
         end: el.geometry.span.end,
     })
+}
+
+/// A table cell: `|` would split it, a line break end the row.
+fn cell(s: &str) -> String {
+    s.replace('|', "\\|").replace(['\n', '\r'], " ")
 }
 
 /// Pass depths, length and time of mill segments; size of circles.

@@ -1,12 +1,17 @@
 //! Editor questions about MillPath files, answered as plain data (byte offsets, strings):
 //! diagnostics, hover, G-code preview, inlay hints, navigation, symbols, completion,
-//! formatting, code actions, semantic tokens and code lenses. Only `millpath-lsp` knows LSP.
+//! formatting, code actions, semantic tokens, code lenses, rename, folding, links,
+//! highlights and selection ranges. Only `millpath-lsp` knows LSP.
 
 mod code_actions;
 mod code_lens;
 mod common;
 mod completion;
+mod diagnostic_range;
+mod document_links;
+mod folding;
 mod formatting;
+mod highlight;
 mod hover;
 mod inlay_hints;
 pub mod line_index;
@@ -14,7 +19,9 @@ mod navigation;
 mod param_doc;
 mod preview;
 mod provenance;
+mod rename;
 pub mod reparse;
+mod selection;
 mod semantic_tokens;
 mod symbols;
 mod toolpath;
@@ -23,12 +30,18 @@ pub use code_actions::{code_actions, Action};
 pub use code_lens::{code_lenses, Lens};
 pub use common::{element_at, Location, TextEdit};
 pub use completion::{completion, Completion};
-pub use formatting::format;
+pub use diagnostic_range::diagnostic_range;
+pub use document_links::{document_links, Link};
+pub use folding::{folding_ranges, Fold, FoldKind};
+pub use formatting::{format, format_range};
+pub use highlight::{document_highlights, Highlight};
 pub use hover::{hover, Hover};
 pub use inlay_hints::{inlay_hints, inlay_hints_in, Hint};
 pub use navigation::{definition, references};
 pub use param_doc::param_doc;
 pub use preview::{preview, preview_of, Preview};
+pub use rename::{prepare_rename, rename, FileEdit};
+pub use selection::selection_ranges;
 pub use semantic_tokens::{semantic_tokens, SemToken, TOKEN_TYPES};
 pub use symbols::{document_symbols, workspace_symbols, Symbol};
 pub use toolpath::{toolpath, toolpath_html, toolpath_svg};

@@ -12,6 +12,9 @@ pub struct Symbol {
     pub is_path: bool,
     pub start: usize,
     pub end: usize,
+    /// The name within `start..end` (the path's name, the element's kind and geometry).
+    pub name_start: usize,
+    pub name_end: usize,
     pub children: Vec<Symbol>,
 }
 
@@ -24,6 +27,8 @@ pub fn document_symbols(a: &Analysis) -> Vec<Symbol> {
             is_path: true,
             start: p.span.start,
             end: p.span.end,
+            name_start: p.name.span.start,
+            name_end: p.name.span.end,
             children: p
                 .elements()
                 .map(|e| Symbol {
@@ -41,6 +46,8 @@ pub fn document_symbols(a: &Analysis) -> Vec<Symbol> {
                     is_path: false,
                     start: e.span.start,
                     end: e.span.end,
+                    name_start: e.kind.span.start,
+                    name_end: e.geometry.span.end,
                     children: Vec::new(),
                 })
                 .collect(),

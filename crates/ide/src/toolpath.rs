@@ -13,7 +13,13 @@ pub fn toolpath(
     name: Option<&str>,
 ) -> Result<serde_json::Value, String> {
     use serde_json::json;
-    let TopModel { model, lang, .. } = top_model(ws, path, name)?;
+    // `errors`: missing machine settings (placeholders in use), shown by the view
+    let TopModel {
+        model,
+        lang,
+        errors,
+        ..
+    } = top_model(ws, path, name)?;
     let name = model.name().to_string();
     let tp = millpath_core::emit::toolpath(&model).map_err(|e| {
         e.iter()
@@ -95,6 +101,7 @@ pub fn toolpath(
         "moves": moves,
         "probes": probes,
         "bounds": { "minX": minx, "minY": miny, "maxX": maxx, "maxY": maxy, "minZ": minz, "maxZ": maxz },
+        "warnings": errors,
     }))
 }
 

@@ -153,7 +153,9 @@ fn definition_and_references_of_subpath_names() {
     let defs = definition(&a, &ws, at(PROJECT, ">2001.1P") + 3);
     assert_eq!(defs.len(), 1);
     assert_eq!(defs[0].path, p(dir.path(), "2001.mpath"));
-    assert_eq!(defs[0].start, Pos { line: 1, col: 2 });
+    // the `path NAME` header, not the start marker
+    assert_eq!(defs[0].start, Pos { line: 0, col: 5 });
+    assert_eq!(defs[0].end, Pos { line: 0, col: 12 });
     let part = analyze(&ws, &p(dir.path(), "2001.mpath"));
     let refs = references(&part, &ws, at(PART, "2001.1P"));
     assert_eq!(refs.len(), 2, "{refs:?}");

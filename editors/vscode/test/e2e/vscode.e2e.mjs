@@ -347,6 +347,37 @@ try {
     return `${mode.trim()}; status ${st.trim()}`;
   });
 
+  await check('F2 renames a path in its file and in the files embedding it', 'rename', async () => {
+    await palette('View: Close All Editors');
+    await sleep(500);
+    const dontSave3 = page.locator('.monaco-dialog-box button', { hasText: "Don't Save" });
+    if (await dontSave3.isVisible().catch(() => false)) await dontSave3.click();
+    await openFile('2001.mpath');
+    const line = readFileSync(join(ws, '2001.mpath'), 'utf8').split('\n').findIndex((l) => l.startsWith('path 2001.1P')) + 1;
+    await goTo(line, 8);
+    await page.keyboard.press('F2');
+    const box = page.locator('.rename-box input').first();
+    await box.waitFor({ state: 'visible', timeout: 15000 });
+    const placeholder = await box.inputValue();
+    expect(placeholder === '2001.1P', `prepareRename offered '${placeholder}'`);
+    await box.fill('2001.7Q');
+    await page.keyboard.press('Enter');
+    const own = await until(async () => /path 2001\.7Q \{/.test(await activeEditorText()), 15000);
+    expect(own, `editor: ${await activeEditorText()}`);
+    // the project embedding it twice was edited too (an unsaved buffer)
+    await openFile('2010.mpath');
+    const project = await until(async () => {
+      const t = await activeEditorText();
+      return (t.match(/>2001\.7Q/g) || []).length === 2 && t;
+    }, 15000);
+    expect(project, `2010.mpath: ${await activeEditorText()}`);
+    await showProblems();
+    await sleep(2000);
+    const p = await problems();
+    expect(!/Could not find path/i.test(p), `problems after the rename: ${p}`);
+    return `placeholder ${placeholder}; 2001.mpath and both embeddings in 2010.mpath renamed`;
+  });
+
   await check('no errors in the extension host log at the end', 'final', async () => {
     const text = exthostLogs().map((p) => readFileSync(p, 'utf8')).join('\n');
     const bad = text.split('\n').filter((l) => /already exists|Activating extension .?millpath\.millpath.? failed|before initialization|\[error\].*millpath/i.test(l));

@@ -1,0 +1,65 @@
+//! The custom requests `millpath/gcodePreview` and `millpath/toolpath`.
+
+use crate::conv::*;
+use crate::state::*;
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+use tower_lsp_server::jsonrpc::{Error, Result};
+use tower_lsp_server::ls_types::*;
+
+/// Parameters of `millpath/gcodePreview`.
+#[derive(Debug, Deserialize, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct PreviewParams {
+    pub text_document: TextDocumentIdentifier,
+    /// The path to preview; default: the first path of the document.
+    pub path: Option<String>,
+}
+
+/// Result of `millpath/gcodePreview`: the files `millpath compile` would write.
+#[derive(Debug, Deserialize, Serialize, PartialEq)]
+#[serde(rename_all = "camelCase")]
+pub struct PreviewResult {
+    pub path: String,
+    pub gcode: String,
+    pub probing: Option<String>,
+    pub z_txt: Option<String>,
+    pub stats: Vec<String>,
+    pub errors: Vec<String>,
+}
+
+impl Backend {
+    pub async fn gcode_preview(&self, params: PreviewParams) -> Result<PreviewResult> {
+        let (a, ws) = self.analysis(&params.text_document.uri).await?;
+        let name = params.path;
+        let pv = blocking(move || millpath_ide::preview_of(&a, &ws, name.as_deref()))
+            .await?
+            .map_err(|e| {
+                let mut err = Error::invalid_request();
+                err.message = e.into();
+                err
+            })?;
+        Ok(PreviewResult {
+            path: pv.path,
+            gcode: pv.gcode,
+            probing: pv.probing,
+            z_txt: pv.z_txt,
+            stats: pv.stats,
+            errors: pv.errors,
+        })
+    }
+
+    pub async fn toolpath(&self, params: PreviewParams) -> Result<Value> {
+        let path = to_path(&params.text_document.uri)
+            .ok_or_else(|| Error::invalid_params("not a file URI"))?;
+        let ws = self.snapshot();
+        let name = params.path;
+        blocking(move || millpath_ide::toolpath(&ws, &path, name.as_deref()))
+            .await?
+            .map_err(|e| {
+                let mut err = Error::invalid_request();
+                err.message = e.into();
+                err
+            })
+    }
+}
