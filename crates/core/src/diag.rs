@@ -297,6 +297,9 @@ messages! {
     StaleMillingRemoved = "Removed {0}: it is not newer than {1}, and no new one was written", "{0} entfernt: die Datei ist nicht neuer als {1}, und es wurde keine neue geschrieben";
     CannotRemove = "Cannot remove outdated {0}: {1}", "Veraltete Datei {0} kann nicht entfernt werden: {1}";
     NoErrorFreePathInFile = "File {0} contains no error-free path", "Datei {0} enthält keinen Pfad ohne Fehler";
+    // entity order (appended: codes are indexes)
+    OrderDecides = "The drawing's entity order decides here: {0} elements are equally good next steps and the first one in the file is taken, so a CAD re-save can change the G-code; pin the choice with {1} at this element", "Hier entscheidet die Reihenfolge der Elemente in der Zeichnung: {0} Elemente kommen gleichermaßen als nächster Schritt in Frage und das erste in der Datei wird genommen, ein erneutes Speichern im CAD kann also den G-Code ändern; die Wahl mit {1} an diesem Element festlegen";
+    OrderDecidesText = "The order of the lines decides here: {0} elements are equally good next steps and the first line is taken (the formatter keeps this order, a CAD re-save of the DXF may not); pin the choice with {1} at this element", "Hier entscheidet die Reihenfolge der Zeilen: {0} Elemente kommen gleichermaßen als nächster Schritt in Frage und die erste Zeile wird genommen (der Formatierer behält diese Reihenfolge, ein erneutes Speichern der DXF im CAD vielleicht nicht); die Wahl mit {1} an diesem Element festlegen";
 }
 
 impl Msg {
