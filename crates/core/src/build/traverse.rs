@@ -1,6 +1,7 @@
 //! Traversal order of a path's segments (reference-input.md §5.2) with turn markers.
 
 use crate::args;
+use crate::build::order_choice;
 use crate::build::with_pos;
 use crate::diag::{Diags, Msg};
 use crate::front::drawing::{RawPath, RawSegment, SegKind, Shape, SweepKind};
@@ -8,8 +9,28 @@ use crate::geom::P2;
 use std::collections::HashMap;
 
 /// Traversal order of a path's segments (§5.2), with turn markers (seed manual §4.2.15).
+/// Where the drawing's order had to decide between equally good segments, a warning with
+/// the value that pins the choice (`order_choice`).
 pub fn traverse(raw: &RawPath, start: P2, end: P2, diags: &mut Diags) -> Vec<Step> {
+    let (steps, ties) = walk(raw, start, end, diags);
+    order_choice::warn(raw, start, end, &steps, &ties, diags);
+    steps
+}
+
+/// A choice the storage (= drawing) order made: at `at`, step `step` took segment `chosen`
+/// although `rivals` were just as good and would give another result.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tie {
+    pub step: usize,
+    pub chosen: usize,
+    pub rivals: Vec<usize>,
+    pub at: P2,
+}
+
+/// The walk of §5.2: the steps, and the ties that storage order broke.
+pub(crate) fn walk(raw: &RawPath, start: P2, end: P2, diags: &mut Diags) -> (Vec<Step>, Vec<Tie>) {
     let segs = &raw.segments;
+    let mut ties: Vec<Tie> = Vec::new();
     let mut taken = vec![false; segs.len()];
     let mut out: Vec<Step> = Vec::new();
     let mut trail: Vec<usize> = Vec::new();
@@ -101,23 +122,33 @@ pub fn traverse(raw: &RawPath, start: P2, end: P2, diags: &mut Diags) -> Vec<Ste
             }
             break;
         }
+        let key = |i: usize| {
+            let s = &segs[i];
+            (
+                s.order(),
+                s.kind.preference(),
+                s.shape.start().dist(s.shape.end()),
+            )
+        };
         let best = *cands
             .iter()
             .min_by(|&&a, &&b| {
-                let (sa, sb) = (&segs[a], &segs[b]);
-                let ka = (
-                    sa.order(),
-                    sa.kind.preference(),
-                    sa.shape.start().dist(sa.shape.end()),
-                );
-                let kb = (
-                    sb.order(),
-                    sb.kind.preference(),
-                    sb.shape.start().dist(sb.shape.end()),
-                );
-                ka.partial_cmp(&kb).unwrap_or(std::cmp::Ordering::Equal)
+                key(a)
+                    .partial_cmp(&key(b))
+                    .unwrap_or(std::cmp::Ordering::Equal)
             })
             .unwrap_or(&cands[0]);
+        if cands.len() > 1 {
+            let rivals = order_choice::rivals(segs, &cands, best, p, key);
+            if !rivals.is_empty() {
+                ties.push(Tie {
+                    step: out.len(),
+                    chosen: best,
+                    rivals,
+                    at: p,
+                });
+            }
+        }
         taken[best] = true;
         untaken -= 1;
         let s = &segs[best];
@@ -152,7 +183,7 @@ pub fn traverse(raw: &RawPath, start: P2, end: P2, diags: &mut Diags) -> Vec<Ste
             diags.error(Msg::EndNotAtLast, o, args![end]);
         }
     }
-    out
+    (out, ties)
 }
 
 /// A turn-back copy of a segment: sweeps and embeddings return as sweeps, mill and mark

@@ -1,0 +1,137 @@
+//! Where the traversal chose by drawing order (reference-input.md §5.2: storage order breaks
+//! ties): the equally good segments that would give another result, the warning at the
+//! chosen element, and the N value that pins the choice.
+
+use crate::args;
+use crate::build::traverse::{walk, Step, Tie};
+use crate::build::with_pos;
+use crate::diag::{Diagnostic, Diags, Msg, Origin};
+use crate::front::drawing::{RawPath, RawSegment, SegKind, Shape, SweepKind};
+use crate::geom::{Geom, P2};
+use crate::params::ParamText;
+
+/// Pins checked per path (each check is one more walk); later ties name N without a value.
+const MAX_PINS: usize = 16;
+
+/// Storage classes (§5.1): circles, then lines, then arcs, whatever the drawing's order.
+/// Between classes the order is fixed; only inside one the drawing's order decides.
+fn class(s: &RawSegment) -> u8 {
+    match s.shape {
+        Shape::Circle { .. } => 0,
+        Shape::Path(Geom::Line { .. }) => 1,
+        Shape::Path(Geom::Arc { .. }) => 2,
+    }
+}
+
+/// The segment as the walk takes it at `p` (reversed when it ends there).
+fn oriented(s: &RawSegment, p: P2) -> Shape {
+    match &s.shape {
+        Shape::Path(g) if g.end().near(p) => Shape::Path(g.reversed()),
+        sh => sh.clone(),
+    }
+}
+
+fn tokens(s: &RawSegment) -> &[String] {
+    s.text.as_ref().map_or(&[], |t| &t.tokens[..])
+}
+
+/// Taking one or the other makes no difference (a duplicate, maybe drawn the other way).
+fn alike(a: &RawSegment, b: &RawSegment, p: P2) -> bool {
+    a.kind == b.kind && tokens(a) == tokens(b) && oriented(a, p) == oriented(b, p)
+}
+
+/// The candidates as good as `best` (same key, same storage class) that are not duplicates
+/// of it: any of them could be first in a re-saved drawing.
+pub(crate) fn rivals<K: PartialEq>(
+    segs: &[RawSegment],
+    cands: &[usize],
+    best: usize,
+    p: P2,
+    key: impl Fn(usize) -> K,
+) -> Vec<usize> {
+    let (b, kb) = (&segs[best], key(best));
+    cands
+        .iter()
+        .copied()
+        .filter(|&c| {
+            c != best && class(&segs[c]) == class(b) && key(c) == kb && !alike(&segs[c], b, p)
+        })
+        .collect()
+}
+
+/// One warning per tie, at the chosen element where the choice was made.
+pub(crate) fn warn(
+    raw: &RawPath,
+    start: P2,
+    end: P2,
+    steps: &[Step],
+    ties: &[Tie],
+    diags: &mut Diags,
+) {
+    for (n, tie) in ties.iter().enumerate() {
+        let seg = &raw.segments[tie.chosen];
+        let value = if n < MAX_PINS {
+            pin(raw, start, end, steps, tie)
+        } else {
+            None
+        };
+        let pin = value.map_or_else(|| "N".to_string(), |v| format!("N{v}"));
+        let msg = if matches!(seg.origin, Origin::Span { .. }) {
+            Msg::OrderDecidesText
+        } else {
+            Msg::OrderDecides
+        };
+        let mut d = Diagnostic::warning(
+            msg,
+            with_pos(&seg.origin, tie.at),
+            args![tie.rivals.len() + 1, pin],
+        );
+        for &r in &tie.rivals {
+            let rival = &raw.segments[r];
+            d = d.with_related(with_pos(&rival.origin, tie.at), "just as good");
+        }
+        diags.push(d);
+    }
+}
+
+/// Segment kinds whose N takes part in the traversal (HIDDEN sweeps are always 9998).
+fn takes_n(kind: SegKind) -> bool {
+    matches!(
+        kind,
+        SegKind::Mill(_)
+            | SegKind::Subpath
+            | SegKind::Sweep(SweepKind::Dashed)
+            | SegKind::Sweep(SweepKind::Dot)
+    )
+}
+
+/// The text with `N<value>` instead of its N (or with it added).
+pub fn with_n(text: Option<&ParamText>, value: i64, origin: &Origin) -> Option<ParamText> {
+    let mut toks: Vec<String> = text.map(|t| t.tokens.clone()).unwrap_or_default();
+    let n = format!("N{value}");
+    match toks.iter_mut().find(|t| t.starts_with('N')) {
+        Some(t) => *t = n,
+        None => toks.push(n),
+    }
+    ParamText::parse(&toks.join(" "), origin.clone()).ok()
+}
+
+/// The N value one below the chosen segment's order: it wins the tie whatever the drawing's
+/// order. `None` when the segment takes no N or the pin would change the walk elsewhere
+/// (checked by walking again).
+pub fn pin(raw: &RawPath, start: P2, end: P2, steps: &[Step], tie: &Tie) -> Option<i64> {
+    let seg = &raw.segments[tie.chosen];
+    let order = seg.order();
+    if !takes_n(seg.kind) || order.fract() != 0.0 || order.abs() > 1e9 {
+        return None;
+    }
+    let mut value = order as i64 - 1;
+    if value == 5555 {
+        // N5555 means "backtracking" in comments
+        value -= 1;
+    }
+    let mut pinned = raw.clone();
+    pinned.segments[tie.chosen].text = Some(with_n(seg.text.as_ref(), value, &seg.origin)?);
+    let (again, ties) = walk(&pinned, start, end, &mut Diags::default());
+    (again == steps && !ties.iter().any(|t| t.step == tie.step)).then_some(value)
+}
