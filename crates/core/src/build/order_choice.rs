@@ -59,6 +59,40 @@ pub(crate) fn rivals<K: PartialEq>(
         .collect()
 }
 
+/// Among `best` and its duplicates (equally good, alike), the one with the smallest numbers
+/// as drawn: which of them is taken changes no G-code, but the text shows it, and this
+/// choice does not depend on the drawing's order.
+pub(crate) fn canonical_duplicate<K: PartialEq>(
+    segs: &[RawSegment],
+    cands: &[usize],
+    best: usize,
+    p: P2,
+    key: impl Fn(usize) -> K,
+) -> usize {
+    let numbers = |s: &RawSegment| match s.shape {
+        Shape::Circle { c, r } => [c.x, c.y, r, 0.0, 0.0],
+        Shape::Path(Geom::Line { a, b }) => [a.x, a.y, b.x, b.y, 0.0],
+        Shape::Path(Geom::Arc { c, r, a0, a1, .. }) => [c.x, c.y, r, a0, a1],
+    };
+    let (b, kb) = (&segs[best], key(best));
+    let mut pick = best;
+    for &c in cands {
+        let s = &segs[c];
+        if c != best && class(s) == class(b) && key(c) == kb && alike(s, b, p) {
+            let smaller = numbers(s)
+                .iter()
+                .zip(numbers(&segs[pick]).iter())
+                .map(|(x, y)| x.total_cmp(y))
+                .find(|o| o.is_ne())
+                .is_some_and(|o| o.is_lt());
+            if smaller {
+                pick = c;
+            }
+        }
+    }
+    pick
+}
+
 /// One warning per tie, at the chosen element where the choice was made.
 pub(crate) fn warn(
     raw: &RawPath,

@@ -130,7 +130,7 @@ pub(crate) fn walk(raw: &RawPath, start: P2, end: P2, diags: &mut Diags) -> (Vec
                 s.shape.start().dist(s.shape.end()),
             )
         };
-        let best = *cands
+        let mut best = *cands
             .iter()
             .min_by(|&&a, &&b| {
                 key(a)
@@ -139,6 +139,7 @@ pub(crate) fn walk(raw: &RawPath, start: P2, end: P2, diags: &mut Diags) -> (Vec
             })
             .unwrap_or(&cands[0]);
         if cands.len() > 1 {
+            best = order_choice::canonical_duplicate(segs, &cands, best, p, key);
             let rivals = order_choice::rivals(segs, &cands, best, p, key);
             if !rivals.is_empty() {
                 ties.push(Tie {
