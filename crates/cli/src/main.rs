@@ -434,7 +434,13 @@ fn run_dxf2gcode(args: &[String]) -> u8 {
     let mut failed = false;
     // the reference prints no word on entity order: that warning is for check, compile, the editor
     let ours = |d: &&Diagnostic| !matches!(d.msg, Msg::OrderDecides | Msg::OrderDecidesText);
-    for d in session.diags.list.iter().chain(write_errors.list.iter()).filter(ours) {
+    for d in session
+        .diags
+        .list
+        .iter()
+        .chain(write_errors.list.iter())
+        .filter(ours)
+    {
         eprintln!("{}", d.reference_line(lang));
         failed |= d.severity == Severity::Error;
     }
