@@ -12,6 +12,8 @@ use crate::params::ParamText;
 
 /// Pins checked per path (each check is one more walk); later ties name N without a value.
 const MAX_PINS: usize = 16;
+/// Rivals named as related locations of one warning.
+const MAX_RELATED: usize = 3;
 
 /// Storage classes (§5.1): circles, then lines, then arcs, whatever the drawing's order.
 /// Between classes the order is fixed; only inside one the drawing's order decides.
@@ -120,7 +122,8 @@ pub(crate) fn warn(
             with_pos(&seg.origin, tie.at),
             args![tie.rivals.len() + 1, pin],
         );
-        for &r in &tie.rivals {
+        // the count is in the message; a few locations are enough to find them
+        for &r in tie.rivals.iter().take(MAX_RELATED) {
             let rival = &raw.segments[r];
             d = d.with_related(with_pos(&rival.origin, tie.at), "just as good");
         }
