@@ -148,7 +148,12 @@ fn diagnostics(dir: &Path) -> BTreeMap<String, Vec<(String, String)>> {
                 let msg = d["message"].as_str().unwrap().replace(".mpath", ".dxf");
                 // "Unsupported X value; <where the text is>": the text's position differs by nature
                 let msg = msg.split("; ").next().unwrap().to_string();
-                (d["code"].as_str().unwrap().to_string(), msg)
+                let code = d["code"].as_str().unwrap().to_string();
+                // the order warning names the drawing's entities or the text's lines
+                if code == "MP118" || code == "MP119" {
+                    return ("MP118/MP119".to_string(), "the order decides".to_string());
+                }
+                (code, msg)
             })
             .collect();
         list.sort();
