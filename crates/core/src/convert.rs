@@ -2,7 +2,7 @@
 //! canonical text, `text2dxf` writes an AutoCAD 2000 DXF whose texts the reference's
 //! assignment rule gives back to their own elements.
 
-use crate::build::traverse::traverse;
+use crate::build::traverse::walk;
 use crate::diag::{Diags, FileRef};
 use crate::front::drawing::{build_paths, DrawnObject, RawPath, Shape};
 use crate::front::dxf::{dxf_objects, FrontOptions};
@@ -154,7 +154,8 @@ fn ordered(
     let mut out = canonical(others);
     let mut diags = Diags::default();
     let trav = match (&raw.start, &raw.end) {
-        (Some(s), Some(e)) => traverse(raw, s.pos, e.pos, &mut diags),
+        // the walk alone: the order warnings are the compiler's business
+        (Some(s), Some(e)) => walk(raw, s.pos, e.pos, &mut diags).0,
         _ => Vec::new(),
     };
     let mut reached = vec![false; objects.len()];
