@@ -433,7 +433,12 @@ fn run_dxf2gcode(args: &[String]) -> u8 {
     }
     let mut failed = false;
     // the reference prints no word on entity order: that warning is for check, compile, the editor
-    let ours = |d: &&Diagnostic| !matches!(d.msg, Msg::OrderDecides | Msg::OrderDecidesText);
+    let ours = |d: &&Diagnostic| {
+        !matches!(
+            d.msg,
+            Msg::OrderDecides | Msg::OrderDecidesText | Msg::OrderDecidesNoPin
+        )
+    };
     for d in session
         .diags
         .list

@@ -153,6 +153,9 @@ fn diagnostics(dir: &Path) -> BTreeMap<String, Vec<(String, String)>> {
                 if code == "MP118" || code == "MP119" {
                     return ("MP118/MP119".to_string(), "the order decides".to_string());
                 }
+                if code == "MP120" {
+                    return (code, "the order decides, no single N pins it".to_string());
+                }
                 (code, msg)
             })
             .collect();

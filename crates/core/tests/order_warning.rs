@@ -53,7 +53,7 @@ fn duplicates_are_no_choice() {
 }
 
 #[test]
-fn a_choice_no_single_n_can_pin_names_n_without_a_value() {
+fn a_choice_no_single_n_can_pin_gets_the_general_advice() {
     // two branches, each marked on the way out and milled back: at the second visit of the
     // star point, N9997 on the branch taken would win the first visit already
     let mut d = Drawing::new();
@@ -65,12 +65,12 @@ fn a_choice_no_single_n_can_pin_names_n_without_a_value() {
         .line(L, "CONTINUOUS", (0.0, 10.0), (0.0, 0.0), "");
     let run = compile_one(&d);
     assert!(run.errors().is_empty(), "{:?}", run.messages());
-    let args: Vec<&Vec<String>> = run.diags.iter().map(|d| &d.args).collect();
+    let got: Vec<(Msg, &Vec<String>)> = run.diags.iter().map(|d| (d.msg, &d.args)).collect();
     assert_eq!(
-        args,
+        got,
         [
-            &vec!["4".to_string(), "N9997".into()],
-            &vec!["2".to_string(), "N".into()]
+            (Msg::OrderDecides, &vec!["4".to_string(), "N9997".into()]),
+            (Msg::OrderDecidesNoPin, &vec!["2".to_string()])
         ]
     );
 }

@@ -3,7 +3,7 @@
 //! fixtures, K re-saves with the ENTITIES section shuffled by a seeded generator:
 //! - `dxf2text` is byte-identical whenever every path's G-code is (in a drawing with the
 //!   warning the text shows the choice made, which may by chance give the same G-code);
-//! - G-code that differs ⇒ the drawing has the `OrderDecides` warning; no warning ⇒ every
+//! - G-code that differs ⇒ the drawing has the order warning (MP118/MP120); no warning ⇒ every
 //!   shuffle gives the same G-code.
 
 use millpath_core::convert::{dxf_to_text, text_to_dxf};
@@ -14,7 +14,13 @@ use millpath_core::{MemFileSystem, Msg, Session, Settings};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-const SHUFFLES: usize = 12;
+/// Re-saves per drawing; `MILLPATH_SHUFFLES=N` for a longer run.
+fn shuffles() -> usize {
+    std::env::var("MILLPATH_SHUFFLES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(12)
+}
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
@@ -99,7 +105,11 @@ fn compile(folder: &MemFileSystem, file: &Path) -> (BTreeMap<String, String>, bo
         };
         out.insert(name, text);
     }
-    let warned = s.diags.list.iter().any(|d| d.msg == Msg::OrderDecides);
+    let warned = s
+        .diags
+        .list
+        .iter()
+        .any(|d| matches!(d.msg, Msg::OrderDecides | Msg::OrderDecidesNoPin));
     (out, warned)
 }
 
@@ -171,6 +181,7 @@ fn drawings() -> Vec<(String, MemFileSystem, PathBuf)> {
 #[test]
 fn shuffled_resaves_keep_text_and_warn_where_order_decides() {
     let all = drawings();
+    let shuffles = shuffles();
     assert!(all.len() >= 4, "{} drawings", all.len());
     let (mut text_diffs, mut gcode_diffs, mut unwarned, mut warned_count) = (0, 0, 0, 0);
     let mut text_diffs_warned = 0;
@@ -183,7 +194,7 @@ fn shuffled_resaves_keep_text_and_warn_where_order_decides() {
         warned_count += usize::from(warned);
         let mut seed = 0x9e37_79b9_7f4a_7c15u64 ^ (label.len() as u64 + 1);
         let mut differs = 0;
-        for k in 0..SHUFFLES {
+        for k in 0..shuffles {
             seed = seed.wrapping_add(k as u64 + 1);
             let mut rng = Rng(seed | 1);
             let shuffled = shuffle_entities(&original, &mut rng);
@@ -215,10 +226,10 @@ fn shuffled_resaves_keep_text_and_warn_where_order_decides() {
                 }
             }
         }
-        eprintln!("{label}: {differs}/{SHUFFLES} shuffles change the G-code; warning: {warned}");
+        eprintln!("{label}: {differs}/{shuffles} shuffles change the G-code; warning: {warned}");
     }
     eprintln!(
-        "{} drawings × {SHUFFLES} shuffles: {gcode_diffs} G-code diffs, {text_diffs} text diffs \
+        "{} drawings × {shuffles} shuffles: {gcode_diffs} G-code diffs, {text_diffs} text diffs \
          where the G-code is the same (+ {text_diffs_warned} in warned drawings), {unwarned} \
          G-code diffs without warning; {warned_count} drawings warned",
         all.len()

@@ -10,7 +10,7 @@ use crate::front::drawing::{RawPath, RawSegment, SegKind, Shape, SweepKind};
 use crate::geom::{Geom, P2};
 use crate::params::ParamText;
 
-/// Pins checked per path (each check is one more walk); later ties name N without a value.
+/// Pins checked per path (each check is one more walk); later ties get the general advice.
 const MAX_PINS: usize = 16;
 /// Rivals named as related locations of one warning.
 const MAX_RELATED: usize = 3;
@@ -111,17 +111,15 @@ pub(crate) fn warn(
         } else {
             None
         };
-        let pin = value.map_or_else(|| "N".to_string(), |v| format!("N{v}"));
-        let msg = if matches!(seg.origin, Origin::Span { .. }) {
-            Msg::OrderDecidesText
-        } else {
-            Msg::OrderDecides
+        let count = tie.rivals.len() + 1;
+        let (msg, args) = match value {
+            None => (Msg::OrderDecidesNoPin, args![count]),
+            Some(v) if matches!(seg.origin, Origin::Span { .. }) => {
+                (Msg::OrderDecidesText, args![count, format!("N{v}")])
+            }
+            Some(v) => (Msg::OrderDecides, args![count, format!("N{v}")]),
         };
-        let mut d = Diagnostic::warning(
-            msg,
-            with_pos(&seg.origin, tie.at),
-            args![tie.rivals.len() + 1, pin],
-        );
+        let mut d = Diagnostic::warning(msg, with_pos(&seg.origin, tie.at), args);
         // the count is in the message; a few locations are enough to find them
         for &r in tie.rivals.iter().take(MAX_RELATED) {
             let rival = &raw.segments[r];
