@@ -478,7 +478,8 @@ fn order_warning_in_check_and_compile_not_in_pathdxf2gcode() {
     let list = v["diagnostics"].as_array().unwrap();
     assert_eq!(list.len(), 1, "{v}");
     let d = &list[0];
-    assert_eq!(d["code"], "MP118");
+    let code = millpath_core::Msg::OrderDecides.code();
+    assert_eq!(d["code"], code.as_str());
     assert_eq!(d["severity"], "warning");
     assert!(d["message"].as_str().unwrap().contains("N9997"), "{d}");
     // the location is the LINE from the start corner (0, 0) to (20, 0)
@@ -504,7 +505,7 @@ fn order_warning_in_check_and_compile_not_in_pathdxf2gcode() {
     );
     assert_eq!(o.status.code(), Some(0));
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("warning[MP118]"), "{err}");
+    assert!(err.contains(&format!("warning[{code}]")), "{err}");
     let compiled = std::fs::read(dir.path().join("3001_Milling.gcode")).unwrap();
     std::fs::remove_file(dir.path().join("3001_Milling.gcode")).unwrap();
     let o = millpath(

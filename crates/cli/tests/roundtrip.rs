@@ -2,6 +2,7 @@
 //! compiling a DXF, its text form and the DXF written back from that text gives the same
 //! G-code (or the same diagnostics), and dxf2text of the written-back DXF is the first text.
 
+use millpath_core::Msg;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -150,11 +151,9 @@ fn diagnostics(dir: &Path) -> BTreeMap<String, Vec<(String, String)>> {
                 let msg = msg.split("; ").next().unwrap().to_string();
                 let code = d["code"].as_str().unwrap().to_string();
                 // the order warning names the drawing's entities or the text's lines
-                if code == "MP118" || code == "MP119" {
-                    return ("MP118/MP119".to_string(), "the order decides".to_string());
-                }
-                if code == "MP120" {
-                    return (code, "the order decides, no single N pins it".to_string());
+                let same = |m: Msg| code == m.code();
+                if same(Msg::OrderDecides) || same(Msg::OrderDecidesText) {
+                    return ("order".to_string(), "the order decides".to_string());
                 }
                 (code, msg)
             })
