@@ -10,8 +10,10 @@ use crate::front::drawing::{RawPath, RawSegment, SegKind, Shape, SweepKind};
 use crate::geom::{Geom, P2};
 use crate::params::ParamText;
 
-/// Pins checked per path (each check is one more walk); later ties get the general advice.
-const MAX_PINS: usize = 16;
+/// Pins are checked by walking again: at least this many per path, more while the walks
+/// stay within [`PIN_BUDGET`] segments in all; later ties get the general advice (MP120).
+const MIN_PINS: usize = 16;
+const PIN_BUDGET: usize = 4_000_000;
 /// Rivals named as related locations of one warning.
 const MAX_RELATED: usize = 3;
 
@@ -106,7 +108,7 @@ pub(crate) fn warn(
 ) {
     for (n, tie) in ties.iter().enumerate() {
         let seg = &raw.segments[tie.chosen];
-        let value = if n < MAX_PINS {
+        let value = if n < MIN_PINS || (n + 1).saturating_mul(raw.segments.len()) <= PIN_BUDGET {
             pin(raw, start, end, steps, tie)
         } else {
             None
