@@ -6,6 +6,8 @@
 //! - G-code that differs ⇒ the drawing has the order warning (MP118/MP120); no warning ⇒ every
 //!   shuffle gives the same G-code.
 
+use millpath_core::build::order_choice::{pin, pin_by_walking};
+use millpath_core::build::traverse::walk;
 use millpath_core::convert::{dxf_to_text, text_to_dxf};
 use millpath_core::diag::{FileRef, Lang};
 use millpath_core::emit::{generate, Output};
@@ -87,6 +89,9 @@ fn compile(folder: &MemFileSystem, file: &Path) -> (BTreeMap<String, String>, bo
     let mut s = Session::new(Settings::default(), folder).unwrap();
     let names = s.load_file(file);
     let mut out = BTreeMap::new();
+    for name in &names {
+        pins_agree(&s, name);
+    }
     for name in names {
         let text = match s.build_top(&name) {
             Err(d) => format!("abort {}", d.message(Lang::En)),
@@ -111,6 +116,23 @@ fn compile(folder: &MemFileSystem, file: &Path) -> (BTreeMap<String, String>, bo
         .iter()
         .any(|d| matches!(d.msg, Msg::OrderDecides | Msg::OrderDecidesNoPin));
     (out, warned)
+}
+
+/// The pin the warning names (checked from what the walk recorded) is the one a second walk
+/// with the pinned text confirms.
+fn pins_agree(s: &Session, name: &str) {
+    let Some(raw) = s.raw_path(name) else { return };
+    let (Some(start), Some(end)) = (&raw.start, &raw.end) else {
+        return;
+    };
+    let (steps, ties) = walk(&raw, start.pos, end.pos, &mut Default::default());
+    for tie in &ties {
+        assert_eq!(
+            pin(&raw, tie),
+            pin_by_walking(&raw, start.pos, end.pos, &steps, tie),
+            "{name}: {tie:?}"
+        );
+    }
 }
 
 fn dxf2text(bytes: &[u8]) -> String {

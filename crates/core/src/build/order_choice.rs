@@ -3,17 +3,13 @@
 //! chosen element, and the N value that pins the choice.
 
 use crate::args;
-use crate::build::traverse::{walk, Step, Tie};
+use crate::build::traverse::{walk, Key, Step, Tie};
 use crate::build::with_pos;
 use crate::diag::{Diagnostic, Diags, Msg, Origin};
 use crate::front::drawing::{RawPath, RawSegment, SegKind, Shape, SweepKind};
 use crate::geom::{Geom, P2};
 use crate::params::ParamText;
 
-/// Pins are checked by walking again: at least this many per path, more while the walks
-/// stay within [`PIN_BUDGET`] segments in all; later ties get the general advice (MP120).
-const MIN_PINS: usize = 16;
-const PIN_BUDGET: usize = 4_000_000;
 /// Rivals named as related locations of one warning.
 const MAX_RELATED: usize = 3;
 
@@ -98,21 +94,10 @@ pub(crate) fn canonical_duplicate<K: PartialEq>(
 }
 
 /// One warning per tie, at the chosen element where the choice was made.
-pub(crate) fn warn(
-    raw: &RawPath,
-    start: P2,
-    end: P2,
-    steps: &[Step],
-    ties: &[Tie],
-    diags: &mut Diags,
-) {
-    for (n, tie) in ties.iter().enumerate() {
+pub(crate) fn warn(raw: &RawPath, ties: &[Tie], diags: &mut Diags) {
+    for tie in ties {
         let seg = &raw.segments[tie.chosen];
-        let value = if n < MIN_PINS || (n + 1).saturating_mul(raw.segments.len()) <= PIN_BUDGET {
-            pin(raw, start, end, steps, tie)
-        } else {
-            None
-        };
+        let value = pin(raw, tie);
         let count = tie.rivals.len() + 1;
         let (msg, args) = match value {
             None => (Msg::OrderDecidesNoPin, args![count]),
@@ -154,21 +139,42 @@ pub fn with_n(text: Option<&ParamText>, value: i64, origin: &Origin) -> Option<P
 }
 
 /// The N value one below the chosen segment's order: it wins the tie whatever the drawing's
-/// order. `None` when the segment takes no N or the pin would change the walk elsewhere
-/// (checked by walking again).
-pub fn pin(raw: &RawPath, start: P2, end: P2, steps: &[Step], tie: &Tie) -> Option<i64> {
+/// order. `None` when the segment takes no N, or when with that value it would have won at
+/// an earlier step where it lost (the walk would change there). Where it never would, the
+/// walk is the same up to the tie, takes it there (its key is below every other candidate's,
+/// all of which have an order ≥ its old one) and is not affected after.
+pub fn pin(raw: &RawPath, tie: &Tie) -> Option<i64> {
+    let value = pin_value(raw, tie)?;
+    let seg = &raw.segments[tie.chosen];
+    let pinned: Key = (
+        value as f64,
+        seg.kind.preference(),
+        seg.shape.start().dist(seg.shape.end()),
+    );
+    let still_loses = match tie.lost_to {
+        Some(w) => pinned > w,
+        None => true,
+    };
+    still_loses.then_some(value)
+}
+
+/// [`pin`] the long way: walking again with the pinned text (for tests).
+pub fn pin_by_walking(raw: &RawPath, start: P2, end: P2, steps: &[Step], tie: &Tie) -> Option<i64> {
+    let value = pin_value(raw, tie)?;
+    let seg = &raw.segments[tie.chosen];
+    let mut pinned = raw.clone();
+    pinned.segments[tie.chosen].text = Some(with_n(seg.text.as_ref(), value, &seg.origin)?);
+    let (again, ties) = walk(&pinned, start, end, &mut Diags::default());
+    (again == steps && !ties.iter().any(|t| t.step == tie.step)).then_some(value)
+}
+
+/// The value [`pin`] tries: one below the order (5555, "backtracking" in comments, skipped).
+fn pin_value(raw: &RawPath, tie: &Tie) -> Option<i64> {
     let seg = &raw.segments[tie.chosen];
     let order = seg.order();
     if !takes_n(seg.kind) || order.fract() != 0.0 || order.abs() > 1e9 {
         return None;
     }
-    let mut value = order as i64 - 1;
-    if value == 5555 {
-        // N5555 means "backtracking" in comments
-        value -= 1;
-    }
-    let mut pinned = raw.clone();
-    pinned.segments[tie.chosen].text = Some(with_n(seg.text.as_ref(), value, &seg.origin)?);
-    let (again, ties) = walk(&pinned, start, end, &mut Diags::default());
-    (again == steps && !ties.iter().any(|t| t.step == tie.step)).then_some(value)
+    let value = order as i64 - 1;
+    Some(if value == 5555 { value - 1 } else { value })
 }

@@ -13,24 +13,30 @@ use std::collections::HashMap;
 /// the value that pins the choice (`order_choice`).
 pub fn traverse(raw: &RawPath, start: P2, end: P2, diags: &mut Diags) -> Vec<Step> {
     let (steps, ties) = walk(raw, start, end, diags);
-    order_choice::warn(raw, start, end, &steps, &ties, diags);
+    order_choice::warn(raw, &ties, diags);
     steps
 }
 
+/// The walk's preference of a candidate (§5.2 step 3): order, kind, chord; the lowest wins.
+pub type Key = (f64, u8, f64);
+
 /// A choice the storage (= drawing) order made: at `at`, step `step` took segment `chosen`
-/// although `rivals` were just as good and would give another result.
+/// although `rivals` were just as good and would give another result. `lost_to`: the
+/// weakest winner `chosen` lost to at earlier steps, if it was a candidate there.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Tie {
     pub step: usize,
     pub chosen: usize,
     pub rivals: Vec<usize>,
     pub at: P2,
+    pub lost_to: Option<Key>,
 }
 
 /// The walk of §5.2: the steps, and the ties that storage order broke.
-pub(crate) fn walk(raw: &RawPath, start: P2, end: P2, diags: &mut Diags) -> (Vec<Step>, Vec<Tie>) {
+pub fn walk(raw: &RawPath, start: P2, end: P2, diags: &mut Diags) -> (Vec<Step>, Vec<Tie>) {
     let segs = &raw.segments;
     let mut ties: Vec<Tie> = Vec::new();
+    let mut lost_to: Vec<Option<Key>> = vec![None; segs.len()];
     let mut taken = vec![false; segs.len()];
     let mut out: Vec<Step> = Vec::new();
     let mut trail: Vec<usize> = Vec::new();
@@ -122,7 +128,7 @@ pub(crate) fn walk(raw: &RawPath, start: P2, end: P2, diags: &mut Diags) -> (Vec
             }
             break;
         }
-        let key = |i: usize| {
+        let key = |i: usize| -> Key {
             let s = &segs[i];
             (
                 s.order(),
@@ -147,7 +153,18 @@ pub(crate) fn walk(raw: &RawPath, start: P2, end: P2, diags: &mut Diags) -> (Vec
                     chosen: best,
                     rivals,
                     at: p,
+                    lost_to: lost_to[best],
                 });
+            }
+            let won = key(best);
+            for &c in cands.iter().filter(|&&c| c != best) {
+                let weaker = match lost_to[c] {
+                    Some(w) => won > w,
+                    None => true,
+                };
+                if weaker {
+                    lost_to[c] = Some(won);
+                }
             }
         }
         taken[best] = true;
