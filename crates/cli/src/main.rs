@@ -432,7 +432,20 @@ fn run_dxf2gcode(args: &[String]) -> u8 {
         }
     }
     let mut failed = false;
-    for d in session.diags.list.iter().chain(write_errors.list.iter()) {
+    // the reference prints no word on entity order: that warning is for check, compile, the editor
+    let ours = |d: &&Diagnostic| {
+        !matches!(
+            d.msg,
+            Msg::OrderDecides | Msg::OrderDecidesText | Msg::OrderDecidesNoPin
+        )
+    };
+    for d in session
+        .diags
+        .list
+        .iter()
+        .chain(write_errors.list.iter())
+        .filter(ours)
+    {
         eprintln!("{}", d.reference_line(lang));
         failed |= d.severity == Severity::Error;
     }

@@ -461,3 +461,69 @@ fn compile_reports_the_removed_volume() {
     );
     assert!(!String::from_utf8_lossy(&compat.stderr).contains("Removed volume"));
 }
+
+/// Where the drawing's entity order decides the milling direction (a square started at a
+/// corner): `check` and `compile` warn at the LINE that was taken; `pathdxf2gcode` prints
+/// what the reference prints, and writes the same program as `compile`.
+#[test]
+fn order_warning_in_check_and_compile_not_in_pathdxf2gcode() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("../core/tests/fixtures/order/3001.mpath");
+    std::fs::copy(&src, dir.path().join("3001.mpath")).unwrap();
+    let o = millpath(dir.path(), &["text2dxf", "3001.mpath", "-o", "3001.dxf"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = millpath(dir.path(), &["check", "--format", "json", "3001.dxf"]);
+    assert_eq!(o.status.code(), Some(0), "a warning is no failure");
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let list = v["diagnostics"].as_array().unwrap();
+    assert_eq!(list.len(), 1, "{v}");
+    let d = &list[0];
+    let code = millpath_core::Msg::OrderDecides.code();
+    assert_eq!(d["code"], code.as_str());
+    assert_eq!(d["severity"], "warning");
+    assert!(d["message"].as_str().unwrap().contains("N9997"), "{d}");
+    // the location is the LINE from the start corner (0, 0) to (20, 0)
+    let line = d["location"]["line"].as_u64().unwrap() as usize;
+    let dxf = std::fs::read_to_string(dir.path().join("3001.dxf")).unwrap();
+    let entity: Vec<&str> = dxf.lines().skip(line - 1).take(40).collect();
+    assert_eq!(entity[..2], ["  0", "LINE"], "{entity:?}");
+    let at = |code: &str| {
+        entity
+            .iter()
+            .position(|l| l.trim() == code)
+            .map(|i| entity[i + 1].trim())
+    };
+    assert_eq!(
+        (at("10"), at("20"), at("11"), at("21")),
+        (Some("0.0"), Some("0.0"), Some("20.0"), Some("0.0")),
+        "{entity:?}"
+    );
+    let flags = ["-f", "150", "-v", "500", "-s", "5"];
+    let o = millpath(
+        dir.path(),
+        &[&["compile"][..], &flags, &["3001.dxf"]].concat(),
+    );
+    assert_eq!(o.status.code(), Some(0));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains(&format!("warning[{code}]")), "{err}");
+    let compiled = std::fs::read(dir.path().join("3001_Milling.gcode")).unwrap();
+    std::fs::remove_file(dir.path().join("3001_Milling.gcode")).unwrap();
+    let o = millpath(
+        dir.path(),
+        &["pathdxf2gcode", "/f150", "/v500", "/s5", "3001.dxf"],
+    );
+    assert_eq!(o.status.code(), Some(0));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!err.contains("++++") && !err.contains("order"), "{err}");
+    let reference = std::fs::read(dir.path().join("3001_Milling.gcode")).unwrap();
+    assert_eq!(
+        String::from_utf8_lossy(&reference)
+            .lines()
+            .skip(2)
+            .collect::<Vec<_>>(),
+        String::from_utf8_lossy(&compiled)
+            .lines()
+            .skip(2)
+            .collect::<Vec<_>>()
+    );
+}

@@ -2,6 +2,7 @@
 //! compiling a DXF, its text form and the DXF written back from that text gives the same
 //! G-code (or the same diagnostics), and dxf2text of the written-back DXF is the first text.
 
+use millpath_core::Msg;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -148,7 +149,13 @@ fn diagnostics(dir: &Path) -> BTreeMap<String, Vec<(String, String)>> {
                 let msg = d["message"].as_str().unwrap().replace(".mpath", ".dxf");
                 // "Unsupported X value; <where the text is>": the text's position differs by nature
                 let msg = msg.split("; ").next().unwrap().to_string();
-                (d["code"].as_str().unwrap().to_string(), msg)
+                let code = d["code"].as_str().unwrap().to_string();
+                // the order warning names the drawing's entities or the text's lines
+                let same = |m: Msg| code == m.code();
+                if same(Msg::OrderDecides) || same(Msg::OrderDecidesText) {
+                    return ("order".to_string(), "the order decides".to_string());
+                }
+                (code, msg)
             })
             .collect();
         list.sort();

@@ -2,7 +2,7 @@
 //! canonical text, `text2dxf` writes an AutoCAD 2000 DXF whose texts the reference's
 //! assignment rule gives back to their own elements.
 
-use crate::build::traverse::traverse;
+use crate::build::traverse::walk;
 use crate::diag::{Diags, FileRef};
 use crate::front::drawing::{build_paths, DrawnObject, RawPath, Shape};
 use crate::front::dxf::{dxf_objects, FrontOptions};
@@ -81,34 +81,92 @@ fn geometry_of(o: &DrawnObject, kind: &Kind) -> Geometry {
     }
 }
 
-/// The order of a path's objects in the text: markers and other non-segments in drawing
-/// order, then the segments in traversal order (drawing order when the traversal fails).
-fn ordered(indices: &[usize], raw: Option<&RawPath>) -> Vec<usize> {
-    let Some(raw) = raw else {
-        return indices.to_vec();
+/// Where an object stands among a path's non-segments: markers first in a fixed order of
+/// kinds, then everything else.
+fn kind_rank(kind: &Kind) -> u8 {
+    match kind {
+        Kind::Start => 0,
+        Kind::End => 1,
+        Kind::Turn => 2,
+        Kind::Probe => 3,
+        Kind::NoProbe => 4,
+        Kind::Drill(_) | Kind::Helix(_) => 5,
+        Kind::Raw(_) => 7,
+        _ => 6,
+    }
+}
+
+/// A total order of objects that ignores the drawing's entity order: kind, then position
+/// (the shape's numbers), then line type and text.
+fn canonical_cmp(a: &DrawnObject, b: &DrawnObject, path_o: Option<f64>) -> std::cmp::Ordering {
+    fn numbers(s: &Shape) -> Vec<f64> {
+        match s {
+            Shape::Circle { c, r } => vec![c.x, c.y, *r],
+            Shape::Path(Geom::Line { a, b }) => vec![a.x, a.y, b.x, b.y],
+            Shape::Path(Geom::Arc { c, r, a0, a1, .. }) => vec![c.x, c.y, *r, *a0, *a1],
+        }
+    }
+    let tokens = |o: &DrawnObject| {
+        o.text
+            .as_ref()
+            .map(|t| t.tokens.clone())
+            .unwrap_or_default()
     };
-    let seg_objects: Vec<usize> = raw.segments.iter().map(|s| s.object).collect();
-    let mut out: Vec<usize> = indices
-        .iter()
-        .copied()
-        .filter(|i| !seg_objects.contains(i))
-        .collect();
+    kind_rank(&kind_of(a, path_o))
+        .cmp(&kind_rank(&kind_of(b, path_o)))
+        .then_with(|| {
+            let (na, nb) = (numbers(&a.shape), numbers(&b.shape));
+            na.len().cmp(&nb.len()).then_with(|| {
+                na.iter()
+                    .zip(&nb)
+                    .map(|(x, y)| x.total_cmp(y))
+                    .find(|o| o.is_ne())
+                    .unwrap_or(std::cmp::Ordering::Equal)
+            })
+        })
+        .then_with(|| a.linetype.cmp(&b.linetype))
+        .then_with(|| tokens(a).cmp(&tokens(b)))
+}
+
+/// The order of a path's objects in the text, the same for any entity order of the drawing
+/// that compiles alike: markers and other non-segments in canonical order
+/// ([`canonical_cmp`]), then the segments in traversal order; segments the traversal did
+/// not reach follow in canonical order.
+fn ordered(
+    indices: &[usize],
+    objects: &[DrawnObject],
+    raw: Option<&RawPath>,
+    path_o: Option<f64>,
+) -> Vec<usize> {
+    let canonical = |mut v: Vec<usize>| {
+        v.sort_by(|&a, &b| canonical_cmp(&objects[a], &objects[b], path_o));
+        v
+    };
+    let Some(raw) = raw else {
+        return canonical(indices.to_vec());
+    };
+    // by object index: is a segment, was reached by the traversal (linear on large paths)
+    let mut is_segment = vec![false; objects.len()];
+    for s in &raw.segments {
+        is_segment[s.object] = true;
+    }
+    let (segs, others): (Vec<usize>, Vec<usize>) = indices.iter().partition(|&&i| is_segment[i]);
+    let mut out = canonical(others);
     let mut diags = Diags::default();
     let trav = match (&raw.start, &raw.end) {
-        (Some(s), Some(e)) => traverse(raw, s.pos, e.pos, &mut diags),
+        // the walk alone: the order warnings are the compiler's business
+        (Some(s), Some(e)) => walk(raw, s.pos, e.pos, &mut diags).0,
         _ => Vec::new(),
     };
-    let complete =
-        !diags.has_errors() && trav.iter().filter(|s| !s.turn_back).count() == raw.segments.len();
-    if complete {
-        out.extend(
-            trav.iter()
-                .filter(|s| !s.turn_back)
-                .map(|s| raw.segments[s.index].object),
-        );
-    } else {
-        out.extend(indices.iter().copied().filter(|i| seg_objects.contains(i)));
+    let mut reached = vec![false; objects.len()];
+    for s in trav.iter().filter(|s| !s.turn_back) {
+        let o = raw.segments[s.index].object;
+        if !std::mem::replace(&mut reached[o], true) {
+            out.push(o);
+        }
     }
+    let rest: Vec<usize> = segs.into_iter().filter(|&o| !reached[o]).collect();
+    out.extend(canonical(rest));
     out
 }
 
@@ -149,7 +207,7 @@ pub fn objects_to_text(objects: &[DrawnObject], paths: &[RawPath], header: Optio
             "path {} {{\n",
             millpath_syntax::lexer::quote_if_needed(name)
         ));
-        for i in ordered(&indices, raw) {
+        for i in ordered(&indices, objects, raw, path_o) {
             let o = &objects[i];
             let kind = kind_of(o, path_o);
             let geometry = geometry_of(o, &kind);

@@ -79,7 +79,8 @@ fn closed_chain_several_runs_has_no_back_milling() {
     let mut d = Drawing::new();
     d.start(L, (0.0, 0.0), "O2 T2 I0,5 B0,5 W1,5")
         .end(L, (0.0, 0.0))
-        .line(L, "CONTINUOUS", (0.0, 0.0), (10.0, 0.0), "")
+        // N9997 pins the direction (both edges at the start are 10 long: warning MP118)
+        .line(L, "CONTINUOUS", (0.0, 0.0), (10.0, 0.0), "N9997")
         .line(L, "CONTINUOUS", (10.0, 0.0), (10.0, 10.0), "")
         .line(L, "CONTINUOUS", (10.0, 10.0), (0.0, 10.0), "")
         .line(L, "CONTINUOUS", (0.0, 10.0), (0.0, 0.0), "");

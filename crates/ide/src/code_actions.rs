@@ -123,10 +123,40 @@ pub fn code_actions(a: &Analysis, start: usize, end: usize) -> Vec<Action> {
                 let line_end = a.src[ds..].find('\n').map_or(a.src.len(), |x| ds + x + 1);
                 out.extend(sweep_to_end(block, &(fmt_num(p.x), fmt_num(p.y)), line_end));
             }
+            Msg::OrderDecidesText => out.extend(pin_order(a, ds, d.args.get(1))),
             _ => {}
         }
     }
     out
+}
+
+/// "Pin the choice with N9997": the element's N value set to the one the warning checked.
+fn pin_order(a: &Analysis, at: usize, pin: Option<&String>) -> Option<Action> {
+    let pin = pin.filter(|p| p.len() > 1 && p.starts_with('N'))?;
+    let (_, el) = element_at(a, at)?;
+    let edit = match el.params.iter().find(|p| p.value.starts_with('N')) {
+        Some(n) => TextEdit {
+            start: n.span.start,
+            end: n.span.end,
+            text: pin.clone(),
+        },
+        None => {
+            let end = el
+                .params
+                .last()
+                .map_or(el.geometry.span.end, |p| p.span.end);
+            let sep = if el.params.is_empty() { "  " } else { " " };
+            TextEdit {
+                start: end,
+                end,
+                text: format!("{sep}{pin}"),
+            }
+        }
+    };
+    Some(Action {
+        title: format!("Pin the choice with {pin} (independent of the order of the lines)"),
+        edits: vec![edit],
+    })
 }
 
 /// "Add a sweep from (x, y) to the end marker", inserted at `at`.

@@ -387,3 +387,67 @@ fn preview_without_machine_settings_says_so() {
     let pv = preview(&ws, &p(dir.path(), "2001.mpath"), None).unwrap();
     assert!(pv.errors.is_empty(), "{:?}", pv.errors);
 }
+
+/// A square milled from a corner: the order of two equally long lines decides the direction.
+const SQUARE: &str = "path 2040.1P {\n  start (0, 0)  M10x3 O2 T3 I1,5 B-0,2\n  end (0, 0)\n  mill (0, 0) -> (20, 0)\n  mill (20, 0) -> (20, 20)\n  mill (20, 20) -> (0, 20)\n  mill (0, 20) -> (0, 0)\n}\n";
+
+#[test]
+fn order_warning_at_the_chosen_line_with_a_pinning_fix() {
+    let (dir, mut ws) = setup();
+    let path = p(dir.path(), "2040.mpath");
+    ws.overlays.insert(path.clone(), SQUARE.into());
+    let a = analyze(&ws, &path);
+    let d = a
+        .diagnostics
+        .iter()
+        .find(|d| d.msg == millpath_core::Msg::OrderDecidesText)
+        .expect("order warning");
+    assert_eq!(d.severity, millpath_core::Severity::Warning);
+    let en = d.message(millpath_core::Lang::En);
+    assert!(en.contains("the formatter keeps this order"), "{en}");
+    assert!(en.contains("N9997"), "{en}");
+    assert!(d
+        .message(millpath_core::Lang::De)
+        .contains("Reihenfolge der Zeilen"));
+    let millpath_core::Origin::Span { start, end, .. } = d.origin else {
+        panic!("{:?}", d.origin)
+    };
+    assert_eq!(SQUARE[start..end].trim_end(), "mill (0, 0) -> (20, 0)");
+    // the formatter keeps the order of the lines that carries the choice
+    let swapped = SQUARE.replace(
+        "  mill (0, 0) -> (20, 0)\n  mill (20, 0) -> (20, 20)\n  mill (20, 20) -> (0, 20)\n  mill (0, 20) -> (0, 0)\n",
+        "  mill (0, 20) -> (0, 0)\n  mill (20, 20) -> (0, 20)\n  mill (20, 0) -> (20, 20)\n  mill (0, 0) -> (20, 0)\n",
+    );
+    ws.overlays.insert(path.clone(), swapped.clone());
+    let b = analyze(&ws, &path);
+    assert_eq!(format(&b).as_deref(), Some(swapped.as_str()), "order kept");
+    let other = b
+        .diagnostics
+        .iter()
+        .find(|d| d.msg == millpath_core::Msg::OrderDecidesText)
+        .expect("order warning");
+    let millpath_core::Origin::Span { start, end, .. } = other.origin else {
+        panic!()
+    };
+    assert_eq!(swapped[start..end].trim_end(), "mill (0, 20) -> (0, 0)");
+    // the quick fix pins the direction; the warning is gone, the G-code is the warned one
+    ws.overlays.insert(path.clone(), SQUARE.into());
+    let before = preview(&ws, &path, None).unwrap().gcode;
+    let fix = code_actions(&a, 0, SQUARE.len())
+        .into_iter()
+        .find(|x| x.title.starts_with("Pin the choice with N9997"))
+        .expect("pin");
+    let fixed = apply(SQUARE, &fix.edits);
+    assert!(
+        fixed.contains("  mill (0, 0) -> (20, 0)  N9997\n"),
+        "{fixed}"
+    );
+    ws.overlays.insert(path.clone(), fixed);
+    let c = analyze(&ws, &path);
+    assert!(c.diagnostics.is_empty(), "{:?}", c.diagnostics);
+    assert_eq!(preview(&ws, &path, None).unwrap().gcode, before);
+    // a pinned line keeps its place after the swap too: no warning
+    let pinned_swapped = swapped.replace("mill (0, 0) -> (20, 0)", "mill (0, 0) -> (20, 0)  N9997");
+    ws.overlays.insert(path.clone(), pinned_swapped);
+    assert!(analyze(&ws, &path).diagnostics.is_empty());
+}

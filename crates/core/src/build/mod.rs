@@ -4,6 +4,7 @@
 
 pub mod bars;
 pub mod connect;
+pub mod order_choice;
 pub mod params;
 pub mod traverse;
 pub mod validate;

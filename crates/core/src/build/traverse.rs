@@ -1,6 +1,7 @@
 //! Traversal order of a path's segments (reference-input.md §5.2) with turn markers.
 
 use crate::args;
+use crate::build::order_choice;
 use crate::build::with_pos;
 use crate::diag::{Diags, Msg};
 use crate::front::drawing::{RawPath, RawSegment, SegKind, Shape, SweepKind};
@@ -8,8 +9,34 @@ use crate::geom::P2;
 use std::collections::HashMap;
 
 /// Traversal order of a path's segments (§5.2), with turn markers (seed manual §4.2.15).
+/// Where the drawing's order had to decide between equally good segments, a warning with
+/// the value that pins the choice (`order_choice`).
 pub fn traverse(raw: &RawPath, start: P2, end: P2, diags: &mut Diags) -> Vec<Step> {
+    let (steps, ties) = walk(raw, start, end, diags);
+    order_choice::warn(raw, &ties, diags);
+    steps
+}
+
+/// The walk's preference of a candidate (§5.2 step 3): order, kind, chord; the lowest wins.
+pub type Key = (f64, u8, f64);
+
+/// A choice the storage (= drawing) order made: at `at`, step `step` took segment `chosen`
+/// although `rivals` were just as good and would give another result. `lost_to`: the
+/// weakest winner `chosen` lost to at earlier steps, if it was a candidate there.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tie {
+    pub step: usize,
+    pub chosen: usize,
+    pub rivals: Vec<usize>,
+    pub at: P2,
+    pub lost_to: Option<Key>,
+}
+
+/// The walk of §5.2: the steps, and the ties that storage order broke.
+pub fn walk(raw: &RawPath, start: P2, end: P2, diags: &mut Diags) -> (Vec<Step>, Vec<Tie>) {
     let segs = &raw.segments;
+    let mut ties: Vec<Tie> = Vec::new();
+    let mut lost_to: Vec<Option<Key>> = vec![None; segs.len()];
     let mut taken = vec![false; segs.len()];
     let mut out: Vec<Step> = Vec::new();
     let mut trail: Vec<usize> = Vec::new();
@@ -101,23 +128,45 @@ pub fn traverse(raw: &RawPath, start: P2, end: P2, diags: &mut Diags) -> Vec<Ste
             }
             break;
         }
-        let best = *cands
+        let key = |i: usize| -> Key {
+            let s = &segs[i];
+            (
+                s.order(),
+                s.kind.preference(),
+                s.shape.start().dist(s.shape.end()),
+            )
+        };
+        let mut best = *cands
             .iter()
             .min_by(|&&a, &&b| {
-                let (sa, sb) = (&segs[a], &segs[b]);
-                let ka = (
-                    sa.order(),
-                    sa.kind.preference(),
-                    sa.shape.start().dist(sa.shape.end()),
-                );
-                let kb = (
-                    sb.order(),
-                    sb.kind.preference(),
-                    sb.shape.start().dist(sb.shape.end()),
-                );
-                ka.partial_cmp(&kb).unwrap_or(std::cmp::Ordering::Equal)
+                key(a)
+                    .partial_cmp(&key(b))
+                    .unwrap_or(std::cmp::Ordering::Equal)
             })
             .unwrap_or(&cands[0]);
+        if cands.len() > 1 {
+            best = order_choice::canonical_duplicate(segs, &cands, best, p, key);
+            let rivals = order_choice::rivals(segs, &cands, best, p, key);
+            if !rivals.is_empty() {
+                ties.push(Tie {
+                    step: out.len(),
+                    chosen: best,
+                    rivals,
+                    at: p,
+                    lost_to: lost_to[best],
+                });
+            }
+            let won = key(best);
+            for &c in cands.iter().filter(|&&c| c != best) {
+                let weaker = match lost_to[c] {
+                    Some(w) => won > w,
+                    None => true,
+                };
+                if weaker {
+                    lost_to[c] = Some(won);
+                }
+            }
+        }
         taken[best] = true;
         untaken -= 1;
         let s = &segs[best];
@@ -152,7 +201,7 @@ pub fn traverse(raw: &RawPath, start: P2, end: P2, diags: &mut Diags) -> Vec<Ste
             diags.error(Msg::EndNotAtLast, o, args![end]);
         }
     }
-    out
+    (out, ties)
 }
 
 /// A turn-back copy of a segment: sweeps and embeddings return as sweeps, mill and mark
