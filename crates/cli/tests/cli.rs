@@ -527,3 +527,20 @@ fn order_warning_in_check_and_compile_not_in_pathdxf2gcode() {
             .collect::<Vec<_>>()
     );
 }
+
+/// A text element's diagnostic spans the element, not its trailing comment (the same range
+/// the editor shows).
+#[test]
+fn check_range_stops_before_the_trailing_comment() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = "path 8000.1P {\n  start (0, 0)  T2 O2 B-0.3 I1\n  mill (0, 0) -> (10, 0)  B9  # too deep\n  end (10, 0)\n}\n";
+    std::fs::write(dir.path().join("8000.mpath"), src).unwrap();
+    let o = millpath(dir.path(), &["check", "--format", "json", "8000.mpath"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let loc = &v["diagnostics"][0]["location"];
+    let (start, end) = (
+        loc["start"].as_u64().unwrap() as usize,
+        loc["end"].as_u64().unwrap() as usize,
+    );
+    assert_eq!(&src[start..end], "mill (0, 0) -> (10, 0)  B9");
+}

@@ -102,7 +102,9 @@ pub fn objects_of(
     let mut declared = Vec::new();
     for path in ast.paths() {
         for el in path.elements() {
-            let origin = lines.origin(file, &el.span);
+            // the element without its trailing comment: what a diagnostic points at
+            let end = el.params.last().map_or(el.geometry.span.end, |p| p.span.end);
+            let origin = lines.origin(file, &(el.span.start..end.max(el.geometry.span.end)));
             let linetype = el.kind.value.linetype().to_string();
             let shape = match el.geometry.value {
                 Geometry::Point(p) => Shape::Circle {
