@@ -27,6 +27,8 @@ pub struct Move {
     pub feed: f64,
     /// Its time in seconds as the statistics estimate it.
     pub seconds: f64,
+    /// The text of its line.
+    pub gcode: String,
 }
 
 /// A probe of the probing program: name, position and the height it touches at.
@@ -55,7 +57,7 @@ pub fn toolpath(
     ctl: &Controller,
     sweep_speed: f64,
 ) -> Result<Toolpath, Vec<Diagnostic>> {
-    let e = emit(model, true, ctl)?;
+    let e = emit(model, false, ctl)?;
     let start = P3 {
         x: 0.0,
         y: 0.0,
@@ -96,6 +98,7 @@ pub fn toolpath(
             line: first_line + i,
             feed,
             seconds,
+            gcode: it.text.clone(),
         });
         pos = to;
     }
