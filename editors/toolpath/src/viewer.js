@@ -354,15 +354,14 @@ window.addEventListener('keydown', (e) => {
 // ---- camera presets ----
 function setView(name) {
   const c = st.centre, d = st.extent * 4;
-  const dirs = { top: [0, 0, 1], front: [0, -1, 0], side: [1, 0, 0], iso: [1, -1, 1] };
+  // top: a hair south of straight above, so that Y points up on the screen
+  const dirs = { top: [0, -1e-4, 1], front: [0, -1, 0], side: [1, 0, 0], iso: [1, -1, 1] };
   const v = new THREE.Vector3(...(dirs[name] || dirs.iso)).normalize().multiplyScalar(d);
   camera.position.copy(c).add(v);
-  camera.up.set(0, name === 'top' ? 1 : 0, name === 'top' ? 0 : 1);
   camera.zoom = 1;
   controls.target.copy(c);
   camera.lookAt(c);
   controls.update();
-  camera.up.set(0, 0, 1);
   document.querySelectorAll('[data-view]').forEach((b) => b.classList.toggle('on', b.dataset.view === name));
   requestDraw();
 }
