@@ -118,7 +118,7 @@ local ok, err = pcall(function()
   local data = http({ opened .. 'data' })
   check('the data holds the moves', data:find('"kind":"mill"', 1, true) ~= nil, data:sub(1, 300))
   local version = server.version
-  vim.api.nvim_buf_set_lines(0, -2, -2, false, { '  mill (0, 0) -> (0, 5)' })
+  vim.api.nvim_buf_set_lines(0, -2, -2, false, { '  # a comment' })
   vim.wait(10000, function() return server.version > version end, 50)
   check('the data follows the buffer', server.version > version, 'no new data')
   vim.api.nvim_win_set_cursor(0, { 4, 0 })
@@ -133,6 +133,26 @@ local ok, err = pcall(function()
   vim.wait(5000, function() return revealed ~= nil end, 20)
   local cur = vim.api.nvim_win_get_cursor(0)
   check('a click on the page moves the cursor to the element', cur[1] == 4 and cur[2] == 2, vim.inspect(cur))
+  -- the page itself in real Chromium: it draws the served data, highlights the element under
+  -- the cursor, and a real click on a move reaches Neovim
+  local playwright = root .. '/editors/vscode/node_modules/playwright-core'
+  if vim.fn.isdirectory(playwright) == 1 and vim.fn.executable('/usr/bin/chromium') == 1 then
+    revealed = nil
+    vim.api.nvim_win_set_cursor(0, { 4, 0 })
+    vim.api.nvim_exec_autocmds('CursorMoved', { buffer = 0 })
+    local out
+    vim.system({ 'node', root .. '/tests/nvim/page_click.mjs', opened }, { text = true }, function(r)
+      out = { code = r.code, stdout = r.stdout or '', stderr = r.stderr or '' }
+    end)
+    vim.wait(60000, function() return out ~= nil and revealed ~= nil end, 50)
+    local res = out and out.code == 0 and vim.json.decode(out.stdout) or nil
+    check('Chromium draws the served page and highlights the cursor\'s element', res and res.drawn > 0 and res.highlighted > 0, vim.inspect(out))
+    check('a real click in Chromium moves the cursor to the clicked element', revealed ~= nil and res ~= nil
+      and revealed.source.line == res.clicked.line and vim.api.nvim_win_get_cursor(0)[1] == res.clicked.line + 1
+      and revealed.gcodeLine == res.clicked.gcodeLine, vim.inspect({ revealed = revealed, res = res }))
+  else
+    print('skip the page in Chromium: no editors/vscode/node_modules (npm ci) or /usr/bin/chromium')
+  end
 end)
 if not ok then
   check('no Lua error', false, err)

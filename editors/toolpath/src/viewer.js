@@ -551,6 +551,7 @@ if (served) {
 window.millpathToolpath = {
   render, select, highlight, setView, setTime,
   data: () => st.data,
+  highlighted: () => st.selected.slice(),
   play, pause,
   drawnMoves: () => st.drawn,
   duration: () => st.total,
