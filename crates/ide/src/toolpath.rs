@@ -39,23 +39,21 @@ pub fn toolpath(
             .collect::<Vec<_>>()
             .join("; ")
     })?;
-    let mut texts: std::collections::HashMap<PathBuf, (crate::LineIndex, String)> =
+    // each file's line index and lines, made once (a program has many elements per file)
+    let mut texts: std::collections::HashMap<PathBuf, (crate::LineIndex, Vec<String>)> =
         std::collections::HashMap::new();
     let mut source_json = |o: &Origin| -> serde_json::Value {
         match o {
             Origin::Span {
                 file, start, line, ..
             } => {
-                let (idx, text) = texts.entry(file.path.clone()).or_insert_with(|| {
+                let (idx, lines) = texts.entry(file.path.clone()).or_insert_with(|| {
                     let text = ws.text(&file.path).unwrap_or_default();
-                    (ws.line_index(&text), text)
+                    let lines = text.lines().map(|l| l.trim().to_string()).collect();
+                    (ws.line_index(&text), lines)
                 });
                 let p = idx.pos(*start);
-                let text = text
-                    .lines()
-                    .nth(p.line as usize)
-                    .map(|l| l.trim().to_string())
-                    .unwrap_or_default();
+                let text = lines.get(p.line as usize).cloned().unwrap_or_default();
                 json!({ "file": file.path.display().to_string(), "line": line - 1, "character": p.col, "label": format!("{}:{line}", file.name), "text": text })
             }
             Origin::Entity(e) => json!({

@@ -159,7 +159,7 @@ export async function activate(ctx: vscode.ExtensionContext): Promise<void> {
       if (!editor || editor.document.languageId !== 'millpath') throw new Error('no MillPath document in the editor');
       if (!client) throw new Error('the language server is not running');
       const name = pathAtLine(editor.document.getText(), editor.selection.active.line);
-      const panel = vscode.window.createWebviewPanel('millpathToolpath', `Toolpath ${name ?? ''}`, vscode.ViewColumn.Beside, { enableScripts: true });
+      const panel = vscode.window.createWebviewPanel('millpathToolpath', `Toolpath ${name ?? ''}`, vscode.ViewColumn.Beside, { enableScripts: true, retainContextWhenHidden: true });
       panel.webview.html = fs.readFileSync(ctx.asAbsolutePath('media/toolpath.html'), 'utf8');
       const send = async () => {
         try {

@@ -301,8 +301,9 @@ try {
     expect(frame, 'no webview frame with toolpath moves');
     const moves = Number(await frame.evaluate(() => document.body.dataset.moves));
     await page.screenshot({ path: join(artifacts, 'vscode-toolpath-view.png') });
-    // the cursor on the mark line (line 8) highlights that element's moves
-    await openFile('2010.mpath');
+    // the cursor on the mark line (line 8) of the source beside highlights that element's moves
+    await palette('View: Focus First Editor Group');
+    await sleep(300);
     await goTo(8, 3);
     const highlighted = await until(async () => {
       const n = Number(await frame.evaluate(() => document.body.dataset.highlighted ?? 0));
@@ -310,20 +311,22 @@ try {
     }, 15000);
     expect(highlighted, 'moving the cursor to the mark line highlighted no moves');
     await page.screenshot({ path: join(artifacts, 'vscode-toolpath-highlight.png') });
-    // a real click on a move of the embedded slot reveals its line in 2001.mpath and the
-    // move's G-code line in the preview
+    // a real click on a move of the embedded slot reveals its line in the part's file
+    // (2001.mpath, another file than the one the cursor is in) and the move's G-code line
     const target = await frame.evaluate(() => {
       const w = window.millpathToolpath;
       const data = JSON.parse(JSON.stringify(w.data()));
-      const i = data.moves.findIndex((m) => m.kind === 'mark' && m.from[0] !== m.to[0]);
-      return { i, xy: w.screenOf(i, 0.5), line: data.sources[data.moves[i].source].line, gcodeLine: data.moves[i].line };
+      const src = (m) => data.sources[m.source];
+      const i = data.moves.findIndex((m) => m.kind === 'mill' && m.from[0] !== m.to[0] && src(m).file.endsWith('2001.mpath'));
+      return { i, xy: w.screenOf(i, 0.5), line: src(data.moves[i]).line, gcodeLine: data.moves[i].line };
     });
-    expect(target.i >= 0, 'no mark move');
+    expect(target.i >= 0, 'no move of the slot');
     const box = await (await frame.frameElement()).boundingBox();
     await page.mouse.click(box.x + target.xy[0], box.y + target.xy[1]);
     const shown = await until(async () => {
       const sel = await selection();
-      return sel.includes(`Ln ${target.line + 1},`) && sel;
+      const active = await page.locator('.editor-group-container.active .tab.active').allInnerTexts();
+      return active.some((t) => t.includes('2001.mpath')) && sel.includes(`Ln ${target.line + 1},`) && `2001.mpath ${sel}`;
     }, 15000);
     expect(shown, `after the click: ${await selection()}, tabs ${await page.locator('.tab.active').allInnerTexts()}`);
     const preview = await until(async () => {
