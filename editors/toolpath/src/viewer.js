@@ -567,6 +567,8 @@ window.millpathToolpath = {
 };
 
 applyTheme();
+// a narrow view (a webview beside the source) starts with the panel folded
+if (stage.clientWidth < 600) $('side').open = false;
 const embedded = JSON.parse($('toolpath-data').textContent || 'null');
 if (embedded) render(embedded);
 else { const d = document.createElement('div'); d.id = 'empty'; d.textContent = 'No toolpath yet.'; stage.append(d); }
