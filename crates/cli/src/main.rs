@@ -2,9 +2,9 @@
 
 #[macro_use]
 mod out;
-mod png;
 mod compat;
 mod config;
+mod png;
 mod report;
 mod verify;
 mod write;
