@@ -334,7 +334,18 @@ try {
       return t.length > 0 && t;
     }, 15000);
     expect(preview, 'the G-code preview did not open');
-    return `${moves} moves drawn; cursor on line 8 highlighted ${highlighted}; click revealed ${shown}, G-code line ${target.gcodeLine}`;
+    // the cursor in the G-code preview highlights the moves of the element that wrote that line
+    const mark = await frame.evaluate(() => {
+      const d = window.millpathToolpath.data();
+      const m = d.moves.find((mv) => mv.kind === 'mark');
+      return { line: m.line, count: d.moves.filter((mv) => mv.source === m.source).length };
+    });
+    await page.locator('.tab[aria-label*="2010.1P.gcode"]').first().click();
+    await sleep(300);
+    await goTo(mark.line, 1);
+    const fromPreview = await until(async () => Number(await frame.evaluate(() => document.body.dataset.highlighted ?? 0)) === mark.count, 15000);
+    expect(fromPreview, `the cursor on G-code line ${mark.line} highlighted ${await frame.evaluate(() => document.body.dataset.highlighted)} moves, not the mark's ${mark.count}`);
+    return `${moves} moves drawn; cursor on line 8 highlighted ${highlighted}; click revealed ${shown}, G-code line ${target.gcodeLine}; cursor on G-code line ${mark.line} highlighted ${mark.count}`;
   });
 
   await check('Open DXF as Text opens the drawing as a MillPath text buffer', 'dxf-as-text', async () => {
