@@ -99,14 +99,60 @@ local ok, err = pcall(function()
     return lbuf and vim.api.nvim_buf_is_valid(lbuf) and vim.api.nvim_buf_get_lines(lbuf, 0, 1, false)[1] == '%'
   end, 50)
   check('running the code lens opens the G-code preview', lbuf and vim.api.nvim_buf_is_valid(lbuf) and vim.api.nvim_buf_get_lines(lbuf, 0, 1, false)[1] == '%', lens_err or 'no preview')
-  -- the toolpath page with the server's data (the browser opener is replaced here)
+  -- the toolpath page, served by the plugin's local server: page, data that follows the
+  -- buffer, the cursor's element, clicks reported back (real HTTP through curl)
   vim.ui = vim.ui or {}
   local opened
   vim.ui.open = function(p) opened = p end
-  require('millpath').toolpath()
-  vim.wait(10000, function() return opened ~= nil end, 50)
-  local page = opened and table.concat(vim.fn.readfile(opened), '\n') or ''
-  check(':MillpathToolpath writes the page with the moves', page:find('"kind":"mill"', 1, true) ~= nil, opened)
+  local server = require('millpath').toolpath()
+  vim.wait(10000, function() return opened ~= nil and server.version > 0 end, 50)
+  check(':MillpathToolpath opens the served page', opened and opened:match('^http://127%.0%.0%.1:%d+/$') ~= nil, opened)
+  local function http(args)
+    local out
+    vim.system(vim.list_extend({ 'curl', '-s', '-i', '--max-time', '5' }, args), { text = true }, function(r) out = r.stdout or '' end)
+    vim.wait(6000, function() return out ~= nil end, 20)
+    return out or ''
+  end
+  local page = http({ opened })
+  check('the server gives the page', page:find('toolpath-data', 1, true) ~= nil, page:sub(1, 200))
+  local data = http({ opened .. 'data' })
+  check('the data holds the moves', data:find('"kind":"mill"', 1, true) ~= nil, data:sub(1, 300))
+  local version = server.version
+  vim.api.nvim_buf_set_lines(0, -2, -2, false, { '  # a comment' })
+  vim.wait(10000, function() return server.version > version end, 50)
+  check('the data follows the buffer', server.version > version, 'no new data')
+  vim.api.nvim_win_set_cursor(0, { 4, 0 })
+  vim.api.nvim_exec_autocmds('CursorMoved', { buffer = 0 })
+  local hl = http({ opened .. 'highlight' })
+  check('the cursor line is served for highlighting', hl:find('"line":3', 1, true) ~= nil, hl)
+  local revealed
+  require('millpath').on_reveal = function(msg) revealed = msg end
+  vim.api.nvim_win_set_cursor(0, { 1, 0 })
+  local body = vim.json.encode({ type = 'reveal', source = { file = vim.api.nvim_buf_get_name(0), line = 3, character = 2 }, gcodeLine = 12 })
+  http({ '-X', 'POST', '--data-binary', body, opened .. 'click' })
+  vim.wait(5000, function() return revealed ~= nil end, 20)
+  local cur = vim.api.nvim_win_get_cursor(0)
+  check('a click on the page moves the cursor to the element', cur[1] == 4 and cur[2] == 2, vim.inspect(cur))
+  -- the page itself in real Chromium: it draws the served data, highlights the element under
+  -- the cursor, and a real click on a move reaches Neovim
+  local playwright = root .. '/editors/vscode/node_modules/playwright-core'
+  if vim.fn.isdirectory(playwright) == 1 and vim.fn.executable('/usr/bin/chromium') == 1 then
+    revealed = nil
+    vim.api.nvim_win_set_cursor(0, { 4, 0 })
+    vim.api.nvim_exec_autocmds('CursorMoved', { buffer = 0 })
+    local out
+    vim.system({ 'node', root .. '/tests/nvim/page_click.mjs', opened }, { text = true }, function(r)
+      out = { code = r.code, stdout = r.stdout or '', stderr = r.stderr or '' }
+    end)
+    vim.wait(60000, function() return out ~= nil and revealed ~= nil end, 50)
+    local res = out and out.code == 0 and vim.json.decode(out.stdout) or nil
+    check('Chromium draws the served page and highlights the cursor\'s element', res and res.drawn > 0 and res.highlighted > 0, vim.inspect(out))
+    check('a real click in Chromium moves the cursor to the clicked element', revealed ~= nil and res ~= nil
+      and revealed.source.line == res.clicked.line and vim.api.nvim_win_get_cursor(0)[1] == res.clicked.line + 1
+      and revealed.gcodeLine == res.clicked.gcodeLine, vim.inspect({ revealed = revealed, res = res }))
+  else
+    print('skip the page in Chromium: no editors/vscode/node_modules (npm ci) or /usr/bin/chromium')
+  end
 
   -- folding through the server (vim.lsp.foldexpr): the path folds from its header
   vim.wo.foldmethod = 'expr'

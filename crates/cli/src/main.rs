@@ -4,6 +4,7 @@
 mod out;
 mod compat;
 mod config;
+mod png;
 mod report;
 mod verify;
 mod write;
@@ -237,7 +238,7 @@ enum Command {
         #[arg(required = true)]
         paths: Vec<PathBuf>,
     },
-    /// Draw the toolpath of a path: a standalone HTML page (clickable) or an SVG
+    /// Draw the toolpath of a path: a standalone HTML page (3-D viewer), an SVG or a PNG top view
     Render {
         file: PathBuf,
         /// The path to draw (default: the first path of the file)
@@ -249,6 +250,9 @@ enum Command {
         /// Write an SVG drawing here
         #[arg(long)]
         svg: Option<PathBuf>,
+        /// Write a PNG picture of the top view here (no browser needed)
+        #[arg(long)]
+        png: Option<PathBuf>,
     },
     /// Language server over standard input and output (for editors)
     Lsp {
@@ -332,7 +336,8 @@ fn main() -> ExitCode {
             path,
             html,
             svg,
-        } => run_render(&file, path.as_deref(), html, svg),
+            png,
+        } => run_render(&file, path.as_deref(), html, svg, png),
         Command::Lsp { .. } => millpath_lsp::run_stdio(),
         Command::Pathdxf2gcode { args } => run_dxf2gcode(&args),
         Command::Pathgcodeadjustz { args } => run_adjustz_compat(&args),
@@ -1140,7 +1145,13 @@ fn run_fmt(check: bool, paths: &[PathBuf]) -> u8 {
     status
 }
 
-fn run_render(file: &Path, path: Option<&str>, html: Option<PathBuf>, svg: Option<PathBuf>) -> u8 {
+fn run_render(
+    file: &Path,
+    path: Option<&str>,
+    html: Option<PathBuf>,
+    svg: Option<PathBuf>,
+    png: Option<PathBuf>,
+) -> u8 {
     let file = complete_input(&file.to_string_lossy());
     let abs = std::fs::canonicalize(&file).unwrap_or_else(|_| file.clone());
     let ws = millpath_ide::Workspace::default();
@@ -1193,7 +1204,7 @@ fn run_render(file: &Path, path: Option<&str>, html: Option<PathBuf>, svg: Optio
     };
     let lang = ws.settings_for(&abs).settings.lang;
     let html = html.or_else(|| {
-        svg.is_none().then(|| {
+        (svg.is_none() && png.is_none()).then(|| {
             PathBuf::from(format!(
                 "{}_toolpath.html",
                 file.with_extension("").display()
@@ -1208,6 +1219,15 @@ fn run_render(file: &Path, path: Option<&str>, html: Option<PathBuf>, svg: Optio
     if let Some(out) = svg {
         eprintln!("---- Writing {}", out.display());
         status |= emit(Some(&out), &millpath_ide::toolpath_svg(&data), lang);
+    }
+    if let Some(out) = png {
+        eprintln!("---- Writing {}", out.display());
+        let written = png::svg_to_png(&millpath_ide::toolpath_svg(&data))
+            .and_then(|bytes| write::write_atomic_bytes(&out, &bytes).map_err(|e| e.to_string()));
+        if let Err(e) = written {
+            eprintln!("error: {}: {e}", out.display());
+            status |= 1;
+        }
     }
     status
 }

@@ -5,6 +5,11 @@ use std::path::Path;
 
 /// Writes `content` to a temporary file beside `path` and renames it into place.
 pub fn write_atomic(path: &Path, content: &str) -> std::io::Result<()> {
+    write_atomic_bytes(path, content.as_bytes())
+}
+
+/// [`write_atomic`] for bytes (pictures).
+pub fn write_atomic_bytes(path: &Path, content: &[u8]) -> std::io::Result<()> {
     let dir = path
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
@@ -16,7 +21,7 @@ pub fn write_atomic(path: &Path, content: &str) -> std::io::Result<()> {
     let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
     let result = (|| {
         let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(content.as_bytes())?;
+        f.write_all(content)?;
         f.sync_all()?;
         std::fs::rename(&tmp, path)
     })();

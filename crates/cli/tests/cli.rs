@@ -399,6 +399,16 @@ fn render_writes_a_toolpath_page_and_an_svg() {
     let html = std::fs::read_to_string(dir.path().join("2010_toolpath.html")).unwrap();
     assert!(html.contains(r#"<script id="toolpath-data" type="application/json">{"#));
     assert!(html.contains(r#""kind":"mill""#));
+    // the page is the bundled viewer, with three.js inside and nothing to fetch
+    assert!(html.contains("three.js") && !html.contains("<script src"));
+    // a PNG of the top view, drawn without a browser: cuts in colour on white
+    let o = millpath(dir.path(), &["render", "2010.mpath", "--png", "t.png"]);
+    assert_eq!(o.status.code(), Some(0));
+    let png = std::fs::read(dir.path().join("t.png")).unwrap();
+    assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+    let width = u32::from_be_bytes(png[16..20].try_into().unwrap());
+    let height = u32::from_be_bytes(png[20..24].try_into().unwrap());
+    assert_eq!(width.max(height), 1200, "{width}x{height}");
     // a path that does not exist
     let o = millpath(
         dir.path(),

@@ -976,11 +976,14 @@ fn toolpath_moves_follow_the_gcode() {
     .unwrap();
     s.load_file(std::path::Path::new("1000.1P.dxf"));
     let model = s.build_top("1000.1P").unwrap().unwrap();
-    let tp = millpath_core::emit::toolpath(&model).unwrap();
+    let tp =
+        millpath_core::emit::toolpath(&model, &millpath_core::emit::Controller::reference(), 500.0)
+            .unwrap();
     let kinds: Vec<&str> = tp.moves.iter().map(|m| m.kind).collect();
+    // the plunges of a chain cut as its segment does: they are `mill`, not `drill`
     assert_eq!(
         kinds,
-        ["rapid", "drill", "mill", "drill", "mill", "rapid", "rapid", "rapid"]
+        ["rapid", "mill", "mill", "mill", "mill", "rapid", "rapid", "rapid"]
     );
     let first_mill = &tp.moves[2];
     assert_eq!((first_mill.from.x, first_mill.from.z), (0.0, 0.8));
@@ -990,8 +993,25 @@ fn toolpath_moves_follow_the_gcode() {
         o => panic!("{o:?}"),
     }
     assert_eq!(tp.probes.len(), 1);
-    assert_eq!(tp.probes[0].0, "#51");
-    assert!((tp.probes[0].1.x - 10.0).abs() < 1e-9);
+    assert_eq!(tp.probes[0].name, "#51");
+    assert!((tp.probes[0].pos.x - 10.0).abs() < 1e-9);
+    // every move names its line of the written (clean) program, and the times add up to
+    // the statistics' (reference model: length / F · 1.4)
+    let run = compile_with(
+        &[("1000.1P.dxf", d.dxf())],
+        "1000.1P.dxf",
+        millpath_core::Settings {
+            sweep_height: 5.0,
+            ..settings()
+        },
+    );
+    let clean = run.output("1000.1P_Clean.gcode");
+    let lines: Vec<&str> = clean.lines().collect();
+    assert!(lines[first_mill.line - 1].starts_with("G01 F150.000 X57.687 Y0.000 Z0.800"));
+    let total: f64 = tp.moves.iter().map(|m| m.seconds).sum();
+    let stats = &tp.stats;
+    let minutes = stats.mill_min + stats.drill_min + stats.sweep_min;
+    assert!((total / 60.0 - minutes).abs() < 1e-9, "{total} {minutes}");
 }
 
 #[test]

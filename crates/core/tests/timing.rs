@@ -39,6 +39,7 @@ fn item(kind: Kind, len: f64, feed: f64, target: Target) -> Item {
         feed,
         target,
         source: None,
+        shape: Default::default(),
     }
 }
 

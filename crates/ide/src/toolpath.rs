@@ -5,8 +5,20 @@ use crate::Workspace;
 use millpath_core::diag::Origin;
 use std::path::{Path, PathBuf};
 
-/// The toolpath of a path as JSON for the toolpath view: moves with kind, start, end, depth,
-/// arc and source element; probes; bounds.
+/// Rounded to the output precision (3 decimals), without float noise in the JSON.
+fn r3(v: f64) -> f64 {
+    let r = (v * 1000.0).round() / 1000.0;
+    if r == 0.0 {
+        0.0
+    } else {
+        r
+    }
+}
+
+/// The toolpath of a path as JSON for the toolpath view: one entry per move of the written
+/// program (after the optimizer) with kind, start, end, arc, source element (for chains the
+/// segment's), G-code line and text, feed and time; probes; bounds; tool, stock and
+/// statistics. Numbers are rounded to the output precision.
 pub fn toolpath(
     ws: &Workspace,
     path: &Path,
@@ -18,30 +30,32 @@ pub fn toolpath(
         model,
         lang,
         errors,
+        sweep_speed,
+        controller,
         ..
     } = top_model(ws, path, name)?;
     let name = model.name().to_string();
-    let tp = millpath_core::emit::toolpath(&model).map_err(|e| {
+    let tp = millpath_core::emit::toolpath(&model, &controller, sweep_speed).map_err(|e| {
         e.iter()
             .map(|d| d.message(lang))
             .collect::<Vec<_>>()
             .join("; ")
     })?;
-    let mut texts: std::collections::HashMap<PathBuf, crate::LineIndex> =
+    // each file's line index and lines, made once (a program has many elements per file)
+    let mut texts: std::collections::HashMap<PathBuf, (crate::LineIndex, Vec<String>)> =
         std::collections::HashMap::new();
     let mut source_json = |o: &Origin| -> serde_json::Value {
         match o {
             Origin::Span {
                 file, start, line, ..
             } => {
-                let idx = texts
-                    .entry(file.path.clone())
-                    .or_insert_with(|| ws.line_index(&ws.text(&file.path).unwrap_or_default()));
+                let (idx, lines) = texts.entry(file.path.clone()).or_insert_with(|| {
+                    let text = ws.text(&file.path).unwrap_or_default();
+                    let lines = text.lines().map(|l| l.trim().to_string()).collect();
+                    (ws.line_index(&text), lines)
+                });
                 let p = idx.pos(*start);
-                let text = ws
-                    .text(&file.path)
-                    .and_then(|t| t.lines().nth(p.line as usize).map(|l| l.trim().to_string()))
-                    .unwrap_or_default();
+                let text = lines.get(p.line as usize).cloned().unwrap_or_default();
                 json!({ "file": file.path.display().to_string(), "line": line - 1, "character": p.col, "label": format!("{}:{line}", file.name), "text": text })
             }
             Origin::Entity(e) => json!({
@@ -55,6 +69,11 @@ pub fn toolpath(
     };
     let (mut minx, mut miny, mut maxx, mut maxy) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
     let (mut minz, mut maxz) = (f64::INFINITY, f64::NEG_INFINITY);
+    let xyz = |p: millpath_core::geom::P3| [r3(p.x), r3(p.y), r3(p.z)];
+    // the sources of one element are shared: one JSON object per origin, referenced by index
+    let mut sources: Vec<serde_json::Value> = Vec::new();
+    let mut source_index: std::collections::HashMap<String, usize> =
+        std::collections::HashMap::new();
     let moves: Vec<serde_json::Value> = tp
         .moves
         .iter()
@@ -73,34 +92,53 @@ pub fn toolpath(
                 maxy = maxy.max(c.y + r);
             }
             if m.kind != "rapid" {
-                minz = minz.min(m.to.z);
-                maxz = maxz.max(m.to.z);
+                minz = minz.min(m.to.z).min(m.from.z);
+                maxz = maxz.max(m.to.z).max(m.from.z);
             }
+            let source = m.source.as_ref().map(|o| {
+                let key = format!("{o:?}");
+                *source_index.entry(key).or_insert_with(|| {
+                    sources.push(source_json(o));
+                    sources.len() - 1
+                })
+            });
             json!({
                 "kind": m.kind,
-                "from": [m.from.x, m.from.y, m.from.z],
-                "to": [m.to.x, m.to.y, m.to.z],
-                "depth": m.to.z,
-                "arc": m.arc.map(|(c, ccw)| json!({ "cx": c.x, "cy": c.y, "ccw": ccw })),
-                "source": m.source.as_ref().map(&mut source_json),
+                "from": xyz(m.from),
+                "to": xyz(m.to),
+                "arc": m.arc.map(|(c, ccw)| json!({ "cx": r3(c.x), "cy": r3(c.y), "ccw": ccw })),
+                "source": source,
+                "line": m.line,
+                "gcode": m.gcode,
+                "feed": r3(m.feed),
+                "t": r3(m.seconds),
             })
         })
         .collect();
     let probes: Vec<serde_json::Value> = tp
         .probes
         .iter()
-        .map(|(n, p)| json!({ "name": n, "x": p.x, "y": p.y }))
+        .map(|p| json!({ "name": p.name, "x": r3(p.pos.x), "y": r3(p.pos.y), "z": r3(p.z) }))
         .collect();
     if !minz.is_finite() {
         minz = 0.0;
         maxz = 0.0;
     }
+    let stats = &tp.stats;
+    let mut stat_lines = tp.stats.lines(lang).to_vec();
+    stat_lines.extend(stats.model_line(lang));
     Ok(json!({
         "path": name,
         "file": path.display().to_string(),
         "moves": moves,
+        "sources": sources,
         "probes": probes,
-        "bounds": { "minX": minx, "minY": miny, "maxX": maxx, "maxY": maxy, "minZ": minz, "maxZ": maxz },
+        "start": xyz(tp.start),
+        "tool": { "diameter": r3(model.params.o) },
+        "stock": { "top": r3(model.params.t) },
+        "stats": stat_lines,
+        "seconds": r3((stats.mill_min + stats.drill_min + stats.sweep_min) * 60.0),
+        "bounds": { "minX": r3(minx), "minY": r3(miny), "maxX": r3(maxx), "maxY": r3(maxy), "minZ": r3(minz), "maxZ": r3(maxz) },
         "warnings": errors,
     }))
 }
@@ -172,7 +210,7 @@ pub fn toolpath_svg(data: &serde_json::Value) -> String {
         } else {
             format!(
                 r#"stroke="{}" stroke-width="{stroke}""#,
-                colour(f(&m["depth"]))
+                colour(f(&m["to"][2]))
             )
         };
         if (tx - fx).hypot(ty - fy) < 1e-9 {

@@ -333,11 +333,14 @@ fn toolpath_for_the_view() {
     let tp = toolpath(&ws, &p(dir.path(), "2010.mpath"), None).unwrap();
     assert_eq!(tp["path"], "2010.1P");
     let moves = tp["moves"].as_array().unwrap();
-    let mills: Vec<&serde_json::Value> = moves.iter().filter(|m| m["kind"] == "mill").collect();
-    // two embedded slots, three passes each
+    // the horizontal cuts: two embedded slots, three passes each (plunges are `mill` too)
+    let mills: Vec<&serde_json::Value> = moves
+        .iter()
+        .filter(|m| m["kind"] == "mill" && m["from"][0] != m["to"][0])
+        .collect();
     assert_eq!(mills.len(), 6);
     // the slots' moves come from the part's mill line, in the part's file
-    let src = &mills[0]["source"];
+    let src = &tp["sources"][mills[0]["source"].as_u64().unwrap() as usize];
     assert!(
         src["file"].as_str().unwrap().ends_with("2001.mpath"),
         "{src}"
@@ -346,6 +349,19 @@ fn toolpath_for_the_view() {
     assert_eq!(src["text"], "mill (5, 0) -> (25, 0)");
     assert!(moves.iter().any(|m| m["kind"] == "rapid"));
     assert_eq!(tp["bounds"]["minZ"], -0.2);
+    // every move names its line of the written program, rounded numbers, a time
+    let preview = millpath_ide::preview(&ws, &p(dir.path(), "2010.mpath"), None).unwrap();
+    let lines: Vec<&str> = preview.gcode.lines().collect();
+    for m in moves {
+        let line = m["line"].as_u64().unwrap() as usize;
+        assert_eq!(lines[line - 1], m["gcode"], "{m}");
+        assert!(m["t"].as_f64().unwrap() >= 0.0);
+        for v in m["to"].as_array().unwrap() {
+            let s = v.to_string();
+            assert!(s.split('.').nth(1).is_none_or(|d| d.len() <= 3), "{s}");
+        }
+    }
+    assert_eq!(tp["stats"][0], preview.stats[0]);
     assert!(toolpath(&ws, &p(dir.path(), "2010.mpath"), Some("9.9Q")).is_err());
 }
 
@@ -450,4 +466,41 @@ fn order_warning_at_the_chosen_line_with_a_pinning_fix() {
     let pinned_swapped = swapped.replace("mill (0, 0) -> (20, 0)", "mill (0, 0) -> (20, 0)  N9997");
     ws.overlays.insert(path.clone(), pinned_swapped);
     assert!(analyze(&ws, &path).diagnostics.is_empty());
+}
+
+/// Every move of a chain reports its own segment, and the line of the written program.
+#[test]
+fn toolpath_moves_report_their_own_segment() {
+    let (dir, ws) = setup();
+    let src = "path 2040.1P {\n  start (0, 0)  M10x3 O2 T3 I1,5 B-0,2\n  end (0, 0)\n  mill (0, 0) -> (20, 0)\n  mill (20, 0) -> (20, 10)\n  mark (20, 10) -> (0, 0)  D2\n}\n";
+    std::fs::write(dir.path().join("2040.mpath"), src).unwrap();
+    let tp = toolpath(&ws, &p(dir.path(), "2040.mpath"), None).unwrap();
+    let sources = tp["sources"].as_array().unwrap();
+    let moves = tp["moves"].as_array().unwrap();
+    let line_of =
+        |m: &serde_json::Value| m["source"].as_u64().map(|i| &sources[i as usize]["line"]);
+    // the vertical branch (20,0)->(20,10) is line 5 (0-based 4), not the chain's first
+    let branch: Vec<&serde_json::Value> = moves
+        .iter()
+        .filter(|m| {
+            m["kind"] == "mill" && m["from"][0] == 20.0 && m["to"][0] == 20.0 && m["to"][1] == 10.0
+        })
+        .collect();
+    assert!(!branch.is_empty());
+    for m in &branch {
+        assert_eq!(line_of(m), Some(&serde_json::json!(4)), "{m}");
+    }
+    let marks: Vec<&serde_json::Value> = moves.iter().filter(|m| m["kind"] == "mark").collect();
+    assert!(!marks.is_empty());
+    for m in marks {
+        assert_eq!(line_of(m), Some(&serde_json::json!(5)), "{m}");
+    }
+    let preview = millpath_ide::preview(&ws, &p(dir.path(), "2040.mpath"), None).unwrap();
+    let lines: Vec<&str> = preview.gcode.lines().collect();
+    let l = branch[0]["line"].as_u64().unwrap() as usize;
+    assert!(
+        lines[l - 1].starts_with("G01 F300.000 X20.000 Y10.000"),
+        "{}",
+        lines[l - 1]
+    );
 }

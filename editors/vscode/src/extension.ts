@@ -159,7 +159,7 @@ export async function activate(ctx: vscode.ExtensionContext): Promise<void> {
       if (!editor || editor.document.languageId !== 'millpath') throw new Error('no MillPath document in the editor');
       if (!client) throw new Error('the language server is not running');
       const name = pathAtLine(editor.document.getText(), editor.selection.active.line);
-      const panel = vscode.window.createWebviewPanel('millpathToolpath', `Toolpath ${name ?? ''}`, vscode.ViewColumn.Beside, { enableScripts: true });
+      const panel = vscode.window.createWebviewPanel('millpathToolpath', `Toolpath ${name ?? ''}`, vscode.ViewColumn.Beside, { enableScripts: true, retainContextWhenHidden: true });
       panel.webview.html = fs.readFileSync(ctx.asAbsolutePath('media/toolpath.html'), 'utf8');
       const send = async () => {
         try {
@@ -169,10 +169,25 @@ export async function activate(ctx: vscode.ExtensionContext): Promise<void> {
           await panel.webview.postMessage({ type: 'toolpath', data: { error: (e as Error).message, moves: [] } });
         }
       };
+      const sourceUri = editor.document.uri.toString();
+      // the preview of this path, opened (beside) when a click wants its line shown
+      const revealGcode = async (line: number) => {
+        const u = previewUri(sourceUri, name);
+        let pe = vscode.window.visibleTextEditors.find((e) => e.document.uri.toString() === u);
+        if (!pe) {
+          open.add(u);
+          const pdoc = await vscode.workspace.openTextDocument(vscode.Uri.parse(u));
+          pe = await vscode.window.showTextDocument(pdoc, { viewColumn: vscode.ViewColumn.Beside, preview: false, preserveFocus: true });
+        }
+        const pos = new vscode.Position(Math.max(0, line - 1), 0);
+        pe.selection = new vscode.Selection(pos, pos);
+        pe.revealRange(new vscode.Range(pos, pos), vscode.TextEditorRevealType.InCenterIfOutsideViewport);
+      };
       panel.webview.onDidReceiveMessage(async (m) => {
         try {
           if (m?.type === 'ready') await send();
           if (m?.type === 'reveal' && isSourceRef(m.source)) {
+            if (typeof m.gcodeLine === 'number') await revealGcode(m.gcodeLine);
             const same = editor.document.uri.scheme !== 'file' || editor.document.uri.fsPath === m.source.file;
             const doc = same ? editor.document : await vscode.workspace.openTextDocument(vscode.Uri.file(m.source.file));
             const pos = new vscode.Position(m.source.line, m.source.character);
@@ -183,9 +198,24 @@ export async function activate(ctx: vscode.ExtensionContext): Promise<void> {
         }
       });
       const sub = vscode.workspace.onDidChangeTextDocument((e) => {
-        if (e.document.uri.toString() === editor.document.uri.toString()) void send();
+        if (e.document.uri.toString() === sourceUri) void send();
       });
-      panel.onDidDispose(() => sub.dispose());
+      // the cursor in the source (any file of the drawing) or in this path's G-code preview
+      // highlights the moves it made
+      const follow = vscode.window.onDidChangeTextEditorSelection((e) => {
+        const doc = e.textEditor.document, line = e.selections[0]?.active.line ?? 0;
+        if (doc.uri.scheme === PREVIEW_SCHEME) {
+          if (parsePreviewUri(doc.uri.toString(true))?.source === sourceUri) {
+            void panel.webview.postMessage({ type: 'highlight', gcodeLine: line + 1 });
+          }
+        } else if (doc.languageId === 'millpath' || /\.dxf$/i.test(doc.uri.fsPath)) {
+          void panel.webview.postMessage({ type: 'highlight', file: doc.uri.fsPath, line });
+        }
+      });
+      panel.onDidDispose(() => {
+        sub.dispose();
+        follow.dispose();
+      });
     }],
     ['millpath.dxfToText', async (uri?: vscode.Uri) => {
       const file = uri?.fsPath ?? (await vscode.window.showOpenDialog({ filters: { DXF: ['dxf', 'DXF'] } }))?.[0]?.fsPath;

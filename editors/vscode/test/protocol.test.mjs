@@ -56,8 +56,10 @@ test('initialize with the extension options, preview and toolpath', async () => 
   assert.equal(tp.path, '2020.1P');
   assert.ok(tp.moves.length > 5);
   const mill = tp.moves.find((m) => m.kind === 'mill');
-  assert.equal(mill.source.line, 5);
-  assert.equal(mill.source.text, 'mill (0, 0) -> (60, 0)');
+  assert.equal(tp.sources[mill.source].line, 5);
+  assert.equal(tp.sources[mill.source].text, 'mill (0, 0) -> (60, 0)');
+  // each move names its line of the program the preview shows
+  assert.equal(pv.gcode.split('\n')[mill.line - 1], mill.gcode);
   assert.equal(tp.probes.length, 2);
 
   await assert.rejects(conn.sendRequest('millpath/toolpath', { textDocument: { uri }, path: '9.9Q' }));

@@ -1,10 +1,11 @@
-// The toolpath page in a real browser (Debian's chromium driven by playwright-core): the
-// moves are drawn, and clicking a move reports its source element. Writes a screenshot to
-// test-artifacts/toolpath.png.
-import { test } from 'node:test';
+// The toolpath page (`millpath render --html`) in a real browser: Debian's chromium driven by
+// playwright-core, WebGL in software. Checks the drawn move count, zoom and orbit, playback
+// and clicking a move of a chain's second segment against the program `millpath compile`
+// writes. Screenshots go to target/artifacts/toolpath-*.png.
+import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { existsSync, mkdirSync, mkdtempSync, readFileSync } from 'node:fs';
+import { existsSync, mkdirSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, dirname } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
@@ -13,37 +14,175 @@ import { chromium } from 'playwright-core';
 const here = dirname(fileURLToPath(import.meta.url));
 const repo = join(here, '../../..');
 const bin = process.env.MILLPATH_BIN || join(repo, 'target/release/millpath');
-const browser = process.env.CHROMIUM || '/usr/bin/chromium';
+const browserPath = process.env.CHROMIUM || '/usr/bin/chromium';
+const artifacts = join(repo, 'target/artifacts');
+const skip = !existsSync(browserPath) && `no browser at ${browserPath}`;
+const CHROMIUM_ARGS = ['--headless', '--no-sandbox', '--enable-unsafe-swiftshader', '--use-angle=swiftshader', '--disable-quic', '--no-first-run',
+  '--disable-background-networking', '--disable-component-update', '--disable-sync'];
 
-test('the toolpath page draws every move and reports the clicked element', { skip: !existsSync(browser) && `no browser at ${browser}` }, async () => {
-  const dir = mkdtempSync(join(tmpdir(), 'millpath-toolpath-'));
-  const html = join(dir, 'toolpath.html');
-  execFileSync(bin, ['render', join(repo, 'examples/text/2010.mpath'), '--html', html], { stdio: 'ignore' });
-  const data = JSON.parse(/<script id="toolpath-data" type="application\/json">(.*?)<\/script>/s.exec(readFileSync(html, 'utf8'))[1].replace(/<\\\//g, '</'));
-  const b = await chromium.launch({
-    executablePath: browser,
-    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+// a chain of three segments: mill, a vertical branch, a mark back to the start
+const CHAIN = `path 2040.1P {
+  start (0, 0)  M10x3 O2 T3 I1,5 B-0,2
+  end (0, 0)
+  mill (0, 0) -> (20, 0)
+  mill (20, 0) -> (20, 10)
+  mark (20, 10) -> (0, 0)  D2
+}
+`;
+
+let browser, dir;
+before(async () => {
+  if (skip) return;
+  dir = mkdtempSync(join(tmpdir(), 'millpath-toolpath-'));
+  writeFileSync(join(dir, 'millpath.toml'), 'feed = 300\nsweep_speed = 1000\nsweep_height = 10\n');
+  writeFileSync(join(dir, '2040.mpath'), CHAIN);
+  mkdirSync(artifacts, { recursive: true });
+  browser = await chromium.launch({ executablePath: browserPath, args: CHROMIUM_ARGS });
+});
+after(async () => { if (browser) await browser.close(); });
+
+/// Renders `file` with millpath, opens the page; returns the page and the embedded data.
+async function open(file, viewport = { width: 1000, height: 700 }) {
+  const html = join(dir, `${Math.random().toString(36).slice(2)}.html`);
+  execFileSync(bin, ['render', file, '--html', html], { stdio: 'ignore' });
+  const json = /<script id="toolpath-data" type="application\/json">(.*?)<\/script>/s.exec(readFileSync(html, 'utf8'))[1];
+  const data = JSON.parse(json.replace(/<\\\//g, '</'));
+  const page = await browser.newPage({ viewport });
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  await page.goto(pathToFileURL(html).href);
+  await page.waitForFunction(() => document.body.dataset.ready, null, { timeout: 20000 });
+  assert.deepEqual(errors, []);
+  return { page, data };
+}
+
+const camera = (page) => page.evaluate(() => window.millpathToolpath.cameraMatrix());
+const differs = (a, b) => a.some((v, k) => Math.abs(v - b[k]) > 1e-6);
+
+test('every move of the program is drawn', { skip }, async () => {
+  const { page, data } = await open(join(repo, 'examples/text/2010.mpath'));
+  const drawn = Number(await page.evaluate(() => document.body.dataset.moves));
+  assert.equal(drawn, data.moves.length);
+  assert.ok(drawn > 20, `${drawn} moves`);
+  // the statistics' command count is the program's move count
+  assert.match(data.stats[4], new RegExp(`\\b${data.moves.length}$`));
+  assert.match(await page.locator('#stats').textContent(), /Milling length/);
+  // a numeric depth legend: the top and the bottom of the cuts in mm
+  const b = data.bounds;
+  assert.equal(b.minZ, -0.2);
+  assert.ok((await page.locator('#legend').textContent()).includes(`Z ${b.maxZ.toFixed(3)}${b.minZ.toFixed(3)} mm`));
+  await page.screenshot({ path: join(artifacts, 'toolpath-iso.png') });
+  await page.locator('[data-view="top"]').click();
+  await page.screenshot({ path: join(artifacts, 'toolpath-top.png') });
+  await page.locator('[data-view="front"]').click();
+  await page.screenshot({ path: join(artifacts, 'toolpath-front.png') });
+  await page.close();
+});
+
+test('zoom and orbit change the view', { skip }, async () => {
+  const { page } = await open(join(repo, 'examples/text/2010.mpath'));
+  const canvas = await page.locator('#stage > canvas').boundingBox();
+  const cx = canvas.x + canvas.width / 2, cy = canvas.y + canvas.height / 2;
+  const m0 = await camera(page);
+  const shot0 = await page.locator('#stage > canvas').screenshot();
+  await page.mouse.move(cx, cy);
+  await page.mouse.wheel(0, -400);
+  await page.waitForTimeout(200);
+  const m1 = await camera(page);
+  assert.ok(differs(m0, m1), 'the wheel zooms');
+  const shot1 = await page.locator('#stage > canvas').screenshot();
+  assert.ok(!shot0.equals(shot1), 'the zoomed picture differs');
+  // orbit: drag with the left button
+  await page.mouse.move(cx, cy);
+  await page.mouse.down();
+  await page.mouse.move(cx + 120, cy + 40, { steps: 8 });
+  await page.mouse.up();
+  await page.waitForTimeout(200);
+  const m2 = await camera(page);
+  assert.ok(differs(m1, m2), 'dragging orbits');
+  await page.locator('#stage > canvas').screenshot({ path: join(artifacts, 'toolpath-orbit.png') });
+  await page.close();
+});
+
+test('playback puts the tool where the program is at a given time', { skip }, async () => {
+  const { page, data } = await open(join(dir, '2040.mpath'));
+  // the time of every move, as the data gives it: the tool is halfway along a straight cut
+  // halfway through its time, and at its end at its end
+  const k = data.moves.findIndex((m) => m.kind === 'mill' && !m.arc && m.t > 0 && m.from[0] !== m.to[0]);
+  assert.ok(k > 0);
+  const start = data.moves.slice(0, k).reduce((s, m) => s + m.t, 0);
+  const m = data.moves[k];
+  const half = await page.evaluate((t) => { window.millpathToolpath.setTime(t); return window.millpathToolpath.toolPosition(); }, start + m.t / 2);
+  for (let a = 0; a < 3; a++) assert.ok(Math.abs(half[a] - (m.from[a] + m.to[a]) / 2) < 1e-3, `${half} vs ${m.from}→${m.to}`);
+  const end = await page.evaluate((t) => { window.millpathToolpath.setTime(t); return window.millpathToolpath.toolPosition(); }, start + m.t);
+  for (let a = 0; a < 3; a++) assert.ok(Math.abs(end[a] - m.to[a]) < 1e-3, `${end} vs ${m.to}`);
+  // the readout names the position, the feed and the line
+  const readout = await page.locator('#readout').textContent();
+  assert.match(readout, new RegExp(`X ${m.to[0].toFixed(3)} Y ${m.to[1].toFixed(3)}`));
+  // the play button runs the program to its end
+  const total = data.moves.reduce((s, mv) => s + mv.t, 0);
+  await page.selectOption('#speed', '1000');
+  await page.evaluate(() => window.millpathToolpath.setTime(0));
+  await page.locator('#play').click();
+  await page.waitForFunction((tt) => Number(document.body.dataset.time) >= tt - 1e-6, total, { timeout: 20000 });
+  const last = data.moves[data.moves.length - 1].to;
+  const pos = await page.evaluate(() => window.millpathToolpath.toolPosition());
+  for (let a = 0; a < 3; a++) assert.ok(Math.abs(pos[a] - last[a]) < 1e-3);
+  await page.close();
+});
+
+test('clicking a move of the second segment reports that segment and its G-code line', { skip }, async () => {
+  const { page, data } = await open(join(dir, '2040.mpath'));
+  const src = (m) => data.sources[m.source];
+  // the vertical branch (20,0)->(20,10): the chain's second segment, line 5 of the file
+  const i = data.moves.findIndex((m) => m.kind === 'mill' && m.from[0] === 20 && m.to[0] === 20 && m.to[1] === 10 && m.from[1] === 0);
+  assert.ok(i >= 0);
+  assert.equal(src(data.moves[i]).line, 4);
+  const [x, y] = await page.evaluate((k) => window.millpathToolpath.screenOf(k, 0.5), i);
+  const event = page.evaluate(() => new Promise((resolve) => window.addEventListener('millpath-select', (e) => resolve(e.detail), { once: true })));
+  await page.mouse.click(x, y);
+  const detail = await event;
+  assert.equal(detail.source.line, 4, JSON.stringify(detail));
+  assert.equal(detail.source.text, 'mill (20, 0) -> (20, 10)');
+  assert.equal(detail.gcodeLine, data.moves[detail.index].line);
+  // that line of the program `millpath compile` writes is the move to the branch's end
+  execFileSync(bin, ['compile', join(dir, '2040.mpath')], { stdio: 'ignore' });
+  const program = readFileSync(join(dir, '2040_Milling.gcode'), 'utf8').split('\n');
+  assert.match(program[detail.gcodeLine - 1], /^G01 .*X20\.000 Y10\.000/);
+  const info = await page.locator('#info').textContent();
+  assert.match(info, /2040\.mpath:5/);
+  assert.match(info, new RegExp(`G-code line ${detail.gcodeLine}: G01`));
+  assert.equal(await page.evaluate(() => document.body.dataset.highlighted), '1');
+  // the source → view direction: an element's line highlights all of its moves
+  const n = await page.evaluate(({ file }) => window.millpathToolpath.highlight({ file, line: 5 }).length, { file: src(data.moves[i]).file });
+  assert.equal(n, data.moves.filter((m) => src(m) && src(m).line === 5).length);
+  assert.ok(n >= 2, `${n} mark moves`);
+  await page.screenshot({ path: join(artifacts, 'toolpath-click.png') });
+  await page.close();
+});
+
+test('probe labels are sized in screen pixels', { skip }, async () => {
+  const { page, data } = await open(join(repo, 'examples/text/2020.mpath'));
+  assert.ok(data.probes.length > 0);
+  const label = page.locator('#labels span').first();
+  assert.equal(await label.textContent(), data.probes[0].name);
+  const box = await label.boundingBox();
+  assert.ok(box.height < 20, `label height ${box.height}px`);
+  await page.screenshot({ path: join(artifacts, 'toolpath-probes.png') });
+  await page.close();
+});
+
+test('inside VS Code the page takes the theme colours', { skip }, async () => {
+  const { page } = await open(join(repo, 'examples/text/2010.mpath'), { width: 400, height: 300 });
+  const corner = () => page.evaluate(() => {
+    const c = document.querySelector('#stage > canvas');
+    const g = c.getContext('webgl2') || c.getContext('webgl');
+    const px = new Uint8Array(4);
+    g.readPixels(2, 2, 1, 1, g.RGBA, g.UNSIGNED_BYTE, px);
+    return [...px.slice(0, 3)];
   });
-  try {
-    const page = await b.newPage({ viewport: { width: 900, height: 600 } });
-    await page.goto(pathToFileURL(html).href);
-    const count = await page.locator('svg .move').count();
-    assert.equal(count, data.moves.length);
-    assert.ok(count > 20, `${count} moves`);
-    assert.equal(await page.locator('svg .move.mill').count(), data.moves.filter((m) => m.kind === 'mill').length);
-    // a milling move of the embedded part: its source is the part's mill line
-    const i = data.moves.findIndex((m) => m.kind === 'mill');
-    const events = page.evaluate(() => new Promise((resolve) => window.addEventListener('millpath-select', (e) => resolve(e.detail), { once: true })));
-    await page.locator(`svg .move[data-i="${i}"]`).dispatchEvent('click');
-    const detail = await events;
-    assert.equal(detail.index, i);
-    assert.ok(detail.source.text.startsWith('mill (5, 0) -> (25, 0)'), detail.source.text);
-    assert.ok(detail.source.file.endsWith('2001.mpath'));
-    assert.match(await page.locator('#info').textContent(), /2001\.mpath:7/);
-    assert.equal(await page.locator('svg .move.selected').count(), 1);
-    mkdirSync(join(here, '../test-artifacts'), { recursive: true });
-    await page.screenshot({ path: join(here, '../test-artifacts/toolpath.png') });
-  } finally {
-    await b.close();
-  }
+  await page.evaluate(() => document.documentElement.style.setProperty('--vscode-editor-background', 'rgb(10, 60, 20)'));
+  await page.waitForTimeout(300);
+  assert.deepEqual(await corner(), [10, 60, 20]);
+  await page.close();
 });

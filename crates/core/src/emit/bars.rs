@@ -1,6 +1,6 @@
 //! The support profile of one pass along bar pieces (reference-output.md §8.2).
 
-use crate::emit::Emitter;
+use crate::emit::{Emitter, Shape};
 use crate::geom::Geom;
 
 impl Emitter<'_> {
@@ -23,6 +23,7 @@ impl Emitter<'_> {
         } else {
             pieces.iter().rev().map(Geom::reversed).collect()
         };
+        let shape = std::mem::replace(&mut self.shape, Shape::Bars);
         for (k, piece) in ordered.iter().enumerate() {
             if self.full {
                 break;
@@ -37,5 +38,6 @@ impl Emitter<'_> {
             };
             self.mill(piece, fr, to, th, feed, backtrack);
         }
+        self.shape = shape;
     }
 }

@@ -3,7 +3,7 @@
 use crate::args;
 use crate::diag::{Diagnostic, Msg};
 use crate::emit::chain_order::fast_order;
-use crate::emit::{bounded_passes, missing, Emitter, Frame, Skip, MAX_ITEMS};
+use crate::emit::{bounded_passes, missing, Emitter, Frame, Shape, Skip, MAX_ITEMS};
 use crate::front::drawing::Style;
 use crate::geom::{ge, lt, near, Geom, P2};
 use crate::model::*;
@@ -36,11 +36,17 @@ impl Emitter<'_> {
             geoms.push(s.geom.transform(&fr.t));
         }
         let th = h + p.t;
-        if ch.w.is_some() {
-            self.sweepless(fr, ch, &passes, &geoms, th)
+        // every move of a pass belongs to its own segment, not to the chain's first
+        let chain_source = self.source;
+        let seg_sources: Vec<u32> = ch.segs.iter().map(|s| self.add_source(&s.origin)).collect();
+        let r = if ch.w.is_some() {
+            self.sweepless(fr, ch, &passes, &geoms, th, &seg_sources)
         } else {
-            self.fast(fr, ch, &passes, &geoms, th)
-        }
+            self.fast(fr, ch, &passes, &geoms, th, &seg_sources)
+        };
+        self.source = chain_source;
+        self.shape = Shape::Mill;
+        r
     }
 
     pub(crate) fn fast(
@@ -50,6 +56,7 @@ impl Emitter<'_> {
         passes: &[Vec<f64>],
         geoms: &[Geom],
         th: f64,
+        seg_sources: &[u32],
     ) -> Result<(), Skip> {
         let p = &fr.model.params;
         let mut done_count = vec![0usize; passes.len()];
@@ -68,6 +75,7 @@ impl Emitter<'_> {
                 geoms[si].reversed()
             };
             let seg = &ch.segs[si];
+            self.enter_segment(seg, seg_sources[si]);
             self.safe_sweep(self.pos, g.start().with_z(z), th, s, seg.f, false);
             self.segment_pass(fr, seg, &g, forward, z, th);
         }
@@ -83,6 +91,7 @@ impl Emitter<'_> {
         passes: &[Vec<f64>],
         geoms: &[Geom],
         th: f64,
+        seg_sources: &[u32],
     ) -> Result<(), Skip> {
         let runs = passes.iter().map(Vec::len).max().unwrap_or(0);
         let chain_start = geoms[0].start();
@@ -121,6 +130,7 @@ impl Emitter<'_> {
                 break;
             }
             let seg = &ch.segs[si];
+            self.enter_segment(seg, seg_sources[si]);
             let g = if forward {
                 geoms[si]
             } else {
@@ -132,6 +142,16 @@ impl Emitter<'_> {
             self.segment_pass(fr, seg, &g, forward, z, th);
         }
         Ok(())
+    }
+
+    /// The moves pushed from now on belong to `seg`.
+    fn enter_segment(&mut self, seg: &ChainSeg, source: u32) {
+        self.source = Some(source);
+        self.shape = if seg.style == Style::Mark {
+            Shape::Mark
+        } else {
+            Shape::Mill
+        };
     }
 
     /// One pass of one chain segment (§7.4). `g` is already in pass direction.

@@ -27,7 +27,7 @@ pub mod toolpath;
 
 pub use dialect::{Controller, Dialect};
 pub use program::{check, check_for, generate, generate_for, Generated, Output};
-pub use toolpath::{toolpath, Move, Toolpath};
+pub use toolpath::{toolpath, Move, ProbePoint, Toolpath};
 
 /// Items (moves and comments) one program may hold: far beyond any real part, and a bound on
 /// the memory a hostile drawing can make the emitter take.
@@ -75,6 +75,29 @@ pub enum Kind {
     Comment,
 }
 
+/// What a cutting move makes (after the element it belongs to), for the toolpath view.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Shape {
+    #[default]
+    Mill,
+    Mark,
+    Bars,
+    Drill,
+    Helix,
+}
+
+impl Shape {
+    pub fn name(self) -> &'static str {
+        match self {
+            Shape::Mill => "mill",
+            Shape::Mark => "mark",
+            Shape::Bars => "bars",
+            Shape::Drill => "drill",
+            Shape::Helix => "helix",
+        }
+    }
+}
+
 #[derive(Debug, Clone)]
 pub struct Item {
     pub kind: Kind,
@@ -83,8 +106,10 @@ pub struct Item {
     pub feed: f64,
     /// Where a move goes (axes it does not name stay); for the toolpath view.
     pub target: Target,
-    /// Index into the emitter's element origins.
+    /// Index into the emitter's element origins (for chains: the segment's).
     pub source: Option<u32>,
+    /// What the move makes (cuts only; sweeps are rapids whatever this says).
+    pub shape: Shape,
 }
 
 /// The end of a move: the axes it sets, and for arcs the centre and direction.
@@ -154,6 +179,8 @@ pub(crate) struct Emitter<'a> {
     /// Origins of the elements emitted so far, and the current one.
     pub(crate) sources: Vec<Origin>,
     pub(crate) source: Option<u32>,
+    /// What the moves pushed now make.
+    pub(crate) shape: Shape,
     /// The controller the texts are written for (plunge feeds).
     pub(crate) ctl: Controller,
 }
@@ -196,6 +223,7 @@ impl<'a> Emitter<'a> {
             feed: 0.0,
             target: Target::default(),
             source,
+            shape: self.shape,
         });
     }
     pub(crate) fn push(
@@ -217,6 +245,7 @@ impl<'a> Emitter<'a> {
             feed,
             target: Target::default(),
             source,
+            shape: self.shape,
         });
     }
     fn at_capacity(&mut self) -> bool {
@@ -235,6 +264,11 @@ impl<'a> Emitter<'a> {
         );
         self.to(Target::xy(x, y));
     }
+    /// Records an element's origin; its index for [`Item::source`].
+    pub(crate) fn add_source(&mut self, o: &Origin) -> u32 {
+        self.sources.push(o.clone());
+        self.sources.len() as u32 - 1
+    }
     /// Sets where the last move goes.
     pub(crate) fn to(&mut self, t: Target) {
         if let Some(it) = self.items.last_mut() {
@@ -244,8 +278,12 @@ impl<'a> Emitter<'a> {
 
     pub(crate) fn emit_model(&mut self, fr: Frame) {
         for e in &fr.model.elements {
-            self.sources.push(element_origin(e).clone());
-            self.source = Some(self.sources.len() as u32 - 1);
+            self.source = Some(self.add_source(element_origin(e)));
+            self.shape = match e {
+                Element::Drill(_) => Shape::Drill,
+                Element::Helix(_) => Shape::Helix,
+                _ => Shape::Mill,
+            };
             let r = match e {
                 Element::Chain(c) => self.chain(fr, c),
                 Element::Drill(d) => self.drill(fr, d),
@@ -369,6 +407,7 @@ pub(crate) fn emit(model: &Model, dry: bool, ctl: &Controller) -> Result<Emitted
         dry,
         sources: Vec::new(),
         source: None,
+        shape: Shape::Mill,
         ctl: *ctl,
     };
     em.comment(2, || format!("Model {}", model.label()));

@@ -36,6 +36,7 @@ mod tests {
             feed: 1.0,
             target: Target::default(),
             source: None,
+            shape: Default::default(),
         };
         let mut v = vec![
             mk(Kind::HSweep, "G00 X1 Y1"),

@@ -97,6 +97,8 @@ enum Bucket {
 
 /// One move as the planner sees it (mm, mm/s, mm/s²).
 struct Mv {
+    /// Index of the item.
+    item: usize,
     bucket: Bucket,
     rapid: bool,
     len: f64,
@@ -131,7 +133,7 @@ fn moves(items: &[Item], start: P3, m: &Machine) -> Vec<Mv> {
     };
     let mut pos = start;
     let mut out = Vec::new();
-    for it in items {
+    for (item, it) in items.iter().enumerate() {
         let (bucket, rapid) = match it.kind {
             Kind::Mill => (Bucket::Mill, false),
             Kind::Drill => (Bucket::Drill, false),
@@ -150,6 +152,7 @@ fn moves(items: &[Item], start: P3, m: &Machine) -> Vec<Mv> {
                 let len = dot(d, d).sqrt();
                 let u = unit(d, len);
                 Mv {
+                    item,
                     bucket,
                     rapid,
                     len,
@@ -182,6 +185,7 @@ fn moves(items: &[Item], start: P3, m: &Machine) -> Vec<Mv> {
                 let a = plane(&amax).min(climb(&amax));
                 let centripetal = (amax.x.min(amax.y) * r).sqrt();
                 Mv {
+                    item,
                     bucket,
                     rapid,
                     len,
@@ -246,6 +250,29 @@ pub fn trapezoid(l: f64, v: f64, a: f64, v0: f64, v1: f64) -> f64 {
 
 /// The estimated times of a program's items, the tool starting at rest at `start`.
 pub fn plan(items: &[Item], start: P3, m: &Machine) -> Times {
+    let mut times = Times::default();
+    for (_, bucket, t) in planned(items, start, m) {
+        match bucket {
+            Bucket::Mill => times.mill += t,
+            Bucket::Drill => times.drill += t,
+            Bucket::Sweep => times.sweep += t,
+        }
+    }
+    times
+}
+
+/// The estimated time (seconds) of every item, the tool starting at rest at `start`
+/// (comments and moves without length: 0).
+pub fn item_times(items: &[Item], start: P3, m: &Machine) -> Vec<f64> {
+    let mut out = vec![0.0; items.len()];
+    for (item, _, t) in planned(items, start, m) {
+        out[item] = t;
+    }
+    out
+}
+
+/// The time of each planned move with its item and statistics line, in program order.
+fn planned(items: &[Item], start: P3, m: &Machine) -> Vec<(usize, Bucket, f64)> {
     let mv = moves(items, start, m);
     let n = mv.len();
     // w[k]: the highest speed at the start of move k (w[n]: the end of the program, at rest)
@@ -259,17 +286,12 @@ pub fn plan(items: &[Item], start: P3, m: &Machine) -> Times {
         };
         w[k] = corner.min(reach);
     }
-    let mut times = Times::default();
     let mut entry = 0.0;
+    let mut out = Vec::with_capacity(n);
     for (k, m) in mv.iter().enumerate() {
         let exit = w[k + 1].min((entry * entry + 2.0 * m.a * m.len).sqrt());
-        let t = trapezoid(m.len, m.v, m.a, entry, exit);
-        match m.bucket {
-            Bucket::Mill => times.mill += t,
-            Bucket::Drill => times.drill += t,
-            Bucket::Sweep => times.sweep += t,
-        }
+        out.push((m.item, m.bucket, trapezoid(m.len, m.v, m.a, entry, exit)));
         entry = exit;
     }
-    times
+    out
 }

@@ -1,6 +1,10 @@
-//! The moves of a program as the machine makes them, for the toolpath view.
+//! The moves of a program as the machine makes them, for the toolpath view: one move per
+//! G-code line that moves, with what it makes, its source segment, its line in the written
+//! program and its time in the statistics' model.
 
 use crate::diag::{Diagnostic, Origin};
+use crate::emit::stats::Stats;
+use crate::emit::timing::item_times;
 use crate::emit::Kind;
 use crate::emit::{emit, Controller};
 use crate::geom::{P2, P3};
@@ -9,38 +13,68 @@ use crate::model::*;
 /// One move of the toolpath view.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Move {
-    /// `rapid`, `mill` or `drill`.
+    /// `rapid`, or what the cut makes: `mill`, `mark`, `bars`, `drill`, `helix`.
     pub kind: &'static str,
     pub from: P3,
     pub to: P3,
     /// Centre and direction (counter-clockwise?) of arcs.
     pub arc: Option<(P2, bool)>,
-    /// The element the move comes from.
+    /// The element (for chains: the segment) the move comes from.
     pub source: Option<Origin>,
+    /// Its line (1-based) in the milling program (the clean program when there are probes).
+    pub line: usize,
+    /// Feed in mm/min (rapids: the sweep speed of the time estimate).
+    pub feed: f64,
+    /// Its time in seconds as the statistics estimate it.
+    pub seconds: f64,
+    /// The text of its line.
+    pub gcode: String,
 }
 
-/// The moves of a path as the machine makes them (after the optimizer), and its probes.
+/// A probe of the probing program: name, position and the height it touches at.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ProbePoint {
+    pub name: String,
+    pub pos: P2,
+    pub z: f64,
+}
+
+/// The moves of a path as the machine makes them (after the optimizer), its probes and
+/// statistics.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Toolpath {
     pub moves: Vec<Move>,
-    pub probes: Vec<(String, P2)>,
+    pub probes: Vec<ProbePoint>,
+    /// Where the program starts (above the origin at the start height).
+    pub start: P3,
+    pub stats: Stats,
 }
 
-/// The toolpath of a top-level model.
-pub fn toolpath(model: &Model) -> Result<Toolpath, Vec<Diagnostic>> {
-    let e = emit(model, true, &Controller::reference())?;
-    let mut pos = P3 {
+/// The toolpath of a top-level model as `ctl` writes it, with the times of the statistics
+/// (`sweep_speed` in mm/min for the reference's model).
+pub fn toolpath(
+    model: &Model,
+    ctl: &Controller,
+    sweep_speed: f64,
+) -> Result<Toolpath, Vec<Diagnostic>> {
+    let e = emit(model, false, ctl)?;
+    let start = P3 {
         x: 0.0,
         y: 0.0,
         z: e.sx,
     };
+    let stats = Stats::timed(&e.items, sweep_speed, start, ctl.machine.as_ref());
+    let planned = ctl.machine.as_ref().map(|m| item_times(&e.items, start, m));
+    // the body follows the prologue line for line (one line per item, as `generate` writes)
+    let first_line = ctl.prologue("", "", model, e.sx, true).len() + 1;
+    let mut pos = start;
     let mut moves = Vec::new();
-    for it in &e.items {
+    for (i, it) in e.items.iter().enumerate() {
+        let rapid = matches!(it.kind, Kind::HSweep | Kind::VSweep);
         let kind = match it.kind {
-            Kind::HSweep | Kind::VSweep => "rapid",
-            Kind::Mill => "mill",
-            Kind::Drill => "drill",
             Kind::Comment => continue,
+            _ if rapid => "rapid",
+            _ => it.shape.name(),
         };
         let t = it.target;
         let to = P3 {
@@ -48,20 +82,39 @@ pub fn toolpath(model: &Model) -> Result<Toolpath, Vec<Diagnostic>> {
             y: t.y.unwrap_or(pos.y),
             z: t.z.unwrap_or(pos.z),
         };
-        let source = it.source.and_then(|i| e.sources.get(i as usize).cloned());
+        let feed = if rapid { sweep_speed } else { it.feed };
+        let seconds = match &planned {
+            Some(times) => times[i],
+            // the reference's model: length / F · 1.4
+            None if feed > 0.0 => it.len / feed * 1.4 * 60.0,
+            None => 0.0,
+        };
         moves.push(Move {
             kind,
             from: pos,
             to,
             arc: t.arc,
-            source,
+            source: it.source.and_then(|k| e.sources.get(k as usize).cloned()),
+            line: first_line + i,
+            feed,
+            seconds,
+            gcode: it.text.clone(),
         });
         pos = to;
     }
     let probes = e
         .probes
         .iter()
-        .map(|p| (p.name.clone(), p.placed.pos))
+        .map(|p| ProbePoint {
+            name: p.name.clone(),
+            pos: p.placed.pos,
+            z: p.placed.height(),
+        })
         .collect();
-    Ok(Toolpath { moves, probes })
+    Ok(Toolpath {
+        moves,
+        probes,
+        start,
+        stats,
+    })
 }

@@ -185,8 +185,36 @@ local function plugin_root()
   return vim.fn.fnamemodify(src, ':p:h:h:h')
 end
 
---- Opens the toolpath view of the path under the cursor in the browser (the page of
---- editors/toolpath with the data of the language server's millpath/toolpath request).
+--- Jumps to what a click on the page names: the element's line in its file, and the move's
+--- line in the G-code preview when one is open.
+local function reveal(src, msg)
+  local s = msg.source
+  if type(s) == 'table' and type(s.file) == 'string' and type(s.line) == 'number' then
+    local win = vim.fn.bufwinid(src)
+    if win ~= -1 then vim.api.nvim_set_current_win(win) end
+    if vim.api.nvim_buf_get_name(src) ~= s.file then
+      vim.cmd('edit ' .. vim.fn.fnameescape(s.file))
+    elseif win == -1 then
+      vim.api.nvim_set_current_buf(src)
+    end
+    local last = vim.api.nvim_buf_line_count(0)
+    vim.api.nvim_win_set_cursor(0, { math.min(s.line + 1, last), s.character or 0 })
+  end
+  local pbuf = vim.b[src].millpath_preview
+  local line = tonumber(msg.gcodeLine)
+  if line and pbuf and vim.api.nvim_buf_is_valid(pbuf) then
+    local pwin = vim.fn.bufwinid(pbuf)
+    if pwin ~= -1 then
+      vim.api.nvim_win_set_cursor(pwin, { math.min(line, vim.api.nvim_buf_line_count(pbuf)), 0 })
+    end
+  end
+  if M.on_reveal then M.on_reveal(msg) end
+end
+
+--- Opens the toolpath view of the path under the cursor in the browser: a local server
+--- (millpath.toolpath_server) serves the page of editors/toolpath, which follows the buffer
+--- (new data after every edit), highlights the moves of the element under the cursor and
+--- reports clicks back (the cursor jumps to the element and to its G-code line).
 function M.toolpath(name)
   local src, client
   src, client, name = current(name)
@@ -199,28 +227,64 @@ function M.toolpath(name)
     vim.notify('millpath: toolpath page not found at ' .. page, vim.log.levels.ERROR)
     return
   end
-  local params = { textDocument = { uri = vim.uri_from_bufnr(src) }, path = name }
-  local function handler(err, result)
-    if err then
-      vim.notify('millpath: ' .. (err.message or vim.inspect(err)), vim.log.levels.ERROR)
-      return
+  local server = M.toolpath_servers[src]
+  if not server then
+    server = require('millpath.toolpath_server').start(table.concat(template, '\n'), function(msg)
+      reveal(src, msg)
+    end)
+    M.toolpath_servers[src] = server
+    local function refresh()
+      local params = { textDocument = { uri = vim.uri_from_bufnr(src) }, path = name }
+      request(client, 'millpath/toolpath', params, function(err, result)
+        if err then
+          server:set_data(vim.json.encode({ error = err.message or vim.inspect(err), moves = {} }))
+        else
+          server:set_data(vim.json.encode(result))
+        end
+      end, src)
     end
-    local json = vim.json.encode(result):gsub('</', '<\\/')
-    local html = table.concat(template, '\n'):gsub(
-      '<script id="toolpath%-data" type="application/json">null</script>',
-      function() return '<script id="toolpath-data" type="application/json">' .. json .. '</script>' end
-    )
-    local out = vim.fn.tempname() .. '.html'
-    vim.fn.writefile(vim.split(html, '\n', { plain = true }), out)
-    M.last_toolpath = out
-    if vim.ui and vim.ui.open then
-      vim.ui.open(out)
-    else
-      vim.fn.jobstart({ 'xdg-open', out }, { detach = true })
+    server.refresh = refresh
+    local pending = false
+    vim.api.nvim_buf_attach(src, false, {
+      on_lines = function()
+        if M.toolpath_servers[src] ~= server then
+          return true
+        end
+        if not pending then
+          pending = true
+          vim.defer_fn(function()
+            pending = false
+            refresh()
+          end, 150)
+        end
+      end,
+    })
+    local group = vim.api.nvim_create_augroup('millpath_toolpath_' .. src, { clear = true })
+    vim.api.nvim_create_autocmd({ 'CursorMoved', 'CursorMovedI' }, {
+      group = group,
+      callback = function(ev)
+        if vim.bo[ev.buf].filetype == 'millpath' then
+          server:set_highlight(vim.api.nvim_buf_get_name(ev.buf), vim.api.nvim_win_get_cursor(0)[1] - 1)
+        end
+      end,
+    })
+    local function stop()
+      server:stop()
+      M.toolpath_servers[src] = nil
     end
+    vim.api.nvim_create_autocmd('BufWipeout', { group = group, buffer = src, callback = stop })
+    vim.api.nvim_create_autocmd('VimLeavePre', { group = group, callback = stop })
   end
-  request(client, 'millpath/toolpath', params, handler, src)
+  server.refresh()
+  M.last_toolpath = server.url
+  if vim.ui and vim.ui.open then
+    vim.ui.open(server.url)
+  else
+    vim.fn.jobstart({ 'xdg-open', server.url }, { detach = true })
+  end
+  return server
 end
+M.toolpath_servers = {}
 
 --- Opens a DXF drawing as MillPath text in a new buffer.
 function M.dxf_to_text(file)

@@ -41,7 +41,7 @@ async function until(f, ms = 15000, step = 250) {
 const browser = await chromium.launch({
   executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
   args: [
-    '--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
+    '--headless', '--no-sandbox', '--disable-gpu', '--enable-unsafe-swiftshader', '--disable-quic', '--no-first-run', '--disable-background-networking',
     '--disable-component-update', '--disable-sync', '--disable-dev-shm-usage',
   ],
 });
@@ -287,30 +287,65 @@ try {
     return `G01 Z moves before: ${z(before)}; after: ${z(after)}`;
   });
 
-  await check('Show Toolpath draws the moves and a click reveals the source line', 'toolpath', async () => {
+  await check('Show Toolpath draws the moves, follows the cursor and a click reveals the source and G-code lines', 'toolpath', async () => {
     await openFile('2010.mpath');
     await goTo(6, 3);
     await palette('MillPath: Show Toolpath');
+    // the page runs in the webview's inner frame
     const frame = await until(async () => {
       for (const f of page.frames()) {
-        if ((await f.locator('svg .move.mill').count().catch(() => 0)) > 0) return f;
+        if (Number(await f.evaluate(() => document.body?.dataset.moves ?? 0).catch(() => 0)) > 0) return f;
       }
       return undefined;
     }, 30000);
     expect(frame, 'no webview frame with toolpath moves');
-    const moves = await frame.locator('svg .move').count();
+    const moves = Number(await frame.evaluate(() => document.body.dataset.moves));
     await page.screenshot({ path: join(artifacts, 'vscode-toolpath-view.png') });
-    await frame.locator('svg .move.mill').first().dispatchEvent('click');
-    const info = norm(await frame.locator('#info').innerText());
-    const m = /(\S+\.mpath):(\d+)/.exec(info);
-    expect(m, `info: ${info}`);
+    // the cursor on the mark line (line 8) of the source beside highlights that element's moves
+    await palette('View: Focus First Editor Group');
+    await sleep(300);
+    await goTo(8, 3);
+    const highlighted = await until(async () => {
+      const n = Number(await frame.evaluate(() => document.body.dataset.highlighted ?? 0));
+      return n > 0 && n;
+    }, 15000);
+    expect(highlighted, 'moving the cursor to the mark line highlighted no moves');
+    await page.screenshot({ path: join(artifacts, 'vscode-toolpath-highlight.png') });
+    // a real click on a move of the embedded slot reveals its line in the part's file
+    // (2001.mpath, another file than the one the cursor is in) and the move's G-code line
+    const target = await frame.evaluate(() => {
+      const w = window.millpathToolpath;
+      const data = JSON.parse(JSON.stringify(w.data()));
+      const src = (m) => data.sources[m.source];
+      const i = data.moves.findIndex((m) => m.kind === 'mill' && m.from[0] !== m.to[0] && src(m).file.endsWith('2001.mpath'));
+      return { i, xy: w.screenOf(i, 0.5), line: src(data.moves[i]).line, gcodeLine: data.moves[i].line };
+    });
+    expect(target.i >= 0, 'no move of the slot');
+    const box = await (await frame.frameElement()).boundingBox();
+    await page.mouse.click(box.x + target.xy[0], box.y + target.xy[1]);
     const shown = await until(async () => {
-      const active = await page.locator('.editor-group-container .tab.active').allInnerTexts();
       const sel = await selection();
-      return active.some((t) => t.includes(m[1])) && sel.includes(`Ln ${m[2]},`) && sel;
+      const active = await page.locator('.editor-group-container.active .tab.active').allInnerTexts();
+      return active.some((t) => t.includes('2001.mpath')) && sel.includes(`Ln ${target.line + 1},`) && `2001.mpath ${sel}`;
     }, 15000);
     expect(shown, `after the click: ${await selection()}, tabs ${await page.locator('.tab.active').allInnerTexts()}`);
-    return `${moves} moves; click revealed ${m[1]} ${shown}`;
+    const preview = await until(async () => {
+      const t = await editorText('2010.1P.gcode').catch(() => '');
+      return t.length > 0 && t;
+    }, 15000);
+    expect(preview, 'the G-code preview did not open');
+    // the cursor in the G-code preview highlights the moves of the element that wrote that line
+    const mark = await frame.evaluate(() => {
+      const d = window.millpathToolpath.data();
+      const m = d.moves.find((mv) => mv.kind === 'mark');
+      return { line: m.line, count: d.moves.filter((mv) => mv.source === m.source).length };
+    });
+    await page.locator('.tab[aria-label*="2010.1P.gcode"]').first().click();
+    await sleep(300);
+    await goTo(mark.line, 1);
+    const fromPreview = await until(async () => Number(await frame.evaluate(() => document.body.dataset.highlighted ?? 0)) === mark.count, 15000);
+    expect(fromPreview, `the cursor on G-code line ${mark.line} highlighted ${await frame.evaluate(() => document.body.dataset.highlighted)} moves, not the mark's ${mark.count}`);
+    return `${moves} moves drawn; cursor on line 8 highlighted ${highlighted}; click revealed ${shown}, G-code line ${target.gcodeLine}; cursor on G-code line ${mark.line} highlighted ${mark.count}`;
   });
 
   await check('Open DXF as Text opens the drawing as a MillPath text buffer', 'dxf-as-text', async () => {
