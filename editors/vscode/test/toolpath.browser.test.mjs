@@ -186,3 +186,20 @@ test('inside VS Code the page takes the theme colours', { skip }, async () => {
   assert.deepEqual(await corner(), [10, 60, 20]);
   await page.close();
 });
+
+test('the title says when placeholder machine settings are in use', { skip }, async () => {
+  // the language server's data carries `warnings` when millpath.toml lacks the machine
+  // settings (`render` refuses then, as `compile` does): the page shows them in its title
+  const html = join(dir, 'placeholder.html');
+  execFileSync(bin, ['render', join(dir, '2040.mpath'), '--html', html], { stdio: 'ignore' });
+  const warning = 'missing machine settings: feed (placeholder F150)';
+  writeFileSync(html, readFileSync(html, 'utf8').replace('"warnings":[]', `"warnings":[${JSON.stringify(warning)}]`));
+  const page = await browser.newPage();
+  await page.goto(pathToFileURL(html).href);
+  await page.waitForFunction(() => document.body.dataset.ready, null, { timeout: 20000 });
+  assert.match(await page.locator('#title').textContent(), /⚠ missing machine settings: feed/);
+  await page.close();
+  const { page: plain } = await open(join(dir, '2040.mpath'));
+  assert.doesNotMatch(await plain.locator('#title').textContent(), /⚠/);
+  await plain.close();
+});
