@@ -7,7 +7,12 @@ pub(crate) fn decode_value_into(enc: &'static Encoding, raw: &[u8], out: &mut St
     // ASCII reads the same in every ASCII-compatible code page (and has no byte order mark)
     if enc.is_ascii_compatible() {
         if let Some(s) = std::str::from_utf8(raw).ok().filter(|s| s.is_ascii()) {
-            decode_unicode_escapes_into(s, out);
+            if out.is_empty() && !raw.contains(&b'\\') {
+                // the usual name or text: one allocation of the right size
+                *out = s.to_owned();
+            } else {
+                decode_unicode_escapes_into(s, out);
+            }
             return;
         }
     }

@@ -234,7 +234,41 @@ fn bad_number(p: &Pair, s: &str) -> DxfError {
     }
 }
 
+/// Plain decimals (`-12.375`: a sign, at most 15 digits with a point between two of them) as
+/// `str::parse` reads them: the digits and the power of ten are both exact doubles, so the one
+/// division rounds once, correctly (Clinger's fast path). `None` for anything else.
+fn plain_decimal(v: &[u8]) -> Option<f64> {
+    const POW10: [f64; 16] = [
+        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+    ];
+    let v = v.trim_ascii();
+    let (neg, body) = match v {
+        [b'-', rest @ ..] => (true, rest),
+        _ => (false, v),
+    };
+    let (mut m, mut digits, mut point) = (0u64, 0usize, None);
+    for &c in body {
+        match c {
+            b'0'..=b'9' if digits < 15 => {
+                m = m * 10 + u64::from(c - b'0');
+                digits += 1;
+            }
+            b'.' if point.is_none() && digits > 0 => point = Some(digits),
+            _ => return None,
+        }
+    }
+    let frac = digits - point.unwrap_or(digits);
+    if digits == 0 || point == Some(digits) {
+        return None;
+    }
+    let x = m as f64 / POW10[frac];
+    Some(if neg { -x } else { x })
+}
+
 pub(crate) fn num(p: &Pair) -> Result<f64, DxfError> {
+    if let Some(x) = plain_decimal(p.value) {
+        return Ok(x);
+    }
     let s = raw_str(p.value);
     s.parse::<f64>().map_err(|_| bad_number(p, &s))
 }
@@ -249,6 +283,64 @@ pub(crate) fn int(p: &Pair) -> Result<i32, DxfError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn plain_decimals_read_as_str_parse_reads_them() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let alphabet = b"0123456789.-+e \x0b";
+        for i in 0..400_000 {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            let mut r = seed;
+            let len = (seed % 19) as usize;
+            let s: Vec<u8> = (0..len)
+                .map(|_| {
+                    r = r
+                        .wrapping_mul(6364136223846793005)
+                        .wrapping_add(1442695040888963407);
+                    // mostly digits
+                    let k = (r >> 33) as usize;
+                    if i % 2 == 0 || k % 4 != 0 {
+                        b'0' + (k % 10) as u8
+                    } else {
+                        alphabet[k % alphabet.len()]
+                    }
+                })
+                .collect();
+            let text = std::str::from_utf8(&s).unwrap();
+            let std = text.trim().parse::<f64>().ok();
+            if let Some(x) = plain_decimal(&s) {
+                assert_eq!(Some(x.to_bits()), std.map(f64::to_bits), "{text:?}");
+            }
+        }
+        for t in [
+            "0.1",
+            "-0",
+            "-0.0",
+            "123456789012345",
+            "0.00000000000001",
+            "9.99999999999999",
+        ] {
+            assert_eq!(
+                plain_decimal(t.as_bytes()).map(f64::to_bits),
+                t.parse::<f64>().ok().map(f64::to_bits)
+            );
+        }
+        for t in [
+            "1.",
+            ".5",
+            "1234567890123456",
+            "0.000000000000001",
+            "1e5",
+            "+1",
+            "1.2.3",
+            "-",
+            "",
+        ] {
+            assert_eq!(plain_decimal(t.as_bytes()), None, "{t}");
+        }
+    }
 
     /// The pairs and `raw_str` of every value match the lossy decoding of the whole file.
     #[test]
