@@ -301,7 +301,7 @@ mod tests {
                         .wrapping_add(1442695040888963407);
                     // mostly digits
                     let k = (r >> 33) as usize;
-                    if i % 2 == 0 || k % 4 != 0 {
+                    if i % 2 == 0 || k & 3 != 0 {
                         b'0' + (k % 10) as u8
                     } else {
                         alphabet[k % alphabet.len()]
