@@ -1,81 +1,23 @@
-//! Decoding: the file to text, code pages and `\U+XXXX` escapes.
+//! Decoding of kept string values: code pages and `\U+XXXX` escapes.
 
 use encoding_rs::Encoding;
-use std::borrow::Cow;
 
-/// A file as text, decoded once: borrowed when the file is valid UTF-8 (every ASCII file
-/// is), otherwise a copy with each invalid sequence replaced by U+FFFD, exactly as
-/// [`String::from_utf8_lossy`] does. [`FileText::raw`] gives back the file's bytes of any
-/// part of the text, for code-page decoding.
-pub(crate) struct FileText<'a> {
-    pub(crate) text: Cow<'a, str>,
-    bytes: &'a [u8],
-    /// For each U+FFFD put in: its offset in `text`, and the end of the bytes it replaces.
-    replaced: Vec<(usize, usize)>,
-}
-
-impl<'a> FileText<'a> {
-    pub(crate) fn new(bytes: &'a [u8]) -> Self {
-        let mut replaced = Vec::new();
-        let text = match std::str::from_utf8(bytes) {
-            Ok(text) => Cow::Borrowed(text),
-            // `from_utf8_lossy`, but with the validator's fast path for the long valid runs
-            // (code-page files have a few high bytes, in layer names and texts)
-            Err(_) => {
-                let mut out = String::with_capacity(bytes.len() + 16);
-                let mut pos = 0;
-                while pos < bytes.len() {
-                    let (valid, bad_end) = match std::str::from_utf8(&bytes[pos..]) {
-                        Ok(valid) => (valid, None),
-                        Err(e) => {
-                            let valid_end = pos + e.valid_up_to();
-                            let bad_end = e.error_len().map_or(bytes.len(), |n| valid_end + n);
-                            // valid by the error's word; checked again, as we use no `unsafe`
-                            let valid = std::str::from_utf8(&bytes[pos..valid_end]).unwrap_or("");
-                            (valid, Some(bad_end))
-                        }
-                    };
-                    out.push_str(valid);
-                    let Some(bad_end) = bad_end else { break };
-                    replaced.push((out.len(), bad_end));
-                    out.push(char::REPLACEMENT_CHARACTER);
-                    pos = bad_end;
-                }
-                Cow::Owned(out)
+/// A kept string value: decoded with the file's code page, then `\U+XXXX` escapes.
+pub(crate) fn decode_value_into(enc: &'static Encoding, raw: &[u8], out: &mut String) {
+    // ASCII reads the same in every ASCII-compatible code page (and has no byte order mark)
+    if enc.is_ascii_compatible() {
+        if let Some(s) = std::str::from_utf8(raw).ok().filter(|s| s.is_ascii()) {
+            if out.is_empty() && !raw.contains(&b'\\') {
+                // the usual name or text: one allocation of the right size
+                *out = s.to_owned();
+            } else {
+                decode_unicode_escapes_into(s, out);
             }
-        };
-        FileText {
-            text,
-            bytes,
-            replaced,
+            return;
         }
     }
-
-    /// The file's bytes of `s`, a part of [`FileText::text`] that starts and ends at
-    /// neither end of a replacement (as a line does).
-    pub(crate) fn raw<'s>(&'s self, s: &'s str) -> &'s [u8] {
-        if self.replaced.is_empty() || !s.contains(char::REPLACEMENT_CHARACTER) {
-            // nothing replaced in `s`: its text is its bytes
-            return s.as_bytes();
-        }
-        let start = (s.as_ptr() as usize).wrapping_sub(self.text.as_ptr() as usize);
-        debug_assert!(start <= self.text.len(), "not a part of the text");
-        let (from, to) = (self.raw_offset(start), self.raw_offset(start + s.len()));
-        self.bytes.get(from..to).unwrap_or(s.as_bytes())
-    }
-
-    /// The offset in the file of the text offset `x`.
-    fn raw_offset(&self, x: usize) -> usize {
-        let len = char::REPLACEMENT_CHARACTER.len_utf8();
-        match self.replaced.partition_point(|&(t, _)| t + len <= x) {
-            0 => x,
-            // the bytes after a replacement are the text after it
-            n => {
-                let (t, bad_end) = self.replaced[n - 1];
-                bad_end + (x - (t + len))
-            }
-        }
-    }
+    let (s, _, _) = enc.decode(raw);
+    decode_unicode_escapes_into(&s, out);
 }
 
 /// Picks the decoder for string values: AC1021 and later are UTF-8, older files use
@@ -222,50 +164,6 @@ mod tests {
                 decode_unicode_escapes_chars(s),
                 "{s:?}"
             );
-        }
-    }
-
-    #[test]
-    fn file_text_is_lossy_utf8_and_maps_back_to_the_bytes() {
-        let pieces: &[&[u8]] = &[
-            b"ab",
-            b"\n",
-            b"\r\n",
-            b"\xfc",
-            b"\xc3\xbc",
-            b"\xc3",
-            b"\xe2\x82",
-            b"\xe2\x82\xac",
-            b"\xf0\x9f\x98",
-            b"\xf0\x9f\x98\x80",
-            b"\xed\xa0\x80",
-            b"\xff\xfe",
-            b"\xef\xbf\xbd",
-            b"\x80",
-            b" ",
-        ];
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        for _ in 0..100_000 {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            let mut r = seed;
-            let mut bytes = Vec::new();
-            for _ in 0..(seed % 12) {
-                r = r
-                    .wrapping_mul(6364136223846793005)
-                    .wrapping_add(1442695040888963407);
-                bytes.extend_from_slice(pieces[(r >> 33) as usize % pieces.len()]);
-            }
-            let ft = FileText::new(&bytes);
-            assert_eq!(ft.text, String::from_utf8_lossy(&bytes), "{bytes:?}");
-            // every line maps back to the bytes of the same line
-            let raw_lines: Vec<&[u8]> = bytes.split(|&b| b == b'\n').collect();
-            let text_lines: Vec<&str> = ft.text.split('\n').collect();
-            assert_eq!(raw_lines.len(), text_lines.len());
-            for (t, r) in text_lines.iter().zip(&raw_lines) {
-                assert_eq!(ft.raw(t), *r, "{bytes:?}");
-            }
         }
     }
 

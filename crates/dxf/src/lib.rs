@@ -8,6 +8,7 @@
 
 mod decode;
 mod reader;
+mod tokens;
 pub mod writer;
 
 pub use decode::decode_unicode_escapes;

@@ -1,207 +1,230 @@
-//! The group-code reader: bytes → text → (code, value, line) pairs → sections → [`Drawing`].
+//! The DXF structure, in one pass over the pairs of [`Tokens`]: sections, records, the header
+//! variables, the LAYER and LTYPE tables and the model-space entities → [`Drawing`].
 //!
-//! The file is turned into text once ([`String::from_utf8_lossy`]: borrowed when the file is
-//! valid UTF-8, which every ASCII file is). The pairs borrow their values from it; only the
-//! values that end up in the [`Drawing`] are copied. Those strings are decoded with the file's
-//! code page from their own bytes, value by value: the code page is only known after the
-//! header, and decoding a value on its own is what fixes the behaviour at the edges (byte
-//! order marks at the start of a value, multi-byte sequences cut by the end of a line).
+//! The strings kept in the drawing are decoded with the file's code page, which is only known
+//! once every header has been read: the pass notes them as bytes of the file ([`Kept`]) and
+//! decodes them at the end, value by value (that fixes the behaviour at the edges: a byte
+//! order mark starting a value, a multi-byte sequence cut by the end of a line).
+//!
+//! The errors are the ones of a reader that looks at the whole file before its contents: a
+//! bad group code or a cut pair anywhere first, then an unterminated section, then a file
+//! without sections, then the first bad header number, then the first bad entity number.
 
-use crate::decode::{decode_unicode_escapes_into, encoding_for, FileText};
+use crate::decode::{decode_value_into, encoding_for};
+use crate::tokens::{int, is, num, raw_name, raw_str, Pair, Tokens};
 use crate::{Drawing, DxfError, DxfErrorKind, Entity, EntityKind, MText, Point3, Text};
-use encoding_rs::Encoding;
 
-struct Pair<'a> {
-    code: i32,
-    /// The value line (end of line removed), a part of the file's text.
-    value: &'a str,
-    /// 1-based line of the group code.
+/// What a section's contents are read as.
+#[derive(Clone, Copy, PartialEq)]
+enum Body {
+    Header,
+    Tables,
+    Entities,
+    Other,
+}
+
+/// Where the pass is in the file's structure.
+#[derive(Clone, Copy)]
+enum State {
+    Outside,
+    /// Right after `0`/`SECTION`: this pair names the section (when its code is 2).
+    Name,
+    In(Body),
+    /// After `0`/`EOF` outside a section, or after a structure error: only the pairs are
+    /// still checked.
+    Done,
+}
+
+/// A string of the drawing, still the file's bytes.
+enum Kept<'a> {
+    Linetype(&'a [u8]),
+    Layer {
+        name: &'a [u8],
+        linetype: Option<&'a [u8]>,
+    },
+    EntityLayer(usize, &'a [u8]),
+    EntityLinetype(usize, &'a [u8]),
+    /// A TEXT's group 1 or one of an MTEXT's groups 1 and 3 (appended in file order).
+    EntityText(usize, &'a [u8]),
+}
+
+/// The header variables we read.
+#[derive(Clone, Copy, PartialEq)]
+enum HeaderVar {
+    AcadVer,
+    CodePage,
+    TextSize,
+    Other,
+}
+
+/// The record (a `0` group and the groups up to the next `0`) being read in a table.
+#[derive(Clone, Copy, PartialEq)]
+enum TableRecord {
+    Skip,
+    Ltype,
+    Layer,
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Kind {
+    Line,
+    Arc,
+    Circle,
+    Text,
+    MText,
+}
+
+/// The entity being read: its groups so far (string groups: the last one counts).
+struct EntityRecord<'a> {
+    kind: Kind,
     line: usize,
+    handle: Option<&'a [u8]>,
+    layer: Option<&'a [u8]>,
+    linetype: Option<&'a [u8]>,
+    text_1: Option<&'a [u8]>,
+    /// MTEXT groups 1 and 3 in file order.
+    pieces: Vec<&'a [u8]>,
+    linetype_scale: f64,
+    extrusion: Point3,
+    p10: Point3,
+    p11: Point3,
+    has11: bool,
+    r40: f64,
+    a50: Option<f64>,
+    a51: f64,
+    i71: Option<i32>,
+    i72: i32,
+    i73: i32,
+    paper_space: bool,
 }
 
-/// The lines of a text without their line ends (`\n` and the `\r`s before it), as
-/// `text.as_bytes().split(|&b| b == b'\n')` gives them.
-struct Lines<'a> {
-    text: &'a str,
-    /// Start of the next line; past the end of `text` after the last line.
-    pos: usize,
-}
-
-impl<'a> Lines<'a> {
-    /// What follows the current line (empty after the last one).
-    fn rest(&self) -> &'a str {
-        self.text.get(self.pos..).unwrap_or("")
-    }
-}
-
-/// The index of the first `\n` at or after `from`, or the length. Lines are short (`  0`,
-/// `LINE`, `1.5`): eight bytes at a time, one well-predicted branch for most lines, is
-/// quicker here than a byte loop or `memchr`'s set-up.
-fn find_newline(b: &[u8], from: usize) -> usize {
-    const ONES: u64 = 0x0101_0101_0101_0101;
-    let mut i = from;
-    while let Some(&word) = b.get(i..).and_then(|rest| rest.first_chunk::<8>()) {
-        // the lowest zero byte of `x` is the first `\n` (bytes above it may be flagged too)
-        let x = u64::from_le_bytes(word) ^ (ONES * u64::from(b'\n'));
-        let zero = x.wrapping_sub(ONES) & !x & (ONES << 7);
-        if zero != 0 {
-            return i + (zero.trailing_zeros() / 8) as usize;
+impl<'a> EntityRecord<'a> {
+    fn new(kind: Kind, line: usize, mut pieces: Vec<&'a [u8]>) -> Self {
+        pieces.clear();
+        EntityRecord {
+            kind,
+            line,
+            handle: None,
+            layer: None,
+            linetype: None,
+            text_1: None,
+            pieces,
+            linetype_scale: 1.0,
+            extrusion: [0.0, 0.0, 1.0],
+            p10: [0.0; 3],
+            p11: [0.0; 3],
+            has11: false,
+            r40: 0.0,
+            a50: None,
+            a51: 0.0,
+            i71: None,
+            i72: 0,
+            i73: 0,
+            paper_space: false,
         }
-        i += 8;
     }
-    while i < b.len() && b[i] != b'\n' {
-        i += 1;
-    }
-    i
-}
 
-impl<'a> Iterator for Lines<'a> {
-    type Item = &'a str;
-
-    fn next(&mut self) -> Option<&'a str> {
-        let b = self.text.as_bytes();
-        let start = self.pos;
-        if start > b.len() {
-            return None;
-        }
-        let mut end = find_newline(b, start);
-        self.pos = end + 1;
-        while end > start && b[end - 1] == b'\r' {
-            end -= 1;
-        }
-        Some(&self.text[start..end])
-    }
-}
-
-/// `s.trim()`, quicker for ASCII ends.
-fn trim(s: &str) -> &str {
-    // the ASCII characters of `char::is_whitespace` (note `\x0B`, unlike `u8::is_ascii_whitespace`)
-    let ws = |c: u8| matches!(c, b' ' | b'\t' | b'\n' | b'\x0B' | b'\x0C' | b'\r');
-    let b = s.as_bytes();
-    let mut i = 0;
-    while i < b.len() && ws(b[i]) {
-        i += 1;
-    }
-    let mut j = b.len();
-    while j > i && ws(b[j - 1]) {
-        j -= 1;
-    }
-    if i < j && (b[i] >= 0x80 || b[j - 1] >= 0x80) {
-        // other Unicode white space may follow
-        return s.trim();
-    }
-    &s[i..j]
-}
-
-/// The usual group code lines (`  0`, ` 10`, `100`): spaces, at most nine digits, spaces.
-/// `None` for anything else, which then goes the general way.
-fn plain_group_code(s: &str) -> Option<i32> {
-    let b = s.as_bytes();
-    let mut i = 0;
-    while i < b.len() && b[i] == b' ' {
-        i += 1;
-    }
-    let digits = i;
-    let mut v = 0i32;
-    while i < b.len() && b[i].is_ascii_digit() && i - digits < 9 {
-        v = v * 10 + (b[i] - b'0') as i32;
-        i += 1;
-    }
-    (i > digits && b[i..].iter().all(|&c| c == b' ')).then_some(v)
-}
-
-fn split_pairs(text: &str) -> Result<Vec<Pair<'_>>, DxfError> {
-    let mut lines = Lines { text, pos: 0 };
-    // a pair takes about ten bytes of a file
-    let mut pairs = Vec::with_capacity(text.len() / 8);
-    let mut line_no = 0usize;
-    while let Some(code_line) = lines.next() {
-        line_no += 1;
-        let code = match plain_group_code(code_line) {
-            Some(code) => code,
-            None => {
-                let code_trim = trim(code_line);
-                if code_trim.is_empty() {
-                    // trailing empty lines at the end of the file are harmless
-                    if lines.rest().bytes().all(|b| b.is_ascii_whitespace()) {
-                        break;
-                    }
-                    return Err(DxfError {
-                        line: line_no,
-                        kind: DxfErrorKind::BadGroupCode(String::new()),
-                    });
-                }
-                code_trim.parse().map_err(|_| DxfError {
-                    line: line_no,
-                    kind: DxfErrorKind::BadGroupCode(code_trim.chars().take(40).collect()),
-                })?
+    fn group(&mut self, p: &Pair<'a>) -> Result<(), DxfError> {
+        match p.code {
+            5 => self.handle = Some(p.value),
+            8 => self.layer = Some(p.value),
+            6 => self.linetype = Some(p.value),
+            48 => self.linetype_scale = num(p)?,
+            67 => self.paper_space = int(p)? == 1,
+            10 => self.p10[0] = num(p)?,
+            20 => self.p10[1] = num(p)?,
+            30 => self.p10[2] = num(p)?,
+            11 => {
+                self.has11 = true;
+                self.p11[0] = num(p)?
             }
+            21 => self.p11[1] = num(p)?,
+            31 => self.p11[2] = num(p)?,
+            210 => self.extrusion[0] = num(p)?,
+            220 => self.extrusion[1] = num(p)?,
+            230 => self.extrusion[2] = num(p)?,
+            40 => self.r40 = num(p)?,
+            50 => self.a50 = Some(num(p)?),
+            51 => self.a51 = num(p)?,
+            71 => self.i71 = Some(int(p)?),
+            72 => self.i72 = int(p)?,
+            73 => self.i73 = int(p)?,
+            1 | 3 if self.kind == Kind::MText => self.pieces.push(p.value),
+            1 if self.kind == Kind::Text => self.text_1 = Some(p.value),
+            _ => {}
+        }
+        Ok(())
+    }
+
+    /// The entity, its strings still empty (they are [`Kept`]).
+    fn entity(&self) -> Entity {
+        let kind = match self.kind {
+            Kind::Line => EntityKind::Line {
+                start: self.p10,
+                end: self.p11,
+            },
+            Kind::Circle => EntityKind::Circle {
+                center: self.p10,
+                radius: self.r40,
+            },
+            Kind::Arc => EntityKind::Arc {
+                center: self.p10,
+                radius: self.r40,
+                start_angle: self.a50.unwrap_or(0.0),
+                end_angle: self.a51,
+            },
+            Kind::Text => EntityKind::Text(Text {
+                value: String::new(),
+                first: self.p10,
+                second: self.has11.then_some(self.p11),
+                height: self.r40,
+                rotation: self.a50.unwrap_or(0.0),
+                generation: self.i71.unwrap_or(0),
+                halign: self.i72,
+                valign: self.i73,
+            }),
+            Kind::MText => EntityKind::MText(MText {
+                value: String::new(),
+                insert: self.p10,
+                height: self.r40,
+                attachment: self.i71.unwrap_or(1),
+                rotation: self.a50,
+                direction: self.has11.then_some(self.p11),
+            }),
         };
-        let Some(value) = lines.next() else {
-            return Err(DxfError {
-                line: line_no,
-                kind: DxfErrorKind::Truncated,
-            });
-        };
-        pairs.push(Pair {
-            code,
-            value,
-            line: line_no,
-        });
-        line_no += 1;
-    }
-    Ok(pairs)
-}
-
-struct Ctx<'t> {
-    enc: &'static Encoding,
-    src: &'t FileText<'t>,
-}
-
-impl Ctx<'_> {
-    /// A kept string value: decoded with the file's code page, then `\U+XXXX` escapes.
-    fn text(&self, p: &Pair) -> String {
-        let mut out = String::new();
-        self.push_text(p, &mut out);
-        out
-    }
-
-    fn push_text(&self, p: &Pair, out: &mut String) {
-        let (s, _, _) = self.enc.decode(self.src.raw(p.value));
-        decode_unicode_escapes_into(&s, out);
+        Entity {
+            line: self.line,
+            handle: self
+                .handle
+                .map_or_else(String::new, |h| raw_str(h).into_owned()),
+            layer: if self.layer.is_some() {
+                String::new()
+            } else {
+                "0".to_string()
+            },
+            linetype: self.linetype.map(|_| String::new()),
+            linetype_scale: self.linetype_scale,
+            extrusion: self.extrusion,
+            kind,
+        }
     }
 }
 
-/// The value as written, without surrounding white space.
-fn raw_str<'a>(p: &Pair<'a>) -> &'a str {
-    trim(p.value)
-}
-
-fn bad_number(p: &Pair, s: &str) -> DxfError {
-    DxfError {
-        line: p.line + 1,
-        kind: DxfErrorKind::BadNumber {
-            code: p.code,
-            value: s.chars().take(40).collect(),
-        },
-    }
-}
-
-fn num(p: &Pair) -> Result<f64, DxfError> {
-    let s = raw_str(p);
-    s.parse::<f64>().map_err(|_| bad_number(p, s))
-}
-
-fn int(p: &Pair) -> Result<i32, DxfError> {
-    let s = raw_str(p);
-    s.parse::<i32>()
-        .or_else(|_| s.parse::<f64>().map(|f| f as i32))
-        .map_err(|_| bad_number(p, s))
-}
-
-/// Structure markers (`0`/`SECTION`, …) are compared without ASCII white space only.
-fn is(p: &Pair, code: i32, value: &str) -> bool {
-    p.code == code && p.value.trim_ascii() == value
+/// Everything the pass gathers.
+struct Reader<'a> {
+    d: Drawing,
+    kept: Vec<Kept<'a>>,
+    header_var: HeaderVar,
+    table: TableRecord,
+    table_name: Option<&'a [u8]>,
+    table_linetype: Option<&'a [u8]>,
+    entity: Option<EntityRecord<'a>>,
+    /// The MTEXT pieces buffer, reused from entity to entity.
+    spare_pieces: Vec<&'a [u8]>,
+    sections: usize,
+    structure_error: Option<DxfError>,
+    header_error: Option<DxfError>,
+    entity_error: Option<DxfError>,
 }
 
 /// Reads a DXF file (ASCII, R12 to current versions).
@@ -212,244 +235,262 @@ pub fn read_dxf(bytes: &[u8]) -> Result<Drawing, DxfError> {
             kind: DxfErrorKind::Binary,
         });
     }
-    // The one decoding of the whole file; borrowed unless it has invalid UTF-8.
-    let src = FileText::new(bytes);
-    let pairs = split_pairs(&src.text)?;
-    // Sections: (name, first pair index after the name, index of ENDSEC).
-    let mut sections: Vec<(&str, usize, usize)> = Vec::new();
-    let mut i = 0;
-    while i < pairs.len() {
-        if is(&pairs[i], 0, "SECTION") {
-            let name = pairs
-                .get(i + 1)
-                .filter(|p| p.code == 2)
-                .map(raw_str)
-                .unwrap_or_default();
-            let start = i + 2;
-            let mut j = start;
-            while j < pairs.len() && !is(&pairs[j], 0, "ENDSEC") {
-                if is(&pairs[j], 0, "SECTION") || is(&pairs[j], 0, "EOF") {
-                    break;
+    let mut r = Reader {
+        d: Drawing {
+            text_size: 2.5,
+            ..Default::default()
+        },
+        kept: Vec::new(),
+        header_var: HeaderVar::Other,
+        table: TableRecord::Skip,
+        table_name: None,
+        table_linetype: None,
+        entity: None,
+        spare_pieces: Vec::new(),
+        sections: 0,
+        structure_error: None,
+        header_error: None,
+        entity_error: None,
+    };
+    let mut tokens = Tokens::new(bytes);
+    let mut state = State::Outside;
+    let mut last_line = 0;
+    while let Some(p) = tokens.next_pair()? {
+        last_line = p.line;
+        state = match state {
+            State::Outside if is(&p, 0, "SECTION") => State::Name,
+            State::Outside if is(&p, 0, "EOF") => State::Done,
+            State::Outside | State::Done => state,
+            State::Name => {
+                let body = match (p.code, &*raw_name(p.value)) {
+                    (2, b"HEADER") => Body::Header,
+                    (2, b"TABLES") => Body::Tables,
+                    (2, b"ENTITIES") => Body::Entities,
+                    _ => Body::Other,
+                };
+                r.begin();
+                State::In(body)
+            }
+            State::In(body) if p.code == 0 => {
+                let marker = p.value.trim_ascii();
+                if marker == b"ENDSEC" {
+                    r.end(body);
+                    State::Outside
+                } else if marker == b"SECTION" || marker == b"EOF" {
+                    r.structure_error = Some(DxfError {
+                        line: p.line,
+                        kind: DxfErrorKind::Truncated,
+                    });
+                    State::Done
+                } else {
+                    r.group(body, &p);
+                    state
                 }
-                j += 1;
             }
-            if j >= pairs.len() || !is(&pairs[j], 0, "ENDSEC") {
-                let line = pairs.get(j).or(pairs.last()).map_or(0, |p| p.line);
-                return Err(DxfError {
-                    line,
-                    kind: DxfErrorKind::Truncated,
-                });
+            State::In(body) => {
+                r.group(body, &p);
+                state
             }
-            sections.push((name, start, j));
-            i = j + 1;
-        } else if is(&pairs[i], 0, "EOF") {
-            break;
-        } else {
-            i += 1;
-        }
+        };
     }
-    if sections.is_empty() {
-        return Err(DxfError {
-            line: pairs.first().map_or(1, |p| p.line),
-            kind: DxfErrorKind::NotDxf,
+    if let State::Name | State::In(_) = state {
+        r.structure_error = Some(DxfError {
+            line: last_line,
+            kind: DxfErrorKind::Truncated,
         });
     }
-
-    let mut drawing = Drawing {
-        text_size: 2.5,
-        ..Default::default()
-    };
-    // Header first: it decides the string decoding.
-    for (name, s, e) in &sections {
-        if *name == "HEADER" {
-            read_header(&pairs[*s..*e], &mut drawing)?;
-        }
-    }
-    let ctx = Ctx {
-        enc: encoding_for(&drawing.version, &drawing.codepage),
-        src: &src,
-    };
-    for (name, s, e) in &sections {
-        match *name {
-            "TABLES" => read_tables(&ctx, &pairs[*s..*e], &mut drawing),
-            "ENTITIES" => read_entities(&ctx, &pairs[*s..*e], &mut drawing)?,
-            _ => {}
-        }
-    }
-    Ok(drawing)
+    r.finish()
 }
 
-fn read_header(pairs: &[Pair], d: &mut Drawing) -> Result<(), DxfError> {
-    let mut var = "";
-    for p in pairs {
-        match p.code {
-            9 => var = raw_str(p),
-            1 if var == "$ACADVER" => d.version = raw_str(p).to_string(),
-            3 if var == "$DWGCODEPAGE" => d.codepage = raw_str(p).to_string(),
-            40 if var == "$TEXTSIZE" => d.text_size = num(p)?,
-            _ => {}
+impl<'a> Reader<'a> {
+    fn begin(&mut self) {
+        self.header_var = HeaderVar::Other;
+        self.table = TableRecord::Skip;
+    }
+
+    fn end(&mut self, body: Body) {
+        self.sections += 1;
+        match body {
+            Body::Tables => self.end_table_record(),
+            Body::Entities => self.end_entity(),
+            Body::Header | Body::Other => {}
         }
     }
-    Ok(())
-}
 
-/// Splits a section body into records, each starting at a `0` group.
-fn records<'p, 'a>(pairs: &'p [Pair<'a>]) -> impl Iterator<Item = &'p [Pair<'a>]> {
-    let mut i = 0;
-    std::iter::from_fn(move || {
-        while i < pairs.len() && pairs[i].code != 0 {
-            i += 1;
+    fn group(&mut self, body: Body, p: &Pair<'a>) {
+        match body {
+            Body::Header => self.header_group(p),
+            Body::Tables => self.table_group(p),
+            Body::Entities => self.entity_group(p),
+            Body::Other => {}
         }
-        if i >= pairs.len() {
-            return None;
-        }
-        let start = i;
-        i += 1;
-        while i < pairs.len() && pairs[i].code != 0 {
-            i += 1;
-        }
-        Some(&pairs[start..i])
-    })
-}
+    }
 
-fn read_tables(ctx: &Ctx, pairs: &[Pair], d: &mut Drawing) {
-    for rec in records(pairs) {
-        match raw_str(&rec[0]) {
-            "LTYPE" => {
-                if let Some(p) = rec.iter().find(|p| p.code == 2) {
-                    d.linetypes.push(ctx.text(p));
+    fn header_group(&mut self, p: &Pair<'a>) {
+        match (p.code, self.header_var) {
+            (9, _) => {
+                self.header_var = match &*raw_name(p.value) {
+                    b"$ACADVER" => HeaderVar::AcadVer,
+                    b"$DWGCODEPAGE" => HeaderVar::CodePage,
+                    b"$TEXTSIZE" => HeaderVar::TextSize,
+                    _ => HeaderVar::Other,
                 }
             }
-            "LAYER" => {
-                let name = rec.iter().find(|p| p.code == 2).map(|p| ctx.text(p));
-                let lt = rec.iter().find(|p| p.code == 6).map(|p| ctx.text(p));
-                if let Some(name) = name {
-                    d.layers
-                        .insert(name, lt.unwrap_or_else(|| "Continuous".to_string()));
+            (1, HeaderVar::AcadVer) => self.d.version = raw_str(p.value).into_owned(),
+            (3, HeaderVar::CodePage) => self.d.codepage = raw_str(p.value).into_owned(),
+            (40, HeaderVar::TextSize) => match num(p) {
+                Ok(v) => self.d.text_size = v,
+                Err(e) => {
+                    self.header_error.get_or_insert(e);
                 }
+            },
+            _ => {}
+        }
+    }
+
+    fn table_group(&mut self, p: &Pair<'a>) {
+        if p.code == 0 {
+            self.end_table_record();
+            self.table = match &*raw_name(p.value) {
+                b"LTYPE" => TableRecord::Ltype,
+                b"LAYER" => TableRecord::Layer,
+                _ => TableRecord::Skip,
+            };
+            return;
+        }
+        // the first name and line type of a record count
+        match (self.table, p.code) {
+            (TableRecord::Ltype | TableRecord::Layer, 2) if self.table_name.is_none() => {
+                self.table_name = Some(p.value)
+            }
+            (TableRecord::Layer, 6) if self.table_linetype.is_none() => {
+                self.table_linetype = Some(p.value)
             }
             _ => {}
         }
     }
-}
 
-fn read_entities(ctx: &Ctx, pairs: &[Pair], d: &mut Drawing) -> Result<(), DxfError> {
-    for rec in records(pairs) {
-        let kind = raw_str(&rec[0]);
-        if !matches!(kind, "LINE" | "ARC" | "CIRCLE" | "TEXT" | "MTEXT") {
-            if !matches!(kind, "VERTEX" | "SEQEND" | "ATTRIB") {
-                d.ignored_entities += 1;
-            }
-            continue;
-        }
-        if let Some(e) = read_entity(ctx, kind, rec)? {
-            d.entities.push(e);
-        }
-    }
-    Ok(())
-}
-
-fn set(pt: &mut Point3, axis: usize, p: &Pair) -> Result<(), DxfError> {
-    pt[axis] = num(p)?;
-    Ok(())
-}
-
-fn read_entity(ctx: &Ctx, kind: &str, rec: &[Pair]) -> Result<Option<Entity>, DxfError> {
-    // String groups: the last one counts; copied once at the end.
-    let mut handle: Option<&Pair> = None;
-    let mut layer: Option<&Pair> = None;
-    let mut linetype: Option<&Pair> = None;
-    let mut text_1: Option<&Pair> = None;
-    let mut linetype_scale = 1.0;
-    let mut extrusion = [0.0, 0.0, 1.0];
-    let mut p10 = [0.0; 3];
-    let mut p11 = [0.0; 3];
-    let mut has11 = false;
-    let mut r40 = 0.0;
-    let mut a50: Option<f64> = None;
-    let mut a51 = 0.0;
-    let (mut i71, mut i72, mut i73): (Option<i32>, i32, i32) = (None, 0, 0);
-    let mut text = String::new();
-    let mut paper_space = false;
-    for p in &rec[1..] {
-        match p.code {
-            5 => handle = Some(p),
-            8 => layer = Some(p),
-            6 => linetype = Some(p),
-            48 => linetype_scale = num(p)?,
-            67 => paper_space = int(p)? == 1,
-            10 => set(&mut p10, 0, p)?,
-            20 => set(&mut p10, 1, p)?,
-            30 => set(&mut p10, 2, p)?,
-            11 => {
-                has11 = true;
-                set(&mut p11, 0, p)?
-            }
-            21 => set(&mut p11, 1, p)?,
-            31 => set(&mut p11, 2, p)?,
-            210 => set(&mut extrusion, 0, p)?,
-            220 => set(&mut extrusion, 1, p)?,
-            230 => set(&mut extrusion, 2, p)?,
-            40 => r40 = num(p)?,
-            50 => a50 = Some(num(p)?),
-            51 => a51 = num(p)?,
-            71 => i71 = Some(int(p)?),
-            72 => i72 = int(p)?,
-            73 => i73 = int(p)?,
-            1 | 3 if kind == "MTEXT" => ctx.push_text(p, &mut text),
-            1 if kind == "TEXT" => text_1 = Some(p),
+    fn end_table_record(&mut self) {
+        let (name, linetype) = (self.table_name.take(), self.table_linetype.take());
+        match (self.table, name) {
+            (TableRecord::Ltype, Some(name)) => self.kept.push(Kept::Linetype(name)),
+            (TableRecord::Layer, Some(name)) => self.kept.push(Kept::Layer { name, linetype }),
             _ => {}
         }
+        self.table = TableRecord::Skip;
     }
-    if paper_space {
-        return Ok(None);
+
+    fn entity_group(&mut self, p: &Pair<'a>) {
+        if self.entity_error.is_some() {
+            return; // the file's answer is that error (or an earlier one)
+        }
+        if p.code == 0 {
+            self.end_entity();
+            let kind = match &*raw_name(p.value) {
+                b"LINE" => Kind::Line,
+                b"ARC" => Kind::Arc,
+                b"CIRCLE" => Kind::Circle,
+                b"TEXT" => Kind::Text,
+                b"MTEXT" => Kind::MText,
+                b"VERTEX" | b"SEQEND" | b"ATTRIB" => return,
+                _ => {
+                    self.d.ignored_entities += 1;
+                    return;
+                }
+            };
+            let pieces = std::mem::take(&mut self.spare_pieces);
+            self.entity = Some(EntityRecord::new(kind, p.line, pieces));
+            return;
+        }
+        if let Some(e) = &mut self.entity {
+            if let Err(err) = e.group(p) {
+                self.entity_error = Some(err);
+                self.entity = None;
+            }
+        }
     }
-    if let Some(p) = text_1 {
-        text = ctx.text(p);
+
+    fn end_entity(&mut self) {
+        let Some(mut e) = self.entity.take() else {
+            return;
+        };
+        if !e.paper_space {
+            let i = self.d.entities.len();
+            self.d.entities.push(e.entity());
+            if let Some(layer) = e.layer {
+                self.kept.push(Kept::EntityLayer(i, layer));
+            }
+            if let Some(lt) = e.linetype {
+                self.kept.push(Kept::EntityLinetype(i, lt));
+            }
+            if let Some(t) = e.text_1 {
+                self.kept.push(Kept::EntityText(i, t));
+            }
+            self.kept
+                .extend(e.pieces.drain(..).map(|t| Kept::EntityText(i, t)));
+        }
+        self.spare_pieces = e.pieces;
     }
-    let kind = match kind {
-        "LINE" => EntityKind::Line {
-            start: p10,
-            end: p11,
-        },
-        "CIRCLE" => EntityKind::Circle {
-            center: p10,
-            radius: r40,
-        },
-        "ARC" => EntityKind::Arc {
-            center: p10,
-            radius: r40,
-            start_angle: a50.unwrap_or(0.0),
-            end_angle: a51,
-        },
-        "TEXT" => EntityKind::Text(Text {
-            value: text,
-            first: p10,
-            second: has11.then_some(p11),
-            height: r40,
-            rotation: a50.unwrap_or(0.0),
-            generation: i71.unwrap_or(0),
-            halign: i72,
-            valign: i73,
-        }),
-        _ => EntityKind::MText(MText {
-            value: text,
-            insert: p10,
-            height: r40,
-            attachment: i71.unwrap_or(1),
-            rotation: a50,
-            direction: has11.then_some(p11),
-        }),
-    };
-    Ok(Some(Entity {
-        line: rec[0].line,
-        handle: handle.map_or_else(String::new, |p| raw_str(p).to_string()),
-        layer: layer.map_or_else(|| "0".to_string(), |p| ctx.text(p)),
-        linetype: linetype.map(|p| ctx.text(p)),
-        linetype_scale,
-        extrusion,
-        kind,
-    }))
+
+    /// The drawing, its strings decoded with the code page of the header; or the file's error.
+    fn finish(mut self) -> Result<Drawing, DxfError> {
+        if let Some(e) = self.structure_error {
+            return Err(e);
+        }
+        if self.sections == 0 {
+            return Err(DxfError {
+                line: 1,
+                kind: DxfErrorKind::NotDxf,
+            });
+        }
+        if let Some(e) = self.header_error.or(self.entity_error) {
+            return Err(e);
+        }
+        let d = &mut self.d;
+        let enc = encoding_for(&d.version, &d.codepage);
+        let decode = |raw: &[u8]| {
+            let mut s = String::new();
+            decode_value_into(enc, raw, &mut s);
+            s
+        };
+        // consecutive entities mostly share their layer: decoded once
+        let mut last_layer: Option<(&[u8], String)> = None;
+        for k in self.kept {
+            match k {
+                Kept::Linetype(name) => d.linetypes.push(decode(name)),
+                Kept::Layer { name, linetype } => {
+                    let lt = linetype.map_or_else(|| "Continuous".to_string(), decode);
+                    d.layers.insert(decode(name), lt);
+                }
+                Kept::EntityLayer(i, raw) => {
+                    let layer = match &last_layer {
+                        Some((r, s)) if *r == raw => s.clone(),
+                        _ => {
+                            let s = decode(raw);
+                            last_layer = Some((raw, s.clone()));
+                            s
+                        }
+                    };
+                    if let Some(e) = d.entities.get_mut(i) {
+                        e.layer = layer;
+                    }
+                }
+                Kept::EntityLinetype(i, raw) => {
+                    if let Some(e) = d.entities.get_mut(i) {
+                        e.linetype = Some(decode(raw));
+                    }
+                }
+                Kept::EntityText(i, raw) => match d.entities.get_mut(i).map(|e| &mut e.kind) {
+                    Some(EntityKind::Text(Text { value, .. }))
+                    | Some(EntityKind::MText(MText { value, .. })) => {
+                        decode_value_into(enc, raw, value)
+                    }
+                    _ => {}
+                },
+            }
+        }
+        Ok(self.d)
+    }
 }
 
 #[cfg(test)]

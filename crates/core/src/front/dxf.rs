@@ -134,29 +134,47 @@ pub fn dxf_objects(
             .cloned()
             .unwrap_or_else(|| name.to_string())
     };
-    let effective_lt = |e: &Entity, layer: &str| -> String {
+    let effective_lt = |e: &Entity, layer_lt: &str| -> String {
         match &e.linetype {
             Some(lt) if lt.eq_ignore_ascii_case("bylayer") => {}
             Some(lt) if lt.eq_ignore_ascii_case("byblock") => return "ByBlock".into(),
             Some(lt) => return table_lt(lt),
             None => {}
         }
-        match d.layers.iter().find(|(n, _)| n.as_str() == layer) {
-            Some((_, lt)) => table_lt(lt),
-            None => "Continuous".into(),
-        }
+        layer_lt.to_string()
     };
+    // What an entity's layer gives, worked out once per layer name (entities share few layers).
+    struct OnLayer<'d> {
+        layer: &'d str,
+        path: String,
+        /// `None` unless the path name matches the pattern; else the layer's line type.
+        linetype: Option<String>,
+    }
+    let mut layers: std::collections::HashMap<&str, OnLayer> = std::collections::HashMap::new();
 
     // 1. elements (circles, lines, arcs) and texts on path layers
     let mut objs: Vec<Obj> = Vec::new();
     let mut texts: Vec<(&Entity, &str, String)> = Vec::new();
     for e in &d.entities {
-        let layer = effective_layer(&e.layer);
-        let path = path_name_of_layer(layer);
-        if !opts.layer_pattern.is_match(&path) {
+        let on = layers.entry(e.layer.as_str()).or_insert_with(|| {
+            let layer = effective_layer(&e.layer);
+            let path = path_name_of_layer(layer);
+            let linetype = opts.layer_pattern.is_match(&path).then(|| {
+                d.layers
+                    .get(layer)
+                    .map_or_else(|| "Continuous".into(), |lt| table_lt(lt))
+            });
+            OnLayer {
+                layer,
+                path,
+                linetype,
+            }
+        });
+        let Some(layer_lt) = &on.linetype else {
             continue;
-        }
-        let linetype = effective_lt(e, layer);
+        };
+        let (layer, path) = (on.layer, on.path.clone());
+        let linetype = effective_lt(e, layer_lt);
         let (shape, pos) = match &e.kind {
             EntityKind::Text(_) | EntityKind::MText(_) => {
                 texts.push((e, layer, path));
