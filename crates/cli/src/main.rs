@@ -9,6 +9,9 @@ mod report;
 mod verify;
 mod write;
 
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 use clap::{Parser, Subcommand, ValueEnum};
 use millpath_core::diag::{Diagnostic, Diags, Msg, Origin, Severity};
 use millpath_core::probe::adjustz;
