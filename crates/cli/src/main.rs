@@ -77,6 +77,10 @@ struct MachineArgs {
     /// Seconds to wait after the spindle start (or `spindle_dwell`; default 2)
     #[arg(long)]
     spindle_dwell: Option<f64>,
+    /// Read polylines, blocks, line-type names of other CAD programs and $INSUNITS (or
+    /// `input = "extended"`; default: as PathDxf2GCode, with a warning for what it ignores)
+    #[arg(long)]
+    extended: bool,
 }
 
 /// The settings the conversions use: path and file names, the message language.
@@ -94,6 +98,9 @@ struct NameArgs {
     /// Settings file (default: nearest millpath.toml above the input)
     #[arg(long)]
     config: Option<PathBuf>,
+    /// Polylines and blocks become plain elements (or `input = "extended"`)
+    #[arg(long)]
+    extended: bool,
 }
 
 impl NameArgs {
@@ -103,6 +110,7 @@ impl NameArgs {
             file_pattern: self.file_pattern.clone(),
             lang: self.lang,
             config: self.config.clone(),
+            extended: self.extended,
             ..MachineArgs::default()
         }
     }
@@ -432,7 +440,15 @@ fn run_dxf2gcode(args: &[String]) -> u8 {
         }
     }
     let mut failed = false;
-    for d in session.diags.list.iter().chain(write_errors.list.iter()) {
+    // the reference ignores other entities without a word: so does its command line
+    let reference_silent = |d: &&Diagnostic| d.msg != Msg::IgnoredEntity;
+    for d in session
+        .diags
+        .list
+        .iter()
+        .chain(write_errors.list.iter())
+        .filter(reference_silent)
+    {
         eprintln!("{}", d.reference_line(lang));
         failed |= d.severity == Severity::Error;
     }
@@ -497,6 +513,9 @@ fn settings_for(
     }
     if let Some(l) = m.lang {
         s.lang = to_lang(l);
+    }
+    if m.extended {
+        s.input = millpath_core::InputMode::Extended;
     }
     if require_machine {
         let missing: Vec<&str> = [
@@ -1050,7 +1069,9 @@ fn run_dxf2text(file: &Path, output: Option<PathBuf>, textconv: bool, m: &Machin
         Err(code) => return code,
     };
     let fref = millpath_core::diag::FileRef::new(file.to_path_buf());
-    match millpath_core::convert::dxf_to_text(&bytes, &fref, &patterns) {
+    // conversion_input has already reported settings that do not load
+    let input = settings_for(m, Some(file), false).map_or_else(|_| Default::default(), |s| s.input);
+    match millpath_core::convert::dxf_to_text(&bytes, &fref, &patterns, input) {
         Ok((text, diags)) => {
             // what the text cannot carry (texts that belong to no element, …) is reported
             print_human(&diags, lang);

@@ -297,6 +297,17 @@ messages! {
     StaleMillingRemoved = "Removed {0}: it is not newer than {1}, and no new one was written", "{0} entfernt: die Datei ist nicht neuer als {1}, und es wurde keine neue geschrieben";
     CannotRemove = "Cannot remove outdated {0}: {1}", "Veraltete Datei {0} kann nicht entfernt werden: {1}";
     NoErrorFreePathInFile = "File {0} contains no error-free path", "Datei {0} enthält keinen Pfad ohne Fehler";
+    // geometry the reference ignores ({0} = entity type); the extended input mode
+    IgnoredEntity = "{0} (line {1}) ignored: the reference reads only LINE, ARC, CIRCLE, TEXT and MTEXT; to include it compile with --extended or set input = \"extended\" in millpath.toml", "{0} (Zeile {1}) ignoriert: die Referenz liest nur LINE, ARC, CIRCLE, TEXT und MTEXT; zum Einbeziehen mit --extended übersetzen oder input = \"extended\" in millpath.toml setzen";
+    CurveRefused = "{0} is not supported: convert it to lines and arcs in the CAD program (it is not approximated)", "{0} wird nicht unterstützt: im CAD-Programm in Linien und Bögen umwandeln (es wird nicht angenähert)";
+    NotPlanarRefused = "{0} does not lie in the XY plane (3-D polyline, mesh or tilted extrusion)", "{0} liegt nicht in der XY-Ebene (3-D-Polylinie, Netz oder geneigte Extrusion)";
+    UnknownBlock = "{0} references block {1}, which the file does not define", "{0} verweist auf Block {1}, den die Datei nicht definiert";
+    BlocksTooDeep = "{0}: blocks nested deeper than {1} levels (or a block inserting itself)", "{0}: Blöcke tiefer als {1} Ebenen verschachtelt (oder ein Block fügt sich selbst ein)";
+    BlocksTooMany = "{0}: the blocks produce more than {1} entities", "{0}: die Blöcke ergeben mehr als {1} Objekte";
+    DistortedArc = "{0} under a non-uniform scale would become an ellipse: scale blocks with arcs equally in X and Y", "{0} würde durch ungleichmäßige Skalierung zur Ellipse: Blöcke mit Bögen in X und Y gleich skalieren";
+    BadArray = "{0}: a block array needs at least one row and one column", "{0}: eine Block-Anordnung braucht mindestens eine Zeile und eine Spalte";
+    NotFiniteGeometry = "{0} has a coordinate, bulge, scale or angle that is not a finite number", "{0} hat eine Koordinate, Wölbung, Skalierung oder einen Winkel, der keine endliche Zahl ist";
+    UnitsScaled = "The drawing's unit is $INSUNITS = {0} ({1} mm per unit): coordinates scaled to millimetres", "Die Einheit der Zeichnung ist $INSUNITS = {0} ({1} mm je Einheit): Koordinaten auf Millimeter skaliert";
 }
 
 impl Msg {

@@ -11,12 +11,12 @@ use crate::decode::{decode_unicode_escapes_into, encoding_for, FileText};
 use crate::{Drawing, DxfError, DxfErrorKind, Entity, EntityKind, MText, Point3, Text};
 use encoding_rs::Encoding;
 
-struct Pair<'a> {
-    code: i32,
+pub(crate) struct Pair<'a> {
+    pub(crate) code: i32,
     /// The value line (end of line removed), a part of the file's text.
-    value: &'a str,
+    pub(crate) value: &'a str,
     /// 1-based line of the group code.
-    line: usize,
+    pub(crate) line: usize,
 }
 
 /// The lines of a text without their line ends (`\n` and the `\r`s before it), as
@@ -153,14 +153,14 @@ fn split_pairs(text: &str) -> Result<Vec<Pair<'_>>, DxfError> {
     Ok(pairs)
 }
 
-struct Ctx<'t> {
+pub(crate) struct Ctx<'t> {
     enc: &'static Encoding,
     src: &'t FileText<'t>,
 }
 
 impl Ctx<'_> {
     /// A kept string value: decoded with the file's code page, then `\U+XXXX` escapes.
-    fn text(&self, p: &Pair) -> String {
+    pub(crate) fn text(&self, p: &Pair) -> String {
         let mut out = String::new();
         self.push_text(p, &mut out);
         out
@@ -173,7 +173,7 @@ impl Ctx<'_> {
 }
 
 /// The value as written, without surrounding white space.
-fn raw_str<'a>(p: &Pair<'a>) -> &'a str {
+pub(crate) fn raw_str<'a>(p: &Pair<'a>) -> &'a str {
     trim(p.value)
 }
 
@@ -187,12 +187,12 @@ fn bad_number(p: &Pair, s: &str) -> DxfError {
     }
 }
 
-fn num(p: &Pair) -> Result<f64, DxfError> {
+pub(crate) fn num(p: &Pair) -> Result<f64, DxfError> {
     let s = raw_str(p);
     s.parse::<f64>().map_err(|_| bad_number(p, s))
 }
 
-fn int(p: &Pair) -> Result<i32, DxfError> {
+pub(crate) fn int(p: &Pair) -> Result<i32, DxfError> {
     let s = raw_str(p);
     s.parse::<i32>()
         .or_else(|_| s.parse::<f64>().map(|f| f as i32))
@@ -273,6 +273,7 @@ pub fn read_dxf(bytes: &[u8]) -> Result<Drawing, DxfError> {
         match *name {
             "TABLES" => read_tables(&ctx, &pairs[*s..*e], &mut drawing),
             "ENTITIES" => read_entities(&ctx, &pairs[*s..*e], &mut drawing)?,
+            "BLOCKS" => crate::blocks::read_blocks(&ctx, &pairs[*s..*e], &mut drawing)?,
             _ => {}
         }
     }
@@ -287,6 +288,7 @@ fn read_header(pairs: &[Pair], d: &mut Drawing) -> Result<(), DxfError> {
             1 if var == "$ACADVER" => d.version = raw_str(p).to_string(),
             3 if var == "$DWGCODEPAGE" => d.codepage = raw_str(p).to_string(),
             40 if var == "$TEXTSIZE" => d.text_size = num(p)?,
+            70 if var == "$INSUNITS" => d.insunits = Some(int(p)?),
             _ => {}
         }
     }
@@ -294,7 +296,7 @@ fn read_header(pairs: &[Pair], d: &mut Drawing) -> Result<(), DxfError> {
 }
 
 /// Splits a section body into records, each starting at a `0` group.
-fn records<'p, 'a>(pairs: &'p [Pair<'a>]) -> impl Iterator<Item = &'p [Pair<'a>]> {
+pub(crate) fn records<'p, 'a>(pairs: &'p [Pair<'a>]) -> impl Iterator<Item = &'p [Pair<'a>]> {
     let mut i = 0;
     std::iter::from_fn(move || {
         while i < pairs.len() && pairs[i].code != 0 {
@@ -334,8 +336,14 @@ fn read_tables(ctx: &Ctx, pairs: &[Pair], d: &mut Drawing) {
 }
 
 fn read_entities(ctx: &Ctx, pairs: &[Pair], d: &mut Drawing) -> Result<(), DxfError> {
+    let mut extra = crate::extra::ExtraReader::default();
     for rec in records(pairs) {
         let kind = raw_str(&rec[0]);
+        // polylines, inserts, ellipses, splines: kept for the extended mode, ignored here
+        if extra.take(ctx, kind, rec, &mut d.extra)? {
+            d.ignored_entities += usize::from(!matches!(kind, "VERTEX" | "SEQEND" | "ATTRIB"));
+            continue;
+        }
         if !matches!(kind, "LINE" | "ARC" | "CIRCLE" | "TEXT" | "MTEXT") {
             if !matches!(kind, "VERTEX" | "SEQEND" | "ATTRIB") {
                 d.ignored_entities += 1;
@@ -346,6 +354,7 @@ fn read_entities(ctx: &Ctx, pairs: &[Pair], d: &mut Drawing) -> Result<(), DxfEr
             d.entities.push(e);
         }
     }
+    extra.finish(&mut d.extra);
     Ok(())
 }
 
@@ -354,7 +363,7 @@ fn set(pt: &mut Point3, axis: usize, p: &Pair) -> Result<(), DxfError> {
     Ok(())
 }
 
-fn read_entity(ctx: &Ctx, kind: &str, rec: &[Pair]) -> Result<Option<Entity>, DxfError> {
+pub(crate) fn read_entity(ctx: &Ctx, kind: &str, rec: &[Pair]) -> Result<Option<Entity>, DxfError> {
     // String groups: the last one counts; copied once at the end.
     let mut handle: Option<&Pair> = None;
     let mut layer: Option<&Pair> = None;

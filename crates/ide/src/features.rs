@@ -860,6 +860,7 @@ pub fn references(a: &Analysis, ws: &Workspace, offset: usize) -> Vec<Location> 
                 path_pattern: &p.path_cs,
                 pattern_text: &p.path_text,
                 debug: None,
+                input: s.input,
             };
             let mut d = millpath_core::Diags::default();
             millpath_core::front::dxf::dxf_objects(&dxf, &fref, &opts, &mut d)
