@@ -181,6 +181,8 @@ struct Out<'d> {
     d: &'d Drawing,
     resolved: Resolved,
     left: usize,
+    /// Set by a depth or size overflow: the rest of that model-space entity is skipped.
+    stop: bool,
 }
 
 /// Resolves the model space of a drawing.
@@ -192,8 +194,10 @@ pub fn resolve(d: &Drawing) -> Resolved {
             refused: Vec::new(),
         },
         left: MAX_OUTPUT,
+        stop: false,
     };
     for x in &d.extra {
+        out.stop = false;
         let scope = Scope {
             line: x.line,
             handle: &x.handle,
@@ -209,6 +213,8 @@ pub fn resolve(d: &Drawing) -> Resolved {
 }
 
 impl Out<'_> {
+    /// Records a refusal once per model-space entity, type and reason (a block inserted a
+    /// thousand times gives one message); overflows stop the entity.
     fn refuse(
         &mut self,
         scope: &Scope,
@@ -217,6 +223,16 @@ impl Out<'_> {
         pos: Point3,
         reason: Reason,
     ) {
+        self.stop |= matches!(reason, Reason::TooDeep | Reason::TooMany);
+        let seen = self
+            .resolved
+            .refused
+            .iter()
+            .rev()
+            .any(|r| r.line == scope.line && r.code_name == code_name && r.reason == reason);
+        if seen {
+            return;
+        }
         self.resolved.refused.push(Refused {
             line: scope.line,
             handle: scope.handle.to_string(),
@@ -280,7 +296,7 @@ impl Out<'_> {
     }
 
     fn extra(&mut self, x: &Extra, scope: &Scope) {
-        if self.left == 0 {
+        if self.left == 0 || self.stop {
             return;
         }
         let (layer, lt) = self.inherited(scope, &x.layer, &x.linetype);
@@ -399,6 +415,9 @@ impl Out<'_> {
         }
         for row in 0..i.rows {
             for column in 0..i.columns {
+                if self.stop {
+                    return;
+                }
                 if self.left == 0 {
                     self.refuse(scope, &layer, code, i.insert, Reason::TooMany);
                     return;
@@ -418,6 +437,9 @@ impl Out<'_> {
 
     fn block(&mut self, block: &Block, scope: &Scope) {
         for e in &block.entities {
+            if self.stop {
+                return;
+            }
             let (layer, linetype) = self.inherited(scope, &e.layer, &e.linetype);
             let Some(map) = Self::ocs(scope, e.extrusion) else {
                 self.refuse(
@@ -526,15 +548,27 @@ fn bulge_arc(p0: Point3, p1: Point3, bulge: f64) -> Option<(Point3, f64, f64, f6
         return None;
     }
     let (dx, dy) = (p1[0] - p0[0], p1[1] - p0[1]);
-    let chord = dx.hypot(dy);
-    // included angle θ = 4·atan(bulge); the centre lies h from the chord's middle, to the
-    // left for a counter-clockwise arc under 180°
-    let theta = 4.0 * bulge.atan();
-    let radius = chord / (2.0 * (theta / 2.0).sin().abs());
-    let h = chord / 2.0 / (theta / 2.0).tan();
-    let (mx, my) = ((p0[0] + p1[0]) / 2.0, (p0[1] + p1[1]) / 2.0);
-    let center = [mx - dy / chord * h, my + dx / chord * h, p0[2]];
-    let angle = |p: Point3| (p[1] - center[1]).atan2(p[0] - center[0]).to_degrees();
+    // with θ = 4·atan(bulge) the centre lies (chord/2)·cot(θ/2) left of the chord's middle
+    // (right for a clockwise arc), and cot(θ/2) = (1 − bulge²)/(2·bulge): no trigonometry,
+    // so an arc whose points were written from whole numbers gets its centre back exactly
+    let k = (1.0 - bulge * bulge) / (4.0 * bulge);
+    let center = [
+        (p0[0] + p1[0]) / 2.0 - dy * k,
+        (p0[1] + p1[1]) / 2.0 + dx * k,
+        p0[2],
+    ];
+    let radius = (p0[0] - center[0]).hypot(p0[1] - center[1]);
+    // CAD programs store arcs by whole-degree angles more often than not: an angle within
+    // 1e-9° of a whole degree is taken as that degree, so the arc ends where the original
+    // did (the rebuilt angle is off by the last bits only)
+    let angle = |p: Point3| {
+        let a = (p[1] - center[1]).atan2(p[0] - center[0]).to_degrees();
+        if (a - a.round()).abs() < 1e-9 {
+            a.round()
+        } else {
+            a
+        }
+    };
     let (a0, a1) = (angle(p0), angle(p1));
     Some(if bulge > 0.0 {
         (center, radius, a0, a1)
