@@ -359,6 +359,11 @@ impl Out<'_> {
             }
             let kind = match bulge_arc(p0, p1, v0.bulge) {
                 None => EntityKind::Line { start: p0, end: p1 },
+                // a bulge like 1e300 overflows: refused, never milled as some other arc
+                Some((c, r, _, _)) if !(r.is_finite() && c.iter().all(|v| v.is_finite())) => {
+                    self.refuse(scope, &template.layer, code, p0, Reason::NotFinite);
+                    continue;
+                }
                 Some((center, radius, start_angle, end_angle)) => EntityKind::Arc {
                     center,
                     radius,
@@ -537,7 +542,12 @@ impl Out<'_> {
                 EntityKind::MText(m)
             }
         };
-        self.push(e)
+        let layer = e.layer.clone();
+        if !self.push(e) {
+            self.refuse(scope, &layer, code, [0.0; 3], Reason::TooMany);
+            return false;
+        }
+        true
     }
 }
 
@@ -597,6 +607,41 @@ mod tests {
         assert!(close(c[0], 0.0) && close(c[1], 0.0) && close(r, 1.0));
         assert!(close(a0, 0.0) && close(a1, 90.0), "{a0} {a1}");
         assert!(bulge_arc([0.0; 3], [1.0, 0.0, 0.0], 0.0).is_none());
+    }
+
+    fn drawing(entities: &str) -> Drawing {
+        let src = format!(
+            "  0\nSECTION\n  2\nBLOCKS\n  0\nBLOCK\n  2\nB\n 10\n0\n 20\n0\n  0\nLINE\n  8\n0\n 10\n0\n 20\n0\n 11\n1\n 21\n0\n  0\nENDBLK\n  0\nENDSEC\n  0\nSECTION\n  2\nENTITIES\n{entities}  0\nENDSEC\n  0\nEOF\n"
+        );
+        crate::read_dxf(src.as_bytes()).unwrap()
+    }
+
+    #[test]
+    fn huge_arrays_stop_at_the_output_bound() {
+        let d = drawing("  0\nINSERT\n  8\nP\n  2\nB\n 70\n100000\n 71\n100000\n 44\n2\n 45\n2\n");
+        let r = resolve(&d);
+        assert!(r.entities.len() <= MAX_OUTPUT);
+        assert_eq!(r.refused.len(), 1);
+        assert_eq!(r.refused[0].reason, Reason::TooMany);
+        // a 2 × 3 array: six lines, the last one at column 1, row 2
+        let r = resolve(&drawing(
+            "  0\nINSERT\n  8\nP\n  2\nB\n 70\n2\n 71\n3\n 44\n10\n 45\n5\n",
+        ));
+        assert_eq!(r.entities.len(), 6);
+        assert!(
+            matches!(r.entities[5].kind, EntityKind::Line { start, .. } if start == [10.0, 10.0, 0.0])
+        );
+        assert_eq!(r.entities[5].layer, "P");
+        // negative counts, unknown blocks, NaN scales: refused, nothing produced
+        for bad in [" 70\n-3\n", " 41\nnan\n"] {
+            let r = resolve(&drawing(&format!("  0\nINSERT\n  8\nP\n  2\nB\n{bad}")));
+            assert!(
+                r.entities.is_empty() && r.refused.len() == 1,
+                "{bad}: {r:?}"
+            );
+        }
+        let r = resolve(&drawing("  0\nINSERT\n  8\nP\n  2\nNONE\n"));
+        assert_eq!(r.refused[0].reason, Reason::UnknownBlock("NONE".into()));
     }
 
     #[test]

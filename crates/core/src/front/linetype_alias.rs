@@ -85,4 +85,17 @@ mod tests {
         assert_eq!(canonical("Center"), "CENTER");
         assert_eq!(canonical("ByBlock"), "BYBLOCK");
     }
+
+    #[test]
+    fn the_manual_lists_every_alias() {
+        let doc = include_str!("../../../../docs/src/cad-input.md");
+        for (name, to) in super::table() {
+            let row = doc
+                .lines()
+                .find(|l| l.starts_with('|') && l.contains(&format!("`{name}`")))
+                .unwrap_or_else(|| panic!("{name} is not in docs/src/cad-input.md"));
+            assert!(row.contains(&format!("| `{to}` |")), "{name} → {to}: {row}");
+            assert_eq!(super::canonical(&name), to);
+        }
+    }
 }
