@@ -147,9 +147,11 @@ def block_variant(doc, tag):
         rot = 90.0
         # world = T(origin) · R(rot) · mirror_x · scale 2 · inner; ezdxf's `@` applies the
         # left matrix first, so the way back reads left to right
+        # the quarter turn written exactly (z_rotate's cos(90°) is 6e-17, not 0)
+        turn_back = Matrix44([0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1])
         to_inner = (
             Matrix44.translate(-origin[0], -origin[1], 0)
-            @ Matrix44.z_rotate(math.radians(-rot))
+            @ turn_back
             @ Matrix44.scale(-0.5, 0.5, 1)
         )
         inner = doc.blocks.new(name=f"MP_{tag}_IN_{n}")

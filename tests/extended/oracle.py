@@ -23,6 +23,7 @@ import sys
 import tempfile
 
 NEG_ZERO = re.compile(rb"-0\.000(?![0-9])")
+COMMENT = re.compile(rb"\([^)]*\)")
 MACHINE = ["--feed", "150", "--sweep-speed", "500", "--sweep-height", "15"]
 
 
@@ -77,7 +78,8 @@ def main():
                 if v_outs[f] == b_outs[f]:
                     continue
                 if NEG_ZERO.sub(b"0.000", v_outs[f]) == NEG_ZERO.sub(b"0.000", b_outs[f]):
-                    signed_zero.append(f"{variant}/{f}")
+                    where = "comments" if COMMENT.sub(b"", v_outs[f]) == COMMENT.sub(b"", b_outs[f]) else "moves"
+                    signed_zero.append(f"{variant}/{f} ({where})")
                 else:
                     problems.append(f"{f} differs at {first_difference(b_outs[f], v_outs[f])}")
             p = subprocess.run(

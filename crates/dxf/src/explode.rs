@@ -140,9 +140,24 @@ impl Affine {
     }
 }
 
+/// sin and cos of an angle in degrees, exact for quarter turns (a block turned by 90° should
+/// not move a point on an axis to -1e-15).
+fn sin_cos_deg(deg: f64) -> (f64, f64) {
+    let q = deg / 90.0;
+    if q.fract() == 0.0 && q.abs() < 1e15 {
+        return match (q as i64).rem_euclid(4) {
+            0 => (0.0, 1.0),
+            1 => (1.0, 0.0),
+            2 => (0.0, -1.0),
+            _ => (-1.0, 0.0),
+        };
+    }
+    deg.to_radians().sin_cos()
+}
+
 /// The placement of one block instance (INSERT, or one cell of a MINSERT array).
 fn insert_map(i: &Insert, base: Point3, column: i32, row: i32) -> Affine {
-    let (s, c) = i.rotation.to_radians().sin_cos();
+    let (s, c) = sin_cos_deg(i.rotation);
     let (dx, dy) = (
         f64::from(column) * i.column_spacing,
         f64::from(row) * i.row_spacing,
@@ -509,7 +524,7 @@ impl Out<'_> {
                 let angle = |a: f64| {
                     let (sin, cos) = a.to_radians().sin_cos();
                     let v = map.apply_vec([cos, sin, 0.0]);
-                    v[1].atan2(v[0]).to_degrees()
+                    whole_degree(v[1].atan2(v[0]).to_degrees())
                 };
                 let (a0, a1) = (angle(start_angle), angle(end_angle));
                 // a mirror turns the counter-clockwise arc around: it now runs from a1 to a0
@@ -551,6 +566,17 @@ impl Out<'_> {
     }
 }
 
+/// CAD programs store arcs by whole-degree angles more often than not: an angle rebuilt
+/// within 1e-9° of a whole degree is taken as that degree, so the arc ends where the
+/// original did (the rebuilt angle is off in its last bits only).
+fn whole_degree(a: f64) -> f64 {
+    if (a - a.round()).abs() < 1e-9 {
+        a.round()
+    } else {
+        a
+    }
+}
+
 /// The arc of a polyline segment from `p0` to `p1` with a bulge: `(centre, radius, start
 /// angle, end angle)` counter-clockwise in degrees, or `None` for a straight segment.
 fn bulge_arc(p0: Point3, p1: Point3, bulge: f64) -> Option<(Point3, f64, f64, f64)> {
@@ -568,17 +594,7 @@ fn bulge_arc(p0: Point3, p1: Point3, bulge: f64) -> Option<(Point3, f64, f64, f6
         p0[2],
     ];
     let radius = (p0[0] - center[0]).hypot(p0[1] - center[1]);
-    // CAD programs store arcs by whole-degree angles more often than not: an angle within
-    // 1e-9° of a whole degree is taken as that degree, so the arc ends where the original
-    // did (the rebuilt angle is off by the last bits only)
-    let angle = |p: Point3| {
-        let a = (p[1] - center[1]).atan2(p[0] - center[0]).to_degrees();
-        if (a - a.round()).abs() < 1e-9 {
-            a.round()
-        } else {
-            a
-        }
-    };
+    let angle = |p: Point3| whole_degree((p[1] - center[1]).atan2(p[0] - center[0]).to_degrees());
     let (a0, a1) = (angle(p0), angle(p1));
     Some(if bulge > 0.0 {
         (center, radius, a0, a1)
