@@ -4,9 +4,10 @@
 
 use crate::extra::{Block, ExtraReader};
 use crate::reader::{num, raw_str, read_entity, records, Ctx, Pair};
-use crate::{Drawing, DxfError};
+use crate::Drawing;
 
-pub(crate) fn read_blocks(ctx: &Ctx, pairs: &[Pair], d: &mut Drawing) -> Result<(), DxfError> {
+/// Malformed content goes to `d.extra_errors` (the reference never reads blocks).
+pub(crate) fn read_blocks(ctx: &Ctx, pairs: &[Pair], d: &mut Drawing) {
     let mut current: Option<(String, Block)> = None;
     let mut extra = ExtraReader::default();
     for rec in records(pairs) {
@@ -16,11 +17,15 @@ pub(crate) fn read_blocks(ctx: &Ctx, pairs: &[Pair], d: &mut Drawing) -> Result<
                 let name = rec.iter().find(|p| p.code == 2).map(|p| ctx.text(p));
                 let mut block = Block::default();
                 for p in &rec[1..] {
-                    match p.code {
-                        10 => block.base[0] = num(p)?,
-                        20 => block.base[1] = num(p)?,
-                        30 => block.base[2] = num(p)?,
-                        _ => {}
+                    let axis = match p.code {
+                        10 => 0,
+                        20 => 1,
+                        30 => 2,
+                        _ => continue,
+                    };
+                    match num(p) {
+                        Ok(v) => block.base[axis] = v,
+                        Err(e) => d.extra_errors.push(e),
                     }
                 }
                 current = name.filter(|n| !is_layout_block(n)).map(|n| (n, block));
@@ -35,16 +40,18 @@ pub(crate) fn read_blocks(ctx: &Ctx, pairs: &[Pair], d: &mut Drawing) -> Result<
                 let Some((_, block)) = current.as_mut() else {
                     continue;
                 };
-                if extra.take(ctx, kind, rec, &mut block.extra)? {
+                if extra.take(ctx, kind, rec, &mut block.extra, &mut d.extra_errors) {
                     continue;
                 }
                 if matches!(kind, "LINE" | "ARC" | "CIRCLE" | "TEXT" | "MTEXT") {
-                    block.entities.extend(read_entity(ctx, kind, rec)?);
+                    match read_entity(ctx, kind, rec) {
+                        Ok(e) => block.entities.extend(e),
+                        Err(e) => d.extra_errors.push(e),
+                    }
                 }
             }
         }
     }
-    Ok(())
 }
 
 /// `*Model_Space`, `*Paper_Space`, `*Paper_Space0`, … (any case; R12 writes `$MODEL_SPACE`).

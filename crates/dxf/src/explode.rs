@@ -661,6 +661,20 @@ mod tests {
     }
 
     #[test]
+    fn malformed_polylines_do_not_cost_the_reference_mode_the_file() {
+        let d = drawing("  0\nLWPOLYLINE\n  8\nP\n 10\nabc\n  0\nLINE\n  8\nP\n");
+        assert_eq!(d.entities.len(), 1);
+        assert!(d.extra.is_empty());
+        assert_eq!(d.extra_errors.len(), 1);
+        assert!(d.extra_errors[0].to_string().contains("'abc'"));
+        // and bulges that overflow are refused, not milled as some other arc
+        let d = drawing("  0\nLWPOLYLINE\n  8\nP\n 10\n0\n 20\n0\n 42\n1e300\n 10\n1\n 20\n0\n");
+        let r = resolve(&d);
+        assert!(r.entities.is_empty());
+        assert_eq!(r.refused[0].reason, Reason::NotFinite);
+    }
+
+    #[test]
     fn mirrored_arcs_keep_their_points() {
         let i = Insert {
             name: "B".into(),

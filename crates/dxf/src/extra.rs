@@ -116,8 +116,23 @@ pub(crate) struct ExtraReader {
 
 impl ExtraReader {
     /// Takes the record when it belongs to an entity of this module (true), else leaves it to
-    /// the caller (false). A record of another kind ends a pending POLYLINE first.
+    /// the caller (false). A record of another kind ends a pending POLYLINE first. A
+    /// malformed entity is dropped with its error in `errors`.
     pub(crate) fn take(
+        &mut self,
+        ctx: &Ctx,
+        kind: &str,
+        rec: &[Pair],
+        out: &mut Vec<Extra>,
+        errors: &mut Vec<DxfError>,
+    ) -> bool {
+        self.try_take(ctx, kind, rec, out).unwrap_or_else(|e| {
+            errors.push(e);
+            true
+        })
+    }
+
+    fn try_take(
         &mut self,
         ctx: &Ctx,
         kind: &str,

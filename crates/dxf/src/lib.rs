@@ -49,6 +49,9 @@ pub struct Drawing {
     /// The BLOCKS section: block name → its base point and entities (model and paper space
     /// blocks left out).
     pub blocks: BTreeMap<String, Block>,
+    /// Malformed polylines, inserts and block contents: dropped here (the reference ignores
+    /// these entities, so they must not cost it the file); an error in the extended mode.
+    pub extra_errors: Vec<DxfError>,
 }
 
 /// One supported entity with its common properties.

@@ -273,7 +273,7 @@ pub fn read_dxf(bytes: &[u8]) -> Result<Drawing, DxfError> {
         match *name {
             "TABLES" => read_tables(&ctx, &pairs[*s..*e], &mut drawing),
             "ENTITIES" => read_entities(&ctx, &pairs[*s..*e], &mut drawing)?,
-            "BLOCKS" => crate::blocks::read_blocks(&ctx, &pairs[*s..*e], &mut drawing)?,
+            "BLOCKS" => crate::blocks::read_blocks(&ctx, &pairs[*s..*e], &mut drawing),
             _ => {}
         }
     }
@@ -288,7 +288,8 @@ fn read_header(pairs: &[Pair], d: &mut Drawing) -> Result<(), DxfError> {
             1 if var == "$ACADVER" => d.version = raw_str(p).to_string(),
             3 if var == "$DWGCODEPAGE" => d.codepage = raw_str(p).to_string(),
             40 if var == "$TEXTSIZE" => d.text_size = num(p)?,
-            70 if var == "$INSUNITS" => d.insunits = Some(int(p)?),
+            // ignored by the reference: a malformed value must not cost it the file
+            70 if var == "$INSUNITS" => d.insunits = int(p).ok(),
             _ => {}
         }
     }
@@ -340,7 +341,7 @@ fn read_entities(ctx: &Ctx, pairs: &[Pair], d: &mut Drawing) -> Result<(), DxfEr
     for rec in records(pairs) {
         let kind = raw_str(&rec[0]);
         // polylines, inserts, ellipses, splines: kept for the extended mode, ignored here
-        if extra.take(ctx, kind, rec, &mut d.extra)? {
+        if extra.take(ctx, kind, rec, &mut d.extra, &mut d.extra_errors) {
             d.ignored_entities += usize::from(!matches!(kind, "VERTEX" | "SEQEND" | "ATTRIB"));
             continue;
         }

@@ -128,7 +128,15 @@ pub fn resolve(
         insunits: d.insunits,
         extra: Vec::new(),
         blocks: BTreeMap::new(),
+        extra_errors: Vec::new(),
     };
+    for e in &d.extra_errors {
+        diags.error(
+            Msg::CannotLoadDxf,
+            Origin::File(file.clone()),
+            args![file.path.display(), e],
+        );
+    }
     if let Some(f) = d
         .insunits
         .and_then(millpath_dxf::units::millimetres_per_unit)
