@@ -81,6 +81,10 @@ struct MachineArgs {
     /// Seconds to wait after the spindle start (or `spindle_dwell`; default 2)
     #[arg(long)]
     spindle_dwell: Option<f64>,
+    /// Read polylines, blocks, line-type names of other CAD programs and $INSUNITS (or
+    /// `input = "extended"`; default: as PathDxf2GCode, with a warning for what it ignores)
+    #[arg(long)]
+    extended: bool,
 }
 
 /// The settings the conversions use: path and file names, the message language.
@@ -98,6 +102,9 @@ struct NameArgs {
     /// Settings file (default: nearest millpath.toml above the input)
     #[arg(long)]
     config: Option<PathBuf>,
+    /// Polylines and blocks become plain elements (or `input = "extended"`)
+    #[arg(long)]
+    extended: bool,
 }
 
 impl NameArgs {
@@ -107,6 +114,7 @@ impl NameArgs {
             file_pattern: self.file_pattern.clone(),
             lang: self.lang,
             config: self.config.clone(),
+            extended: self.extended,
             ..MachineArgs::default()
         }
     }
@@ -440,11 +448,12 @@ fn run_dxf2gcode(args: &[String]) -> u8 {
         }
     }
     let mut failed = false;
-    // the reference prints no word on entity order: that warning is for check, compile, the editor
+    // the reference prints no word on entity order, nor on the entities it ignores: those
+    // warnings are for check, compile and the editor
     let ours = |d: &&Diagnostic| {
         !matches!(
             d.msg,
-            Msg::OrderDecides | Msg::OrderDecidesText | Msg::OrderDecidesNoPin
+            Msg::OrderDecides | Msg::OrderDecidesText | Msg::OrderDecidesNoPin | Msg::IgnoredEntity
         )
     };
     for d in session
@@ -518,6 +527,9 @@ fn settings_for(
     }
     if let Some(l) = m.lang {
         s.lang = to_lang(l);
+    }
+    if m.extended {
+        s.input = millpath_core::InputMode::Extended;
     }
     if require_machine {
         let missing: Vec<&str> = [
@@ -1071,7 +1083,9 @@ fn run_dxf2text(file: &Path, output: Option<PathBuf>, textconv: bool, m: &Machin
         Err(code) => return code,
     };
     let fref = millpath_core::diag::FileRef::new(file.to_path_buf());
-    match millpath_core::convert::dxf_to_text(&bytes, &fref, &patterns) {
+    // conversion_input has already reported settings that do not load
+    let input = settings_for(m, Some(file), false).map_or_else(|_| Default::default(), |s| s.input);
+    match millpath_core::convert::dxf_to_text(&bytes, &fref, &patterns, input) {
         Ok((text, diags)) => {
             // what the text cannot carry (texts that belong to no element, …) is reported
             print_human(&diags, lang);

@@ -6,6 +6,7 @@ use crate::build::traverse::walk;
 use crate::diag::{Diags, FileRef};
 use crate::front::drawing::{build_paths, DrawnObject, RawPath, Shape};
 use crate::front::dxf::{dxf_objects, FrontOptions};
+use crate::front::extended::InputMode;
 use crate::geom::{near, Geom};
 use crate::load::names::Patterns;
 use crate::params::parse_number;
@@ -170,12 +171,13 @@ fn ordered(
     out
 }
 
-fn front_options(patterns: &Patterns) -> FrontOptions<'_> {
+fn front_options(patterns: &Patterns, input: InputMode) -> FrontOptions<'_> {
     FrontOptions {
         layer_pattern: &patterns.path_full,
         path_pattern: &patterns.path_cs,
         pattern_text: &patterns.path_text,
         debug: None,
+        input,
     }
 }
 
@@ -332,7 +334,8 @@ pub fn objects_to_dxf(objects: &[DrawnObject], patterns: &Patterns) -> String {
         let Ok(d) = millpath_dxf::read_dxf(text.as_bytes()) else {
             return text;
         };
-        let opts = front_options(patterns);
+        // our own writing has lines and arcs only
+        let opts = front_options(patterns, InputMode::Reference);
         let mut diags = Diags::default();
         let Ok((back, _)) = dxf_objects(&d, &file, &opts, &mut diags) else {
             return text;
@@ -368,11 +371,13 @@ pub fn paths_of(objects: &[DrawnObject], patterns: &Patterns) -> Vec<RawPath> {
 }
 
 /// `dxf2text`: a DXF file → canonical text. Problems of the drawing that lose information
-/// (texts that belong to no element, …) come back as diagnostics beside the text.
+/// (texts that belong to no element, …) come back as diagnostics beside the text. In the
+/// extended mode polylines and blocks become plain elements (the language has neither).
 pub fn dxf_to_text(
     bytes: &[u8],
     file: &Arc<FileRef>,
     patterns: &Patterns,
+    input: InputMode,
 ) -> Result<(String, Vec<crate::Diagnostic>), crate::Diagnostic> {
     let d = millpath_dxf::read_dxf(bytes).map_err(|e| {
         crate::Diagnostic::error(
@@ -381,7 +386,7 @@ pub fn dxf_to_text(
             crate::args![file.path.display(), e],
         )
     })?;
-    let opts = front_options(patterns);
+    let opts = front_options(patterns, input);
     let mut diags = Diags::default();
     let (objects, _) = dxf_objects(&d, file, &opts, &mut diags)?;
     let paths = paths_of(&objects, patterns);

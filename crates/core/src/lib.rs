@@ -16,6 +16,7 @@ pub mod second_opinion;
 
 pub use diag::{Diagnostic, Diags, Lang, Msg, Origin, Severity};
 pub use emit::Dialect;
+pub use front::extended::InputMode;
 pub use load::fs::{FileSystem, MemFileSystem, OsFileSystem};
 pub use load::session::Session;
 pub use load::settings::Settings;

@@ -6,12 +6,17 @@
 //! entity is counted and skipped, as the reference tool does. Malformed input gives a
 //! [`DxfError`] with a line number; the reader never panics.
 
+mod blocks;
 mod decode;
+pub mod explode;
+mod extra;
 mod reader;
 mod tokens;
+pub mod units;
 pub mod writer;
 
 pub use decode::decode_unicode_escapes;
+pub use extra::{Block, Extra, ExtraKind, Insert, Polyline, Vertex};
 pub use reader::read_dxf;
 
 use std::collections::BTreeMap;
@@ -37,6 +42,17 @@ pub struct Drawing {
     pub entities: Vec<Entity>,
     /// Number of model-space entities of other kinds (ignored).
     pub ignored_entities: usize,
+    /// `$INSUNITS` (0 = unitless, 1 = inches, 4 = millimetres, …), `None` when absent.
+    pub insunits: Option<i32>,
+    /// Model-space geometry the reference ignores (polylines, block references, ellipses,
+    /// splines), in file order: read for the extended input mode and its warnings.
+    pub extra: Vec<Extra>,
+    /// The BLOCKS section: block name → its base point and entities (model and paper space
+    /// blocks left out).
+    pub blocks: BTreeMap<String, Block>,
+    /// Malformed polylines, inserts and block contents: dropped here (the reference ignores
+    /// these entities, so they must not cost it the file); an error in the extended mode.
+    pub extra_errors: Vec<DxfError>,
 }
 
 /// One supported entity with its common properties.

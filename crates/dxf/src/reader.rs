@@ -9,8 +9,14 @@
 //! The errors are the ones of a reader that looks at the whole file before its contents: a
 //! bad group code or a cut pair anywhere first, then an unterminated section, then a file
 //! without sections, then the first bad header number, then the first bad entity number.
+//!
+//! The geometry the reference ignores (polylines, inserts, curves: `extra.rs`) and the BLOCKS
+//! section (`blocks.rs`) are kept as pairs and read at the end, when the code page is known;
+//! their errors never cost the file (`Drawing::extra_errors`).
 
 use crate::decode::{decode_value_into, encoding_for};
+use crate::extra::ExtraReader;
+use encoding_rs::Encoding;
 use crate::tokens::{int, is, num, raw_name, raw_str, Pair, Tokens};
 use crate::{Drawing, DxfError, DxfErrorKind, Entity, EntityKind, MText, Point3, Text};
 
@@ -20,6 +26,7 @@ enum Body {
     Header,
     Tables,
     Entities,
+    Blocks,
     Other,
 }
 
@@ -54,6 +61,7 @@ enum HeaderVar {
     AcadVer,
     CodePage,
     TextSize,
+    InsUnits,
     Other,
 }
 
@@ -225,6 +233,13 @@ struct Reader<'a> {
     structure_error: Option<DxfError>,
     header_error: Option<DxfError>,
     entity_error: Option<DxfError>,
+    /// The ENTITIES records of other kinds, in file order; of the five kinds above only the
+    /// `0` group (it ends a pending POLYLINE).
+    extra_pairs: Vec<Pair<'a>>,
+    /// The BLOCKS section.
+    block_pairs: Vec<Pair<'a>>,
+    /// Whether the ENTITIES record being read goes to `extra_pairs`.
+    in_extra: bool,
 }
 
 /// Reads a DXF file (ASCII, R12 to current versions).
@@ -251,6 +266,9 @@ pub fn read_dxf(bytes: &[u8]) -> Result<Drawing, DxfError> {
         structure_error: None,
         header_error: None,
         entity_error: None,
+        extra_pairs: Vec::new(),
+        block_pairs: Vec::new(),
+        in_extra: false,
     };
     let mut tokens = Tokens::new(bytes);
     let mut state = State::Outside;
@@ -266,6 +284,7 @@ pub fn read_dxf(bytes: &[u8]) -> Result<Drawing, DxfError> {
                     (2, b"HEADER") => Body::Header,
                     (2, b"TABLES") => Body::Tables,
                     (2, b"ENTITIES") => Body::Entities,
+                    (2, b"BLOCKS") => Body::Blocks,
                     _ => Body::Other,
                 };
                 r.begin();
@@ -313,7 +332,7 @@ impl<'a> Reader<'a> {
         match body {
             Body::Tables => self.end_table_record(),
             Body::Entities => self.end_entity(),
-            Body::Header | Body::Other => {}
+            Body::Header | Body::Blocks | Body::Other => {}
         }
     }
 
@@ -322,6 +341,7 @@ impl<'a> Reader<'a> {
             Body::Header => self.header_group(p),
             Body::Tables => self.table_group(p),
             Body::Entities => self.entity_group(p),
+            Body::Blocks => self.block_pairs.push(*p),
             Body::Other => {}
         }
     }
@@ -333,6 +353,7 @@ impl<'a> Reader<'a> {
                     b"$ACADVER" => HeaderVar::AcadVer,
                     b"$DWGCODEPAGE" => HeaderVar::CodePage,
                     b"$TEXTSIZE" => HeaderVar::TextSize,
+                    b"$INSUNITS" => HeaderVar::InsUnits,
                     _ => HeaderVar::Other,
                 }
             }
@@ -344,6 +365,8 @@ impl<'a> Reader<'a> {
                     self.header_error.get_or_insert(e);
                 }
             },
+            // ignored by the reference: a malformed value must not cost it the file
+            (70, HeaderVar::InsUnits) => self.d.insunits = int(p).ok(),
             _ => {}
         }
     }
@@ -386,20 +409,36 @@ impl<'a> Reader<'a> {
         }
         if p.code == 0 {
             self.end_entity();
-            let kind = match &*raw_name(p.value) {
-                b"LINE" => Kind::Line,
-                b"ARC" => Kind::Arc,
-                b"CIRCLE" => Kind::Circle,
-                b"TEXT" => Kind::Text,
-                b"MTEXT" => Kind::MText,
-                b"VERTEX" | b"SEQEND" | b"ATTRIB" => return,
-                _ => {
+            let name = raw_name(p.value);
+            let kind = match &*name {
+                b"LINE" => Some(Kind::Line),
+                b"ARC" => Some(Kind::Arc),
+                b"CIRCLE" => Some(Kind::Circle),
+                b"TEXT" => Some(Kind::Text),
+                b"MTEXT" => Some(Kind::MText),
+                _ => None,
+            };
+            self.in_extra = kind.is_none();
+            // a boundary for a pending POLYLINE, once per run of the five kinds
+            let after_extra = self.extra_pairs.last().is_some_and(|last| {
+                !matches!(&*raw_name(last.value), b"LINE" | b"ARC" | b"CIRCLE" | b"TEXT" | b"MTEXT")
+                    || last.code != 0
+            });
+            if self.in_extra || after_extra {
+                self.extra_pairs.push(*p);
+            }
+            let Some(kind) = kind else {
+                if !matches!(&*name, b"VERTEX" | b"SEQEND" | b"ATTRIB") {
                     self.d.ignored_entities += 1;
-                    return;
                 }
+                return;
             };
             let pieces = std::mem::take(&mut self.spare_pieces);
             self.entity = Some(EntityRecord::new(kind, p.line, pieces));
+            return;
+        }
+        if self.in_extra {
+            self.extra_pairs.push(*p);
             return;
         }
         if let Some(e) = &mut self.entity {
@@ -489,8 +528,85 @@ impl<'a> Reader<'a> {
                 },
             }
         }
+        // the geometry the reference ignores, and the blocks, now that the code page is known
+        let ctx = Ctx { enc };
+        let mut extra = ExtraReader::default();
+        for rec in records(&self.extra_pairs) {
+            let kind = raw_str(rec[0].value);
+            extra.take(&ctx, &kind, rec, &mut d.extra, &mut d.extra_errors);
+        }
+        extra.finish(&mut d.extra);
+        crate::blocks::read_blocks(&ctx, &self.block_pairs, d);
         Ok(self.d)
     }
+}
+
+/// Decoding of kept values for `extra.rs` and `blocks.rs`.
+pub(crate) struct Ctx {
+    enc: &'static Encoding,
+}
+
+impl Ctx {
+    /// A kept string value: decoded with the file's code page, then `\U+XXXX` escapes.
+    pub(crate) fn text(&self, p: &Pair) -> String {
+        self.decode(p.value)
+    }
+
+    fn decode(&self, raw: &[u8]) -> String {
+        let mut s = String::new();
+        decode_value_into(self.enc, raw, &mut s);
+        s
+    }
+}
+
+/// Splits pairs into records, each starting at a `0` group.
+pub(crate) fn records<'p, 'a>(pairs: &'p [Pair<'a>]) -> impl Iterator<Item = &'p [Pair<'a>]> {
+    let mut i = 0;
+    std::iter::from_fn(move || {
+        while i < pairs.len() && pairs[i].code != 0 {
+            i += 1;
+        }
+        if i >= pairs.len() {
+            return None;
+        }
+        let start = i;
+        i += 1;
+        while i < pairs.len() && pairs[i].code != 0 {
+            i += 1;
+        }
+        Some(&pairs[start..i])
+    })
+}
+
+/// One LINE/ARC/CIRCLE/TEXT/MTEXT record (of a block) with its strings decoded; `None` for
+/// paper space and other kinds.
+pub(crate) fn read_entity(ctx: &Ctx, kind: &str, rec: &[Pair]) -> Result<Option<Entity>, DxfError> {
+    let kind = match kind {
+        "LINE" => Kind::Line,
+        "ARC" => Kind::Arc,
+        "CIRCLE" => Kind::Circle,
+        "TEXT" => Kind::Text,
+        "MTEXT" => Kind::MText,
+        _ => return Ok(None),
+    };
+    let mut r = EntityRecord::new(kind, rec[0].line, Vec::new());
+    for p in &rec[1..] {
+        r.group(p)?;
+    }
+    if r.paper_space {
+        return Ok(None);
+    }
+    let mut e = r.entity();
+    if let Some(layer) = r.layer {
+        e.layer = ctx.decode(layer);
+    }
+    e.linetype = r.linetype.map(|lt| ctx.decode(lt));
+    if let EntityKind::Text(Text { value, .. }) | EntityKind::MText(MText { value, .. }) = &mut e.kind {
+        for raw in r.text_1.iter().chain(&r.pieces) {
+            decode_value_into(ctx.enc, raw, value);
+        }
+    }
+    Ok(Some(e))
 }
 
 #[cfg(test)]

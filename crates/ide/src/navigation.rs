@@ -120,6 +120,7 @@ pub(crate) fn objects_of_file(ws: &Workspace, f: &std::path::Path) -> Vec<DrawnO
         layer_pattern: &p.path_full,
         path_pattern: &p.path_cs,
         pattern_text: &p.path_text,
+        input: s.input,
         debug: None,
     };
     let mut d = millpath_core::Diags::default();

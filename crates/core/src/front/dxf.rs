@@ -4,6 +4,8 @@
 use crate::args;
 use crate::diag::{Diagnostic, Diags, EntityOrigin, FileRef, Msg, Origin};
 use crate::front::drawing::{build_paths, DrawingFile, DrawnObject, Shape};
+use crate::front::extended::{self, InputMode};
+use crate::front::linetype_alias;
 use crate::front::mtext::{mtext_plain, replace_percent_codes};
 use crate::geom::{f3, near, normalize_angle, Geom, P2};
 use crate::params::ParamText;
@@ -20,6 +22,8 @@ pub struct FrontOptions<'a> {
     pub pattern_text: &'a str,
     /// `/x`: print the text assignments whose text matches.
     pub debug: Option<&'a Regex>,
+    /// Reference or extended reading of polylines, blocks, line types and units.
+    pub input: InputMode,
 }
 
 /// Normalised path name of a layer: drop a trailing `~letters` suffix, `_` → `.`.
@@ -36,7 +40,7 @@ pub fn path_name_of_layer(layer: &str) -> String {
 }
 
 /// Layer names with characters CAD programs forbid end up on layer `0` (as in netDxf).
-fn effective_layer(name: &str) -> &str {
+pub(crate) fn effective_layer(name: &str) -> &str {
     if name.chars().any(|c| "\\/:*?\"<>|;,=`".contains(c)) {
         "0"
     } else {
@@ -127,6 +131,17 @@ pub fn dxf_objects(
     diags: &mut Diags,
 ) -> Result<(Vec<DrawnObject>, Vec<String>), Diagnostic> {
     let ctx = Ctx { file };
+    let resolved;
+    let d = match opts.input {
+        InputMode::Reference => {
+            extended::warn_ignored(d, file, opts, diags);
+            d
+        }
+        InputMode::Extended => {
+            resolved = extended::resolve(d, file, opts, diags);
+            &resolved
+        }
+    };
     let table_lt = |name: &str| -> String {
         d.linetypes
             .iter()
@@ -174,7 +189,10 @@ pub fn dxf_objects(
             continue;
         };
         let (layer, path) = (on.layer, on.path.clone());
-        let linetype = effective_lt(e, layer_lt);
+        let linetype = match opts.input {
+            InputMode::Reference => effective_lt(e, layer_lt),
+            InputMode::Extended => linetype_alias::canonical(&effective_lt(e, layer_lt)),
+        };
         let (shape, pos) = match &e.kind {
             EntityKind::Text(_) | EntityKind::MText(_) => {
                 texts.push((e, layer, path));

@@ -3,5 +3,7 @@
 
 pub mod drawing;
 pub mod dxf;
+pub mod extended;
+pub mod linetype_alias;
 pub mod mtext;
 pub mod text;

@@ -32,6 +32,8 @@ pub struct FileConfig {
     pub spindle_dwell: Option<f64>,
     /// `[machine]`: limits for the time estimates.
     pub machine: Option<MachineConfig>,
+    /// `reference` (default) or `extended`: polylines, blocks, line-type aliases, units.
+    pub input: Option<crate::InputMode>,
 }
 
 /// `[machine]`: `max_velocity` (mm/min) and `max_acceleration` (mm/s²), each one number for
@@ -113,6 +115,9 @@ impl FileConfig {
         }
         if let Some(v) = self.spindle_dwell {
             s.spindle_dwell = v;
+        }
+        if let Some(i) = self.input {
+            s.input = i;
         }
         if let Some(m) = &self.machine {
             if let Some(v) = m.max_velocity {

@@ -60,6 +60,7 @@ pub struct ParseKey {
     pub path_pattern: String,
     pub debug_pattern: Option<String>,
     pub lang: Lang,
+    pub input: crate::InputMode,
 }
 
 /// Files kept at most; when full the table starts again.

@@ -108,6 +108,7 @@ impl<'a> Session<'a> {
                     path_pattern: self.settings.path_pattern.clone(),
                     debug_pattern: self.settings.debug_pattern.clone(),
                     lang: self.lang(),
+                    input: self.settings.input,
                 };
                 parse_cache::parsed(key, || self.parse_file(path))
             }
@@ -250,6 +251,7 @@ impl<'a> Session<'a> {
             path_pattern: &self.patterns.path_cs,
             pattern_text: &self.settings.path_pattern,
             debug: self.debug.as_deref(),
+            input: self.settings.input,
         };
         let drawing = dxf_to_drawing(&dxf, file, &opts, diags)?;
         info.extend(drawing.debug.iter().cloned());

@@ -47,6 +47,9 @@ pub struct Settings {
     pub max_acceleration: Option<Axes>,
     /// G64 P (mm): how far a blended corner may leave the path, for the time estimates.
     pub path_tolerance: f64,
+    /// How DXF geometry is read: as the reference, or also polylines, blocks, line-type
+    /// aliases and units (`--extended`, `input = "extended"`).
+    pub input: crate::InputMode,
 }
 
 impl Default for Settings {
@@ -70,6 +73,7 @@ impl Default for Settings {
             max_velocity: None,
             max_acceleration: None,
             path_tolerance: DEFAULT_PATH_TOLERANCE,
+            input: crate::InputMode::Reference,
         }
     }
 }
