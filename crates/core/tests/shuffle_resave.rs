@@ -139,7 +139,7 @@ fn dxf2text(bytes: &[u8]) -> String {
     let s = Settings::default();
     let patterns = Patterns::new(&s.path_pattern, &s.file_pattern).unwrap();
     let file = FileRef::new("f.dxf".into());
-    match dxf_to_text(bytes, &file, &patterns) {
+    match dxf_to_text(bytes, &file, &patterns, millpath_core::InputMode::Reference) {
         Ok((t, _)) => t,
         Err(d) => format!("error {}", d.message(Lang::En)),
     }

@@ -16,9 +16,9 @@
 
 use crate::decode::{decode_value_into, encoding_for};
 use crate::extra::ExtraReader;
-use encoding_rs::Encoding;
 use crate::tokens::{int, is, num, raw_name, raw_str, Pair, Tokens};
 use crate::{Drawing, DxfError, DxfErrorKind, Entity, EntityKind, MText, Point3, Text};
+use encoding_rs::Encoding;
 
 /// What a section's contents are read as.
 #[derive(Clone, Copy, PartialEq)]
@@ -421,8 +421,10 @@ impl<'a> Reader<'a> {
             self.in_extra = kind.is_none();
             // a boundary for a pending POLYLINE, once per run of the five kinds
             let after_extra = self.extra_pairs.last().is_some_and(|last| {
-                !matches!(&*raw_name(last.value), b"LINE" | b"ARC" | b"CIRCLE" | b"TEXT" | b"MTEXT")
-                    || last.code != 0
+                !matches!(
+                    &*raw_name(last.value),
+                    b"LINE" | b"ARC" | b"CIRCLE" | b"TEXT" | b"MTEXT"
+                ) || last.code != 0
             });
             if self.in_extra || after_extra {
                 self.extra_pairs.push(*p);
@@ -601,7 +603,9 @@ pub(crate) fn read_entity(ctx: &Ctx, kind: &str, rec: &[Pair]) -> Result<Option<
         e.layer = ctx.decode(layer);
     }
     e.linetype = r.linetype.map(|lt| ctx.decode(lt));
-    if let EntityKind::Text(Text { value, .. }) | EntityKind::MText(MText { value, .. }) = &mut e.kind {
+    if let EntityKind::Text(Text { value, .. }) | EntityKind::MText(MText { value, .. }) =
+        &mut e.kind
+    {
         for raw in r.text_1.iter().chain(&r.pieces) {
             decode_value_into(ctx.enc, raw, value);
         }

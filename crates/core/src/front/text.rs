@@ -103,7 +103,10 @@ pub fn objects_of(
     for path in ast.paths() {
         for el in path.elements() {
             // the element without its trailing comment: what a diagnostic points at
-            let end = el.params.last().map_or(el.geometry.span.end, |p| p.span.end);
+            let end = el
+                .params
+                .last()
+                .map_or(el.geometry.span.end, |p| p.span.end);
             let origin = lines.origin(file, &(el.span.start..end.max(el.geometry.span.end)));
             let linetype = el.kind.value.linetype().to_string();
             let shape = match el.geometry.value {
