@@ -356,7 +356,7 @@ pub(crate) fn emit(model: &Model, dry: bool, ctl: &Controller) -> Result<Emitted
         .collect();
     let sx = model.params.s * START_OFFSET;
     let mut em = Emitter {
-        items: Vec::new(),
+        items: Vec::with_capacity(expected_items(model)),
         pos: P3 {
             x: 0.0,
             y: 0.0,
@@ -424,6 +424,21 @@ pub(crate) fn emit(model: &Model, dry: bool, ctl: &Controller) -> Result<Emitted
         probes,
         sx,
     })
+}
+
+/// A first capacity of the item list: about ten items per chain segment and pass group, as
+/// chains emit them. Growing a list of a large drawing (tens of megabytes) copies it each
+/// time; a guess too large only reserves address space.
+fn expected_items(model: &Model) -> usize {
+    let segments: usize = model
+        .elements
+        .iter()
+        .map(|e| match e {
+            Element::Chain(c) => c.segs.len(),
+            _ => 1,
+        })
+        .sum();
+    segments.saturating_mul(10).min(1 << 20)
 }
 
 pub(crate) struct Emitted {
