@@ -346,6 +346,8 @@ impl Candidates<'_> {
     }
 }
 
+/// Chains up to this many segments are ordered by the spec's scan directly.
+const SMALL_CHAIN: usize = 8;
 /// First ball radius: separates a candidate at the head (tip 0) from all others.
 const FIRST_RADIUS: f64 = 1e-8;
 /// Balls tried per step before the nearest-first walk takes over.
@@ -369,6 +371,17 @@ pub fn fast_order(ends: &[(P2, P2)], passes: &[Vec<f64>], head: P3) -> Vec<Step>
         return fast_order_reference(ends, passes, head);
     }
     assert_eq!(ends.len(), passes.len(), "one pass list per segment");
+    if ends.len() <= SMALL_CHAIN {
+        // a handful of segments: the scan itself is cheaper than building a tree
+        return fast_order_reference(ends, passes, head);
+    }
+    fast_order_indexed(ends, passes, head)
+}
+
+/// [`fast_order`] through the k-d tree whatever the size (finite input only; the property
+/// test runs it on small chains as well).
+#[doc(hidden)]
+pub fn fast_order_indexed(ends: &[(P2, P2)], passes: &[Vec<f64>], head: P3) -> Vec<Step> {
     let n = ends.len();
     let total: usize = passes.iter().map(Vec::len).sum();
     let mut tree = PassPoints::new(ends, passes);

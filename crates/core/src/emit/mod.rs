@@ -26,7 +26,7 @@ pub mod timing;
 pub mod toolpath;
 
 pub use dialect::{Controller, Dialect};
-pub use program::{check, check_for, generate, generate_for, Generated, Output};
+pub use program::{check, check_for, check_until, generate, generate_for, Generated, Output};
 pub use toolpath::{toolpath, Move, Toolpath};
 
 /// Items (moves and comments) one program may hold: far beyond any real part, and a bound on
@@ -156,7 +156,15 @@ pub(crate) struct Emitter<'a> {
     pub(crate) source: Option<u32>,
     /// The controller the texts are written for (plunge feeds).
     pub(crate) ctl: Controller,
+    /// Asked every [`STOP_EVERY`] elements or passes: `true` stops the emitter (the result
+    /// is not wanted any more).
+    pub(crate) stop: Option<&'a dyn Fn() -> bool>,
+    pub(crate) stopped: bool,
+    pub(crate) until_stop_check: usize,
 }
+
+/// Elements or passes between two questions to [`Emitter::stop`].
+const STOP_EVERY: usize = 256;
 
 /// Trace comment text: trimmed, `)` → `]`, `\` → `/`.
 pub fn as_comment(indent: usize, text: &str) -> String {
@@ -219,6 +227,21 @@ impl<'a> Emitter<'a> {
             source,
         });
     }
+    /// Asks [`Emitter::stop`] now and then; once it says stop, every loop ends (as when
+    /// the list is full) and [`emit`] returns no result.
+    pub(crate) fn stop_now(&mut self) -> bool {
+        if let Some(stop) = self.stop {
+            self.until_stop_check = self.until_stop_check.saturating_sub(1);
+            if self.until_stop_check == 0 {
+                self.until_stop_check = STOP_EVERY;
+                if stop() {
+                    self.stopped = true;
+                    self.full = true;
+                }
+            }
+        }
+        self.stopped
+    }
     fn at_capacity(&mut self) -> bool {
         if self.items.len() >= MAX_ITEMS {
             self.full = true;
@@ -244,6 +267,9 @@ impl<'a> Emitter<'a> {
 
     pub(crate) fn emit_model(&mut self, fr: Frame) {
         for e in &fr.model.elements {
+            if self.stop_now() {
+                return;
+            }
             self.sources.push(element_origin(e).clone());
             self.source = Some(self.sources.len() as u32 - 1);
             let r = match e {
@@ -329,6 +355,16 @@ fn missing_values(model: &Model, out: &mut Vec<Diagnostic>, depth: usize) {
 /// The body moves of a model (dry: without texts) for a controller, its probes and start
 /// height.
 pub(crate) fn emit(model: &Model, dry: bool, ctl: &Controller) -> Result<Emitted, Vec<Diagnostic>> {
+    emit_until(model, dry, ctl, None)
+}
+
+/// [`emit`] that gives up when `stop()` turns true: `Err` without diagnostics then.
+pub(crate) fn emit_until<'a>(
+    model: &Model,
+    dry: bool,
+    ctl: &Controller,
+    stop: Option<&'a dyn Fn() -> bool>,
+) -> Result<Emitted, Vec<Diagnostic>> {
     if model.elements.is_empty() {
         return Err(vec![Diagnostic::error(
             Msg::NoSegments,
@@ -370,6 +406,9 @@ pub(crate) fn emit(model: &Model, dry: bool, ctl: &Controller) -> Result<Emitted
         sources: Vec::new(),
         source: None,
         ctl: *ctl,
+        stop,
+        stopped: false,
+        until_stop_check: 1,
     };
     em.comment(2, || format!("Model {}", model.label()));
     em.emit_model(Frame {
@@ -405,6 +444,9 @@ pub(crate) fn emit(model: &Model, dry: bool, ctl: &Controller) -> Result<Emitted
             origin,
             args![F3(v), MAX_MAGNITUDE],
         ));
+    }
+    if em.stopped {
+        return Err(Vec::new());
     }
     if em.full {
         em.errors.push(Diagnostic::error(
