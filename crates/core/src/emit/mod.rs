@@ -359,11 +359,11 @@ pub(crate) fn emit(model: &Model, dry: bool, ctl: &Controller) -> Result<Emitted
 }
 
 /// [`emit`] that gives up when `stop()` turns true: `Err` without diagnostics then.
-pub(crate) fn emit_until<'a>(
+pub(crate) fn emit_until(
     model: &Model,
     dry: bool,
     ctl: &Controller,
-    stop: Option<&'a dyn Fn() -> bool>,
+    stop: Option<&dyn Fn() -> bool>,
 ) -> Result<Emitted, Vec<Diagnostic>> {
     if model.elements.is_empty() {
         return Err(vec![Diagnostic::error(
