@@ -77,6 +77,11 @@ struct PassPoints {
     pos: Vec<usize>,
     first: Vec<usize>,
     nodes: Vec<KdNode>,
+    /// Per point: the node a ball of [`FIRST_RADIUS`] around it may start from (see
+    /// [`PassPoints::anchor_leaves`]); in a chain the head is such a point at most steps.
+    anchor: Vec<usize>,
+    /// Per point: its leaf (removal walks up from there).
+    leaf: Vec<usize>,
 }
 
 /// Best-first queue of a query: (squared distance or its lower bound, node or point).
@@ -91,11 +96,23 @@ struct KdNode {
     end: usize,
     left: usize,
     alive: usize,
+    /// The parent node (the root's is 0).
+    parent: usize,
 }
 
 const LEAF: usize = 8;
 /// Marks a point (rather than a node) in the query heap.
 const POINT: usize = 1 << (usize::BITS - 1);
+
+/// Squared distance between two bounding boxes: a lower bound for any two of their points.
+fn box_gap2(a: &KdNode, b: &KdNode) -> f64 {
+    (0..3)
+        .map(|i| {
+            let gap = (b.lo[i] - a.hi[i]).max(a.lo[i] - b.hi[i]).max(0.0);
+            gap * gap
+        })
+        .sum()
+}
 
 /// Squared distance, the same expression as [`P3::dist`] before its square root.
 fn dist2(h: P3, p: [f64; 3]) -> f64 {
@@ -127,6 +144,7 @@ impl PassPoints {
                 end: items.len(),
                 left: 0,
                 alive: items.len(),
+                parent: 0,
             });
             Self::build(&mut nodes, &mut items, 0);
         }
@@ -138,6 +156,11 @@ impl PassPoints {
             pts.push(p);
             owner.push(owner_of_pass[slot / 2]);
         }
+        let mut anchor = vec![0; pts.len()];
+        let mut leaf = vec![0; pts.len()];
+        if !nodes.is_empty() {
+            Self::anchor_leaves(&nodes, 0, &mut Vec::new(), &mut anchor, &mut leaf);
+        }
         PassPoints {
             alive: vec![true; pts.len()],
             pts,
@@ -145,7 +168,45 @@ impl PassPoints {
             pos,
             first,
             nodes,
+            anchor,
+            leaf,
         }
+    }
+
+    /// Sets `anchor` of the points below node `n` (`path`: its ancestors): the highest
+    /// ancestor of a point's leaf whose other child's bounding box comes within
+    /// `4 · FIRST_RADIUS` of the leaf's box, else the leaf. Every point outside the anchor's
+    /// subtree is farther than that from every point of the leaf (boxes never change), so a
+    /// first ball around a point of the leaf finds all its points below the anchor.
+    /// Also sets `leaf` of these points.
+    fn anchor_leaves(
+        nodes: &[KdNode],
+        n: usize,
+        path: &mut Vec<usize>,
+        anchor: &mut [usize],
+        leaf: &mut [usize],
+    ) {
+        let left = nodes[n].left;
+        if left != 0 {
+            // depth ≤ log2 of the point count: the tree is balanced
+            path.push(n);
+            Self::anchor_leaves(nodes, left, path, anchor, leaf);
+            Self::anchor_leaves(nodes, left + 1, path, anchor, leaf);
+            path.pop();
+            return;
+        }
+        leaf[nodes[n].start..nodes[n].end].fill(n);
+        let reach2 = (4.0 * FIRST_RADIUS) * (4.0 * FIRST_RADIUS);
+        let (mut at, mut child) = (n, n);
+        for &x in path.iter().rev() {
+            let l = nodes[x].left;
+            let sibling = if child == l { l + 1 } else { l };
+            if box_gap2(&nodes[n], &nodes[sibling]) <= reach2 {
+                at = x;
+            }
+            child = x;
+        }
+        anchor[nodes[n].start..nodes[n].end].fill(at);
     }
 
     fn build(nodes: &mut Vec<KdNode>, items: &mut [([f64; 3], usize)], at: usize) {
@@ -178,6 +239,7 @@ impl PassPoints {
                 end: e,
                 left: 0,
                 alive: e - s,
+                parent: at,
             });
         }
         Self::build(nodes, items, left);
@@ -190,18 +252,14 @@ impl PassPoints {
             let at = self.pos[slot];
             debug_assert!(self.alive[at], "a pass is milled once");
             self.alive[at] = false;
-            let mut n = 0;
+            // up from the point's leaf to the root
+            let mut n = self.leaf[at];
             loop {
                 self.nodes[n].alive -= 1;
-                let left = self.nodes[n].left;
-                if left == 0 {
+                if n == 0 {
                     break;
                 }
-                n = if at < self.nodes[left].end {
-                    left
-                } else {
-                    left + 1
-                };
+                n = self.nodes[n].parent;
             }
         }
     }
@@ -226,12 +284,20 @@ impl PassPoints {
         }
     }
 
-    /// Calls `visit(point)` for every point left whose squared distance from `h` is at most
-    /// `r2` (in tree order). A depth-first walk with a reused stack: no heap, no allocation.
-    fn within(&self, stack: &mut Vec<usize>, h: P3, r2: f64, mut visit: impl FnMut(usize)) {
+    /// Calls `visit(point)` for every point left below node `from` whose squared distance
+    /// from `h` is at most `r2` (in tree order). A depth-first walk with a reused stack: no
+    /// heap, no allocation.
+    fn within(
+        &self,
+        stack: &mut Vec<usize>,
+        from: usize,
+        h: P3,
+        r2: f64,
+        mut visit: impl FnMut(usize),
+    ) {
         stack.clear();
         if !self.nodes.is_empty() {
-            stack.push(0);
+            stack.push(from);
         }
         while let Some(n) = stack.pop() {
             let KdNode {
@@ -396,6 +462,8 @@ pub fn fast_order_indexed(ends: &[(P2, P2)], passes: &[Vec<f64>], head: P3) -> V
     };
     let mut queue = Queue::new();
     let mut stack = Vec::new();
+    // the tree position of the point the head is at: the end of the pass just milled
+    let mut head_point: Option<usize> = None;
     let mut head = head;
     let mut order = Vec::with_capacity(total);
     for _ in 0..total {
@@ -404,7 +472,12 @@ pub fn fast_order_indexed(ends: &[(P2, P2)], passes: &[Vec<f64>], head: P3) -> V
         for _ in 0..BALL_ROUNDS {
             c.start_round();
             let r2 = r * r;
-            tree.within(&mut stack, head, r2, |i| c.meet(&tree, head, i));
+            // a first ball around the end of the last pass starts at that point's anchor
+            let from = match head_point {
+                Some(p) if r == FIRST_RADIUS => tree.anchor[p],
+                _ => 0,
+            };
+            tree.within(&mut stack, from, head, r2, |i| c.meet(&tree, head, i));
             let reach = r2.sqrt() * (1.0 - 1e-12);
             if c.separated(reach) {
                 settled = true;
@@ -440,6 +513,7 @@ pub fn fast_order_indexed(ends: &[(P2, P2)], passes: &[Vec<f64>], head: P3) -> V
         c.done_count[si] = k + 1;
         order.push((si, forward));
         head = if forward { b } else { a }.with_z(z);
+        head_point = Some(tree.pos[2 * (tree.first[si] + k) + usize::from(forward)]);
     }
     order
 }
