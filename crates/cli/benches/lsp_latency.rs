@@ -8,6 +8,10 @@
 //! - the median time of `textDocument/inlayHint` for a 40-line range (target: < 5 ms at 20,000);
 //! - a burst of 10 edits 100 ms apart: the time from the last edit to the diagnostics of the
 //!   last version (target: within two analyses' time).
+//!
+//! It ends with a table of these must-show figures, each with its target and PASS or FAIL,
+//! and exits with status 1 when one fails. `MILLPATH_LATENCY_SIZES=20000` (a comma list)
+//! runs only some sizes. The machine's load counts: on a busy machine run it again.
 #[path = "../tests/common/lsp_client.rs"]
 mod lsp_client;
 
@@ -77,7 +81,16 @@ fn wait_version(c: &mut Client, doc: &str, version: i64) -> serde_json::Value {
     }
 }
 
-fn scenario(n: usize, long: bool, runs: usize) {
+/// The must-show figures of one file.
+struct Figures {
+    n: usize,
+    shape: &'static str,
+    analysis: Duration,
+    hints: Duration,
+    burst: Duration,
+}
+
+fn scenario(n: usize, long: bool, runs: usize) -> Figures {
     let shape = if long {
         "one long chain"
     } else {
@@ -127,9 +140,10 @@ fn scenario(n: usize, long: bool, runs: usize) {
         hints.push(t0.elapsed());
         assert!(r["result"].is_array(), "{r}");
     }
+    let hints = median(hints);
     println!(
         "{n:>6} elements, {shape:<14}: inlay hints of 40 lines median {:7.2} ms",
-        ms(median(hints))
+        ms(hints)
     );
     // a burst of 10 edits 100 ms apart
     let mut last = Instant::now();
@@ -149,12 +163,78 @@ fn scenario(n: usize, long: bool, runs: usize) {
         after.as_secs_f64() / analysis.as_secs_f64()
     );
     c.shutdown();
+    Figures {
+        n,
+        shape,
+        analysis,
+        hints,
+        burst: after,
+    }
+}
+
+/// One must-show line: what, target, measured, PASS/FAIL. Returns whether it passed.
+fn verdict(what: &str, target: &str, measured: String, pass: bool) -> bool {
+    let result = if pass { "PASS" } else { "FAIL" };
+    println!("{what:<66} {target:>14} {measured:>14}   {result}");
+    pass
 }
 
 fn main() {
+    let sizes: Option<Vec<usize>> = std::env::var("MILLPATH_LATENCY_SIZES")
+        .ok()
+        .map(|v| v.split(',').filter_map(|n| n.trim().parse().ok()).collect());
+    let mut figures = Vec::new();
     for (n, runs) in [(2_000, 31), (20_000, 15)] {
-        for long in [false, true] {
-            scenario(n, long, runs);
+        if sizes.as_ref().is_some_and(|s| !s.contains(&n)) {
+            continue;
         }
+        for long in [false, true] {
+            figures.push(scenario(n, long, runs));
+        }
+    }
+    println!("\nmust show (issue 10)");
+    println!(
+        "{:<66} {:>14} {:>14}   result",
+        "figure", "target", "measured"
+    );
+    let mut all = true;
+    for f in &figures {
+        let (what, limit) = if f.n <= 2_000 {
+            (10.0, "< 10 ms")
+        } else {
+            (60.0, "< 60 ms")
+        };
+        all &= verdict(
+            &format!(
+                "didChange → publishDiagnostics median, {} el., {}",
+                f.n, f.shape
+            ),
+            limit,
+            format!("{:.1} ms", ms(f.analysis)),
+            ms(f.analysis) < what,
+        );
+    }
+    for f in figures.iter().filter(|f| f.n >= 20_000) {
+        all &= verdict(
+            &format!("inlay hints of 40 lines median, {} el., {}", f.n, f.shape),
+            "< 5 ms",
+            format!("{:.2} ms", ms(f.hints)),
+            ms(f.hints) < 5.0,
+        );
+    }
+    for f in &figures {
+        let analyses = f.burst.as_secs_f64() / f.analysis.as_secs_f64();
+        all &= verdict(
+            &format!(
+                "burst of 10 edits: final diagnostics, {} el., {}",
+                f.n, f.shape
+            ),
+            "≤ 2 analyses",
+            format!("{analyses:.1} ({:.0} ms)", ms(f.burst)),
+            analyses <= 2.0,
+        );
+    }
+    if !all {
+        std::process::exit(1);
     }
 }

@@ -79,6 +79,9 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
         let mut sorted = names.clone();
         sorted.sort();
         for name in sorted {
+            if session.stopped() {
+                return outcome;
+            }
             let verb = if session.lang() == Lang::De {
                 "Prüfen von"
             } else {
@@ -88,10 +91,11 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
             match session.build_top(&name) {
                 Err(abort) => session.diags.push(abort),
                 Ok(None) => {}
-                Ok(Some(model)) => match emit::check_for(
+                Ok(Some(model)) => match emit::check_until(
                     &model,
                     session.settings.sweep_speed,
                     &Controller::of(&session.settings),
+                    session.stop,
                 ) {
                     Ok(stats) => outcome.stats.push((name.clone(), stats)),
                     Err(errs) => errs.into_iter().for_each(|e| session.diags.push(e)),

@@ -3,7 +3,7 @@
 //! reversed segments, different pass counts, exact ties and near ties at scales 1e-3…1e5.
 //! Deterministic: a fixed-seed SplitMix64, so every run checks the same chains.
 
-use millpath_core::emit::chain_order::{fast_order, fast_order_reference};
+use millpath_core::emit::chain_order::{fast_order, fast_order_indexed, fast_order_reference};
 use millpath_core::geom::{P2, P3};
 
 /// SplitMix64: tiny, deterministic, good enough to shuffle test layouts.
@@ -250,6 +250,10 @@ fn check(rng: &mut Rng, cases: usize, max_n: usize) {
         let got = fast_order(&c.ends, &c.passes, c.head);
         let total: usize = c.passes.iter().map(Vec::len).sum();
         assert_eq!(want.len(), total);
+        // the tree also on chains small enough for `fast_order` to scan them directly
+        // (the random chains are finite)
+        let indexed = fast_order_indexed(&c.ends, &c.passes, c.head);
+        assert_eq!(indexed, want, "case {case_no}: the tree's order");
         if got != want {
             let i = got.iter().zip(&want).take_while(|(g, w)| g == w).count();
             panic!(

@@ -385,6 +385,8 @@ pub fn analyze_from(
     let mut diagnostics;
     match Session::new(check, &fs) {
         Ok(mut session) => {
+            // a newer edit stops the compiler between elements and passes as well
+            session.stop = Some(cancelled);
             if is_text {
                 let mut local = Diags::default();
                 match session.text_paths(&ast, syntax_errors, &src, &file, &mut local) {

@@ -52,7 +52,7 @@ pub fn walk(raw: &RawPath, start: P2, end: P2, diags: &mut Diags) -> (Vec<Step>,
     // in its cell or a neighbour cell (keeps the walk linear on large paths)
     const CELL: f64 = 1e-3;
     let cell = |p: P2| ((p.x / CELL).floor() as i64, (p.y / CELL).floor() as i64);
-    let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
+    let mut grid: HashMap<(i64, i64), Vec<usize>, foldhash::fast::RandomState> = HashMap::default();
     for (i, s) in segs.iter().enumerate() {
         let (a, b) = (s.shape.start(), s.shape.end());
         grid.entry(cell(a)).or_default().push(i);

@@ -64,7 +64,7 @@ impl Emitter<'_> {
         let s = fr.h + p.s;
         let ends: Vec<(P2, P2)> = geoms.iter().map(|g| (g.start(), g.end())).collect();
         for (si, forward) in fast_order(&ends, passes, head) {
-            if self.full {
+            if self.full || self.stop_now() {
                 break;
             }
             let z = passes[si][done_count[si]];
@@ -126,7 +126,7 @@ impl Emitter<'_> {
             }
         }
         for (si, z, forward) in edges {
-            if self.full {
+            if self.full || self.stop_now() {
                 break;
             }
             let seg = &ch.segs[si];

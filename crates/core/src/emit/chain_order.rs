@@ -77,6 +77,11 @@ struct PassPoints {
     pos: Vec<usize>,
     first: Vec<usize>,
     nodes: Vec<KdNode>,
+    /// Per point: the node a ball of [`FIRST_RADIUS`] around it may start from (see
+    /// [`PassPoints::anchor_leaves`]); in a chain the head is such a point at most steps.
+    anchor: Vec<usize>,
+    /// Per point: its leaf (removal walks up from there).
+    leaf: Vec<usize>,
 }
 
 /// Best-first queue of a query: (squared distance or its lower bound, node or point).
@@ -91,11 +96,23 @@ struct KdNode {
     end: usize,
     left: usize,
     alive: usize,
+    /// The parent node (the root's is 0).
+    parent: usize,
 }
 
 const LEAF: usize = 8;
 /// Marks a point (rather than a node) in the query heap.
 const POINT: usize = 1 << (usize::BITS - 1);
+
+/// Squared distance between two bounding boxes: a lower bound for any two of their points.
+fn box_gap2(a: &KdNode, b: &KdNode) -> f64 {
+    (0..3)
+        .map(|i| {
+            let gap = (b.lo[i] - a.hi[i]).max(a.lo[i] - b.hi[i]).max(0.0);
+            gap * gap
+        })
+        .sum()
+}
 
 /// Squared distance, the same expression as [`P3::dist`] before its square root.
 fn dist2(h: P3, p: [f64; 3]) -> f64 {
@@ -127,6 +144,7 @@ impl PassPoints {
                 end: items.len(),
                 left: 0,
                 alive: items.len(),
+                parent: 0,
             });
             Self::build(&mut nodes, &mut items, 0);
         }
@@ -138,6 +156,11 @@ impl PassPoints {
             pts.push(p);
             owner.push(owner_of_pass[slot / 2]);
         }
+        let mut anchor = vec![0; pts.len()];
+        let mut leaf = vec![0; pts.len()];
+        if !nodes.is_empty() {
+            Self::anchor_leaves(&nodes, 0, &mut Vec::new(), &mut anchor, &mut leaf);
+        }
         PassPoints {
             alive: vec![true; pts.len()],
             pts,
@@ -145,7 +168,45 @@ impl PassPoints {
             pos,
             first,
             nodes,
+            anchor,
+            leaf,
         }
+    }
+
+    /// Sets `anchor` of the points below node `n` (`path`: its ancestors): the highest
+    /// ancestor of a point's leaf whose other child's bounding box comes within
+    /// `4 · FIRST_RADIUS` of the leaf's box, else the leaf. Every point outside the anchor's
+    /// subtree is farther than that from every point of the leaf (boxes never change), so a
+    /// first ball around a point of the leaf finds all its points below the anchor.
+    /// Also sets `leaf` of these points.
+    fn anchor_leaves(
+        nodes: &[KdNode],
+        n: usize,
+        path: &mut Vec<usize>,
+        anchor: &mut [usize],
+        leaf: &mut [usize],
+    ) {
+        let left = nodes[n].left;
+        if left != 0 {
+            // depth ≤ log2 of the point count: the tree is balanced
+            path.push(n);
+            Self::anchor_leaves(nodes, left, path, anchor, leaf);
+            Self::anchor_leaves(nodes, left + 1, path, anchor, leaf);
+            path.pop();
+            return;
+        }
+        leaf[nodes[n].start..nodes[n].end].fill(n);
+        let reach2 = (4.0 * FIRST_RADIUS) * (4.0 * FIRST_RADIUS);
+        let (mut at, mut child) = (n, n);
+        for &x in path.iter().rev() {
+            let l = nodes[x].left;
+            let sibling = if child == l { l + 1 } else { l };
+            if box_gap2(&nodes[n], &nodes[sibling]) <= reach2 {
+                at = x;
+            }
+            child = x;
+        }
+        anchor[nodes[n].start..nodes[n].end].fill(at);
     }
 
     fn build(nodes: &mut Vec<KdNode>, items: &mut [([f64; 3], usize)], at: usize) {
@@ -178,6 +239,7 @@ impl PassPoints {
                 end: e,
                 left: 0,
                 alive: e - s,
+                parent: at,
             });
         }
         Self::build(nodes, items, left);
@@ -190,18 +252,14 @@ impl PassPoints {
             let at = self.pos[slot];
             debug_assert!(self.alive[at], "a pass is milled once");
             self.alive[at] = false;
-            let mut n = 0;
+            // up from the point's leaf to the root
+            let mut n = self.leaf[at];
             loop {
                 self.nodes[n].alive -= 1;
-                let left = self.nodes[n].left;
-                if left == 0 {
+                if n == 0 {
                     break;
                 }
-                n = if at < self.nodes[left].end {
-                    left
-                } else {
-                    left + 1
-                };
+                n = self.nodes[n].parent;
             }
         }
     }
@@ -223,6 +281,45 @@ impl PassPoints {
         if self.nodes[n].alive > 0 {
             let d2 = self.node_dist2(h, n);
             queue.push(Reverse((d2.to_bits(), n)));
+        }
+    }
+
+    /// Calls `visit(point)` for every point left below node `from` whose squared distance
+    /// from `h` is at most `r2` (in tree order). A depth-first walk with a reused stack: no
+    /// heap, no allocation.
+    fn within(
+        &self,
+        stack: &mut Vec<usize>,
+        from: usize,
+        h: P3,
+        r2: f64,
+        mut visit: impl FnMut(usize),
+    ) {
+        stack.clear();
+        if !self.nodes.is_empty() {
+            stack.push(from);
+        }
+        while let Some(n) = stack.pop() {
+            let KdNode {
+                start,
+                end,
+                left,
+                alive,
+                ..
+            } = self.nodes[n];
+            if alive == 0 || self.node_dist2(h, n) > r2 {
+                continue;
+            }
+            if left != 0 {
+                stack.push(left + 1);
+                stack.push(left);
+                continue;
+            }
+            for i in start..end {
+                if self.alive[i] && dist2(h, self.pts[i]) <= r2 {
+                    visit(i);
+                }
+            }
         }
     }
 
@@ -259,7 +356,77 @@ impl PassPoints {
     }
 }
 
+/// The candidates of one step, found in the k-d tree.
+struct Candidates<'a> {
+    ends: &'a [(P2, P2)],
+    passes: &'a [Vec<f64>],
+    done_count: Vec<usize>,
+    /// The round in which a segment was last met (0 = never): each segment counts once.
+    met_in: Vec<usize>,
+    round: usize,
+    /// (segment, forward, tip) of the candidates met in this round.
+    met: Vec<(usize, bool, f64)>,
+    max_tip: f64,
+}
+
+impl Candidates<'_> {
+    fn start_round(&mut self) {
+        self.round += 1;
+        self.met.clear();
+        self.max_tip = f64::NEG_INFINITY;
+    }
+
+    /// Point `i` of the tree was reached: its segment is a candidate if the point belongs
+    /// to the segment's next pass (deeper passes are no candidates yet).
+    fn meet(&mut self, tree: &PassPoints, head: P3, i: usize) {
+        let (si, k) = tree.owner[i];
+        if k != self.done_count[si] || self.met_in[si] == self.round {
+            return;
+        }
+        self.met_in[si] = self.round;
+        let (a, b) = self.ends[si];
+        let z = self.passes[si][k];
+        let ds = head.dist(a.with_z(z));
+        let de = head.dist(b.with_z(z));
+        let tip = ds.min(de);
+        self.max_tip = self.max_tip.max(tip);
+        self.met.push((si, lt(ds, de), tip));
+    }
+
+    /// Whether every candidate not met (all its points at least `reach` away) has a tip
+    /// `lt` every tip met (the gap of the module docs).
+    fn separated(&self, reach: f64) -> bool {
+        !self.met.is_empty() && reach - self.max_tip > 2.0 * EPS * (reach + 0.001)
+    }
+
+    /// The spec's scan over the met candidates, in list order.
+    fn best(&mut self) -> Option<(usize, bool)> {
+        self.met.sort_unstable_by_key(|m| m.0);
+        let mut best: Option<(usize, bool, f64)> = None;
+        for &(si, forward, tip) in &self.met {
+            if best.is_none_or(|(_, _, bt)| lt(tip, bt)) {
+                best = Some((si, forward, tip));
+            }
+        }
+        best.map(|(si, forward, _)| (si, forward))
+    }
+}
+
+/// Chains up to this many segments are ordered by the spec's scan directly.
+const SMALL_CHAIN: usize = 8;
+/// First ball radius: separates a candidate at the head (tip 0) from all others.
+const FIRST_RADIUS: f64 = 1e-8;
+/// Balls tried per step before the nearest-first walk takes over.
+const BALL_ROUNDS: usize = 8;
+
 /// The same order as [`fast_order_reference`], in about O(n log n) (see the module docs).
+///
+/// Each step first tries balls around the head: all points within radius `r` are met, and
+/// when the candidates met are separated from every point outside (`reach = r`, shrunk like
+/// the queue keys), they form a valid set `S`. In a chain the next segment usually starts
+/// at the head, so one small ball settles the step. A ball without candidates grows 16-fold,
+/// one whose candidates are not yet separated grows to the radius that would separate them;
+/// after [`BALL_ROUNDS`] balls the nearest-first walk decides.
 pub fn fast_order(ends: &[(P2, P2)], passes: &[Vec<f64>], head: P3) -> Vec<Step> {
     let finite = |p: P2| p.x.is_finite() && p.y.is_finite();
     let all_finite = finite(head.xy())
@@ -270,55 +437,83 @@ pub fn fast_order(ends: &[(P2, P2)], passes: &[Vec<f64>], head: P3) -> Vec<Step>
         return fast_order_reference(ends, passes, head);
     }
     assert_eq!(ends.len(), passes.len(), "one pass list per segment");
+    if ends.len() <= SMALL_CHAIN {
+        // a handful of segments: the scan itself is cheaper than building a tree
+        return fast_order_reference(ends, passes, head);
+    }
+    fast_order_indexed(ends, passes, head)
+}
+
+/// [`fast_order`] through the k-d tree whatever the size (finite input only; the property
+/// test runs it on small chains as well).
+#[doc(hidden)]
+pub fn fast_order_indexed(ends: &[(P2, P2)], passes: &[Vec<f64>], head: P3) -> Vec<Step> {
     let n = ends.len();
     let total: usize = passes.iter().map(Vec::len).sum();
-    let mut done_count = vec![0usize; n];
-    // the step in which a segment was last met (+1; 0 = never)
-    let mut met_in = vec![0usize; n];
     let mut tree = PassPoints::new(ends, passes);
+    let mut c = Candidates {
+        ends,
+        passes,
+        done_count: vec![0usize; n],
+        met_in: vec![0usize; n],
+        round: 0,
+        met: Vec::new(),
+        max_tip: f64::NEG_INFINITY,
+    };
     let mut queue = Queue::new();
+    let mut stack = Vec::new();
+    // the tree position of the point the head is at: the end of the pass just milled
+    let mut head_point: Option<usize> = None;
     let mut head = head;
     let mut order = Vec::with_capacity(total);
-    // the candidates met in this step: (segment, forward, tip)
-    let mut met: Vec<(usize, bool, f64)> = Vec::new();
-    for step in 1..=total {
-        met.clear();
-        let mut max_tip = f64::NEG_INFINITY;
-        tree.nearest(&mut queue, head, |i, d2| {
-            let reach = d2.sqrt() * (1.0 - 1e-12);
-            if !met.is_empty() && reach - max_tip > 2.0 * EPS * (reach + 0.001) {
-                return false;
+    for _ in 0..total {
+        let mut settled = false;
+        let mut r = FIRST_RADIUS;
+        for _ in 0..BALL_ROUNDS {
+            c.start_round();
+            let r2 = r * r;
+            // a first ball around the end of the last pass starts at that point's anchor
+            let from = match head_point {
+                Some(p) if r == FIRST_RADIUS => tree.anchor[p],
+                _ => 0,
+            };
+            tree.within(&mut stack, from, head, r2, |i| c.meet(&tree, head, i));
+            let reach = r2.sqrt() * (1.0 - 1e-12);
+            if c.separated(reach) {
+                settled = true;
+                break;
             }
-            let (si, k) = tree.owner[i];
-            if k != done_count[si] || met_in[si] == step {
-                return true; // a deeper pass (no candidate yet), or met already
-            }
-            met_in[si] = step;
-            let (a, b) = ends[si];
-            let z = passes[si][k];
-            let ds = head.dist(a.with_z(z));
-            let de = head.dist(b.with_z(z));
-            let tip = ds.min(de);
-            max_tip = max_tip.max(tip);
-            met.push((si, lt(ds, de), tip));
-            true
-        });
-        // the spec's scan, over the met candidates in list order
-        met.sort_unstable_by_key(|m| m.0);
-        let mut best: Option<(usize, bool, f64)> = None;
-        for &(si, forward, tip) in &met {
-            if best.is_none_or(|(_, _, bt)| lt(tip, bt)) {
-                best = Some((si, forward, tip));
+            r = if c.met.is_empty() {
+                r * 16.0
+            } else {
+                // the reach that would separate the tips met so far, with room to spare
+                let need = (c.max_tip + 2.0 * EPS * 0.001) / (1.0 - 2.0 * EPS);
+                (need * (1.0 + 1e-6)).max(r * (1.0 + 1e-6))
+            };
+            if !r.is_finite() {
+                break;
             }
         }
-        let Some((si, forward, _)) = best else { break };
+        if !settled {
+            c.start_round();
+            tree.nearest(&mut queue, head, |i, d2| {
+                let reach = d2.sqrt() * (1.0 - 1e-12);
+                if c.separated(reach) {
+                    return false;
+                }
+                c.meet(&tree, head, i);
+                true
+            });
+        }
+        let Some((si, forward)) = c.best() else { break };
         let (a, b) = ends[si];
-        let k = done_count[si];
+        let k = c.done_count[si];
         let z = passes[si][k];
         tree.remove(si, k);
-        done_count[si] = k + 1;
+        c.done_count[si] = k + 1;
         order.push((si, forward));
         head = if forward { b } else { a }.with_z(z);
+        head_point = Some(tree.pos[2 * (tree.first[si] + k) + usize::from(forward)]);
     }
     order
 }

@@ -26,7 +26,7 @@ pub mod timing;
 pub mod toolpath;
 
 pub use dialect::{Controller, Dialect};
-pub use program::{check, check_for, generate, generate_for, Generated, Output};
+pub use program::{check, check_for, check_until, generate, generate_for, Generated, Output};
 pub use toolpath::{toolpath, Move, ProbePoint, Toolpath};
 
 /// Items (moves and comments) one program may hold: far beyond any real part, and a bound on
@@ -183,7 +183,15 @@ pub(crate) struct Emitter<'a> {
     pub(crate) shape: Shape,
     /// The controller the texts are written for (plunge feeds).
     pub(crate) ctl: Controller,
+    /// Asked every [`STOP_EVERY`] elements or passes: `true` stops the emitter (the result
+    /// is not wanted any more).
+    pub(crate) stop: Option<&'a dyn Fn() -> bool>,
+    pub(crate) stopped: bool,
+    pub(crate) until_stop_check: usize,
 }
+
+/// Elements or passes between two questions to [`Emitter::stop`].
+const STOP_EVERY: usize = 256;
 
 /// Trace comment text: trimmed, `)` → `]`, `\` → `/`.
 pub fn as_comment(indent: usize, text: &str) -> String {
@@ -248,6 +256,21 @@ impl<'a> Emitter<'a> {
             shape: self.shape,
         });
     }
+    /// Asks [`Emitter::stop`] now and then; once it says stop, every loop ends (as when
+    /// the list is full) and [`emit`] returns no result.
+    pub(crate) fn stop_now(&mut self) -> bool {
+        if let Some(stop) = self.stop {
+            self.until_stop_check = self.until_stop_check.saturating_sub(1);
+            if self.until_stop_check == 0 {
+                self.until_stop_check = STOP_EVERY;
+                if stop() {
+                    self.stopped = true;
+                    self.full = true;
+                }
+            }
+        }
+        self.stopped
+    }
     fn at_capacity(&mut self) -> bool {
         if self.items.len() >= MAX_ITEMS {
             self.full = true;
@@ -278,6 +301,9 @@ impl<'a> Emitter<'a> {
 
     pub(crate) fn emit_model(&mut self, fr: Frame) {
         for e in &fr.model.elements {
+            if self.stop_now() {
+                return;
+            }
             self.source = Some(self.add_source(element_origin(e)));
             self.shape = match e {
                 Element::Drill(_) => Shape::Drill,
@@ -367,6 +393,16 @@ fn missing_values(model: &Model, out: &mut Vec<Diagnostic>, depth: usize) {
 /// The body moves of a model (dry: without texts) for a controller, its probes and start
 /// height.
 pub(crate) fn emit(model: &Model, dry: bool, ctl: &Controller) -> Result<Emitted, Vec<Diagnostic>> {
+    emit_until(model, dry, ctl, None)
+}
+
+/// [`emit`] that gives up when `stop()` turns true: `Err` without diagnostics then.
+pub(crate) fn emit_until(
+    model: &Model,
+    dry: bool,
+    ctl: &Controller,
+    stop: Option<&dyn Fn() -> bool>,
+) -> Result<Emitted, Vec<Diagnostic>> {
     if model.elements.is_empty() {
         return Err(vec![Diagnostic::error(
             Msg::NoSegments,
@@ -394,7 +430,7 @@ pub(crate) fn emit(model: &Model, dry: bool, ctl: &Controller) -> Result<Emitted
         .collect();
     let sx = model.params.s * START_OFFSET;
     let mut em = Emitter {
-        items: Vec::new(),
+        items: Vec::with_capacity(expected_items(model)),
         pos: P3 {
             x: 0.0,
             y: 0.0,
@@ -409,6 +445,9 @@ pub(crate) fn emit(model: &Model, dry: bool, ctl: &Controller) -> Result<Emitted
         source: None,
         shape: Shape::Mill,
         ctl: *ctl,
+        stop,
+        stopped: false,
+        until_stop_check: 1,
     };
     em.comment(2, || format!("Model {}", model.label()));
     em.emit_model(Frame {
@@ -445,6 +484,9 @@ pub(crate) fn emit(model: &Model, dry: bool, ctl: &Controller) -> Result<Emitted
             args![F3(v), MAX_MAGNITUDE],
         ));
     }
+    if em.stopped {
+        return Err(Vec::new());
+    }
     if em.full {
         em.errors.push(Diagnostic::error(
             Msg::TooManyMoves,
@@ -463,6 +505,21 @@ pub(crate) fn emit(model: &Model, dry: bool, ctl: &Controller) -> Result<Emitted
         probes,
         sx,
     })
+}
+
+/// A first capacity of the item list: about ten items per chain segment and pass group, as
+/// chains emit them. Growing a list of a large drawing (tens of megabytes) copies it each
+/// time; a guess too large only reserves address space.
+fn expected_items(model: &Model) -> usize {
+    let segments: usize = model
+        .elements
+        .iter()
+        .map(|e| match e {
+            Element::Chain(c) => c.segs.len(),
+            _ => 1,
+        })
+        .sum();
+    segments.saturating_mul(10).min(1 << 20)
 }
 
 pub(crate) struct Emitted {

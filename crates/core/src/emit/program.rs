@@ -4,7 +4,7 @@ use crate::diag::{Diagnostic, Lang, Origin};
 use crate::emit::as_comment;
 use crate::emit::dialect::Controller;
 use crate::emit::stats::Stats;
-use crate::emit::{emit, Emitted};
+use crate::emit::{emit, emit_until, Emitted};
 use crate::geom::{near, F3, P2, P3};
 use crate::model::*;
 
@@ -38,7 +38,17 @@ pub fn check_for(
     sweep_speed: f64,
     ctl: &Controller,
 ) -> Result<Stats, Vec<Diagnostic>> {
-    let e = emit(model, true, ctl)?;
+    check_until(model, sweep_speed, ctl, None)
+}
+
+/// [`check_for`] that gives up when `stop()` turns true (`Err` without diagnostics then).
+pub fn check_until(
+    model: &Model,
+    sweep_speed: f64,
+    ctl: &Controller,
+    stop: Option<&dyn Fn() -> bool>,
+) -> Result<Stats, Vec<Diagnostic>> {
+    let e = emit_until(model, true, ctl, stop)?;
     Ok(Stats::timed(
         &e.items,
         sweep_speed,

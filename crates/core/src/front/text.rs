@@ -98,7 +98,7 @@ pub fn objects_of(
             args![e.message],
         );
     }
-    let mut out = Vec::new();
+    let mut out = Vec::with_capacity(ast.paths().map(|p| p.items.len()).sum());
     let mut declared = Vec::new();
     for path in ast.paths() {
         for el in path.elements() {

@@ -33,6 +33,9 @@ pub struct Session<'a> {
     pub(crate) raw: HashMap<String, Arc<RawPath>>,
     pub(crate) loaded: HashMap<PathBuf, Vec<String>>,
     pub(crate) models: HashMap<(String, Vars), Option<Arc<Model>>>,
+    /// Asked now and then during a check: `true` gives up (the editor's document changed,
+    /// the result is useless). The outcome of a stopped run is then incomplete.
+    pub stop: Option<&'a dyn Fn() -> bool>,
 }
 
 impl<'a> Session<'a> {
@@ -85,9 +88,15 @@ impl<'a> Session<'a> {
                 raw: HashMap::new(),
                 loaded: HashMap::new(),
                 models: HashMap::new(),
+                stop: None,
             }),
             _ => Err(errors),
         }
+    }
+
+    /// Whether [`Session::stop`] says to give up.
+    pub fn stopped(&self) -> bool {
+        self.stop.is_some_and(|stop| stop())
     }
 
     pub fn lang(&self) -> Lang {
