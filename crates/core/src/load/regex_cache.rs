@@ -12,7 +12,7 @@ const CAPACITY: usize = 256;
 
 /// A small process-wide memo table; cleared when full (patterns are cheap to rebuild).
 pub struct Memo<K, V> {
-    map: Mutex<HashMap<K, V>>,
+    map: Mutex<HashMap<K, Arc<OnceLock<V>>>>,
     capacity: usize,
 }
 
@@ -26,21 +26,20 @@ impl<K: Eq + Hash + Clone, V: Clone> Memo<K, V> {
             capacity: capacity.max(1),
         }
     }
-    /// The value for `key`, made by `make` the first time.
+    /// The value for `key`, made by `make` the first time. Made outside the table's lock
+    /// (compiling a regex can take a while) but once per key: the parallel workers of
+    /// `check` asking for the same key at the same moment wait for the one that makes it.
     pub fn get_or(&self, key: &K, make: impl FnOnce() -> V) -> V {
-        if let Some(v) = self.lock().get(key) {
-            return v.clone();
-        }
-        // made outside the lock: compiling a regex can take a while
-        let v = make();
-        let mut map = self.lock();
-        if map.len() >= self.capacity {
-            map.clear();
-        }
-        map.insert(key.clone(), v.clone());
-        v
+        let cell = {
+            let mut map = self.lock();
+            if !map.contains_key(key) && map.len() >= self.capacity {
+                map.clear();
+            }
+            map.entry(key.clone()).or_default().clone()
+        };
+        cell.get_or_init(make).clone()
     }
-    fn lock(&self) -> std::sync::MutexGuard<'_, HashMap<K, V>> {
+    fn lock(&self) -> std::sync::MutexGuard<'_, HashMap<K, Arc<OnceLock<V>>>> {
         // a panic elsewhere while holding the lock leaves a usable map
         self.map.lock().unwrap_or_else(|e| e.into_inner())
     }
