@@ -6,17 +6,8 @@
 
 mod common;
 
-use common::millpath;
+use common::{millpath, MACHINE};
 use std::path::{Path, PathBuf};
-
-const MACHINE: [&str; 6] = [
-    "--feed",
-    "150",
-    "--sweep-speed",
-    "500",
-    "--sweep-height",
-    "15",
-];
 
 fn drawings() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../tests/extended/drawings")

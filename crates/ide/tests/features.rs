@@ -1,36 +1,21 @@
 //! Every editor feature in-process, on a small workspace of text files.
 
+mod support;
+
 use millpath_ide::*;
 use millpath_ide::{analyze, Pos, Workspace};
-use std::path::{Path, PathBuf};
+use support::{at, p, workspace};
 
 const PART: &str = "path 2001.1P {\n  start (0, 0)  M10x3 O2 T3 I1,5 B-0,2\n  end (30, 0)\n  sweep (0, 0) -> (5, 0)\n  mill (5, 0) -> (25, 0)\n  sweep (25, 0) -> (30, 0)\n}\n";
 const PROJECT: &str = "path 2010.1P {\n  start (0, 0)  M10x3 O2 T3 I1,5 B-0,2\n  end (50, 0)\n  sweep (0, 0) -> (10, 10)\n  sub (10, 10) -> (40, 10)  >2001.1P\n  sweep (40, 10) -> (10, 30)\n  sub (10, 30) -> (40, 30)  >2001.1P\n  sweep (40, 30) -> (50, 0)\n}\n";
 const NO_B: &str = "path 2030.1P {\n  start (0, 0)  M10x3 O2 T3 I1,5\n  end (20, 0)\n  mill (0, 0) -> (20, 0)\n}\n";
 
 fn setup() -> (tempfile::TempDir, Workspace) {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(
-        dir.path().join("millpath.toml"),
-        "feed = 300\nsweep_speed = 1000\nsweep_height = 10\n",
-    )
-    .unwrap();
-    std::fs::write(dir.path().join("2001.mpath"), PART).unwrap();
-    std::fs::write(dir.path().join("2010.mpath"), PROJECT).unwrap();
-    std::fs::write(dir.path().join("2030.mpath"), NO_B).unwrap();
-    let ws = Workspace {
-        roots: vec![dir.path().to_path_buf()],
-        ..Workspace::default()
-    };
-    (dir, ws)
-}
-
-fn at(src: &str, needle: &str) -> usize {
-    src.find(needle).unwrap_or_else(|| panic!("{needle}"))
-}
-
-fn p(dir: &Path, f: &str) -> PathBuf {
-    dir.join(f)
+    workspace(&[
+        ("2001.mpath", PART),
+        ("2010.mpath", PROJECT),
+        ("2030.mpath", NO_B),
+    ])
 }
 
 #[test]

@@ -1,8 +1,11 @@
 //! Rename, folding, document links, highlights, selection and range formatting, and the
 //! smaller answers (symbol names, hover table, completion, diagnostic ranges), in-process.
 
+mod support;
+
 use millpath_ide::*;
-use std::path::{Path, PathBuf};
+use std::path::Path;
+use support::{at, p, workspace};
 
 const PART: &str = "path 2001.1P {\n  start (0, 0)  M10x3 O2 T3 I1,5 B-0,2\n  end (30, 0)\n  sweep (0, 0) -> (5, 0)\n  mill (5, 0) -> (25, 0)\n  sweep (25, 0) -> (30, 0)\n}\n";
 const PROJECT: &str = "# a project\n# with two slots\npath 2010.1P {\n  start (0, 0)  M10x3 O2 T3 I1,5 B-0,2\n  end (50, 0)\n  sweep (0, 0) -> (10, 10)\n  sub (10, 10) -> (40, 10)  >2001.1P\n  sweep (40, 10) -> (10, 30)\n  # the second slot\n  # below the first\n  sub (10, 30) -> (40, 30)  >2001.1P\n  sweep (40, 30) -> (50, 0)\n}\n";
@@ -10,28 +13,11 @@ const PROJECT: &str = "# a project\n# with two slots\npath 2010.1P {\n  start (0
 const CHAINS: &str = "path 2030.1P {\n  start (0, 0)  M10x3 O2 T3 I1,5 B-0,2\n  end (40, 0)\n  mill (0, 0) -> (10, 0)  N1\n  mill (10, 0) -> (10, 10)  N2\n  mill (10, 10) -> (20, 10)  N3\n  sweep (20, 10) -> (30, 0)  N4\n  mill (30, 0) -> (40, 0)  N5\n}\n";
 
 fn setup() -> (tempfile::TempDir, Workspace) {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(
-        dir.path().join("millpath.toml"),
-        "feed = 300\nsweep_speed = 1000\nsweep_height = 10\n",
-    )
-    .unwrap();
-    std::fs::write(dir.path().join("2001.mpath"), PART).unwrap();
-    std::fs::write(dir.path().join("2010.mpath"), PROJECT).unwrap();
-    std::fs::write(dir.path().join("2030.mpath"), CHAINS).unwrap();
-    let ws = Workspace {
-        roots: vec![dir.path().to_path_buf()],
-        ..Workspace::default()
-    };
-    (dir, ws)
-}
-
-fn at(src: &str, needle: &str) -> usize {
-    src.find(needle).unwrap_or_else(|| panic!("{needle}"))
-}
-
-fn p(dir: &Path, f: &str) -> PathBuf {
-    dir.join(f)
+    workspace(&[
+        ("2001.mpath", PART),
+        ("2010.mpath", PROJECT),
+        ("2030.mpath", CHAINS),
+    ])
 }
 
 /// Applies the rename edits of one file (positions are line/UTF-16 column).

@@ -14,3 +14,13 @@ pub fn millpath(dir: &Path, args: &[&str]) -> Output {
         .output()
         .unwrap()
 }
+
+/// The machine settings `compile` asks for, as options (F150, sweeps at 500 mm/min, 15 mm up).
+pub const MACHINE: [&str; 6] = [
+    "--feed",
+    "150",
+    "--sweep-speed",
+    "500",
+    "--sweep-height",
+    "15",
+];
