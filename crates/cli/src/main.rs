@@ -779,32 +779,40 @@ fn run_check(m: &MachineArgs, format: Format, quiet: bool, paths: &[PathBuf]) ->
         return 3;
     }
     let mut all = Vec::new();
-    // Printed in input order, whatever order the workers finished in.
+    // Printed in input order, whatever order the workers finished in; gathered first and
+    // written at once (a write per line cost more than reading a small drawing).
+    let mut info = String::new();
     for result in check_all(&settings, &inputs, quiet) {
         match result {
             Ok(file) => {
                 if format == Format::Human {
                     for line in file.info {
-                        eprintln!("{line}");
+                        info.push_str(&line);
+                        info.push('\n');
                     }
                 }
                 all.extend(file.diags);
             }
             Err(errs) => {
+                eprint!("{info}");
                 print_human(&errs, lang);
                 return 2;
             }
         }
     }
+    eprint!("{info}");
     let all = report::tidy(all);
     let errors = all.iter().filter(|d| d.severity == Severity::Error).count();
     match format {
         Format::Human => {
             // diagnostics and the summary are the report (stdout); progress lines stay on stderr
             let color = report::use_color(std::io::IsTerminal::is_terminal(&std::io::stdout()));
+            let mut report = String::new();
             for d in &all {
-                outln!("{}", report::human_rich(d, lang, color));
+                report.push_str(&report::human_rich(d, lang, color));
+                report.push('\n');
             }
+            out::write(&report);
             let warnings = all.len() - errors;
             outln!(
                 "{}",
@@ -826,9 +834,11 @@ fn run_check(m: &MachineArgs, format: Format, quiet: bool, paths: &[PathBuf]) ->
             outln!("{}", serde_json::to_string_pretty(&serde_json::json!({ "files": inputs.len(), "errors": errors, "diagnostics": v })).unwrap_or_default());
         }
         Format::Github => {
-            for d in &all {
-                outln!("{}", report::github(d, lang));
-            }
+            let lines: String = all
+                .iter()
+                .map(|d| format!("{}\n", report::github(d, lang)))
+                .collect();
+            out::write(&lines);
         }
         Format::Sarif => {
             outln!(
