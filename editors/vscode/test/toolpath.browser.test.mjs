@@ -59,7 +59,7 @@ async function open(file, viewport = { width: 1000, height: 700 }) {
 const camera = (page) => page.evaluate(() => window.millpathToolpath.cameraMatrix());
 const differs = (a, b) => a.some((v, k) => Math.abs(v - b[k]) > 1e-6);
 
-test('every move of the program is drawn', { skip }, async () => {
+test('every move of the program is drawn', { skip, timeout: 120000 }, async () => {
   const { page, data } = await open(join(repo, 'examples/text/2010.mpath'));
   const drawn = Number(await page.evaluate(() => document.body.dataset.moves));
   assert.equal(drawn, data.moves.length);
@@ -79,7 +79,7 @@ test('every move of the program is drawn', { skip }, async () => {
   await page.close();
 });
 
-test('zoom and orbit change the view', { skip }, async () => {
+test('zoom and orbit change the view', { skip, timeout: 120000 }, async () => {
   const { page } = await open(join(repo, 'examples/text/2010.mpath'));
   const canvas = await page.locator('#stage > canvas').boundingBox();
   const cx = canvas.x + canvas.width / 2, cy = canvas.y + canvas.height / 2;
@@ -104,7 +104,7 @@ test('zoom and orbit change the view', { skip }, async () => {
   await page.close();
 });
 
-test('playback puts the tool where the program is at a given time', { skip }, async () => {
+test('playback puts the tool where the program is at a given time', { skip, timeout: 120000 }, async () => {
   const { page, data } = await open(join(dir, '2040.mpath'));
   // the time of every move, as the data gives it: the tool is halfway along a straight cut
   // halfway through its time, and at its end at its end
@@ -131,7 +131,7 @@ test('playback puts the tool where the program is at a given time', { skip }, as
   await page.close();
 });
 
-test('clicking a move of the second segment reports that segment and its G-code line', { skip }, async () => {
+test('clicking a move of the second segment reports that segment and its G-code line', { skip, timeout: 120000 }, async () => {
   const { page, data } = await open(join(dir, '2040.mpath'));
   const src = (m) => data.sources[m.source];
   // the vertical branch (20,0)->(20,10): the chain's second segment, line 5 of the file
@@ -139,9 +139,15 @@ test('clicking a move of the second segment reports that segment and its G-code 
   assert.ok(i >= 0);
   assert.equal(src(data.moves[i]).line, 4);
   const [x, y] = await page.evaluate((k) => window.millpathToolpath.screenOf(k, 0.5), i);
-  const event = page.evaluate(() => new Promise((resolve) => window.addEventListener('millpath-select', (e) => resolve(e.detail), { once: true })));
+  // the listener is in place before the click (an evaluate not awaited may run after it)
+  await page.evaluate(() => {
+    window.selected = new Promise((resolve) => window.addEventListener('millpath-select', (e) => resolve(e.detail), { once: true }));
+  });
   await page.mouse.click(x, y);
-  const detail = await event;
+  const detail = await page.evaluate(() => Promise.race([
+    window.selected,
+    new Promise((_, reject) => setTimeout(() => reject(new Error('no millpath-select event within 10 s of the click')), 10000)),
+  ]));
   assert.equal(detail.source.line, 4, JSON.stringify(detail));
   assert.equal(detail.source.text, 'mill (20, 0) -> (20, 10)');
   assert.equal(detail.gcodeLine, data.moves[detail.index].line);
@@ -161,7 +167,7 @@ test('clicking a move of the second segment reports that segment and its G-code 
   await page.close();
 });
 
-test('probe labels are sized in screen pixels', { skip }, async () => {
+test('probe labels are sized in screen pixels', { skip, timeout: 120000 }, async () => {
   const { page, data } = await open(join(repo, 'examples/text/2020.mpath'));
   assert.ok(data.probes.length > 0);
   const label = page.locator('#labels span').first();
@@ -172,7 +178,7 @@ test('probe labels are sized in screen pixels', { skip }, async () => {
   await page.close();
 });
 
-test('inside VS Code the page takes the theme colours', { skip }, async () => {
+test('inside VS Code the page takes the theme colours', { skip, timeout: 120000 }, async () => {
   const { page } = await open(join(repo, 'examples/text/2010.mpath'), { width: 400, height: 300 });
   const corner = () => page.evaluate(() => {
     const c = document.querySelector('#stage > canvas');
@@ -187,7 +193,7 @@ test('inside VS Code the page takes the theme colours', { skip }, async () => {
   await page.close();
 });
 
-test('the title says when placeholder machine settings are in use', { skip }, async () => {
+test('the title says when placeholder machine settings are in use', { skip, timeout: 120000 }, async () => {
   // the language server's data carries `warnings` when millpath.toml lacks the machine
   // settings (`render` refuses then, as `compile` does): the page shows them in its title
   const html = join(dir, 'placeholder.html');
