@@ -4,6 +4,7 @@ use crate::common::*;
 use crate::param_doc::{keys_for, param_doc};
 use crate::symbols::workspace_symbols;
 use crate::{Analysis, Workspace};
+use millpath_syntax::Kind;
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Completion {
@@ -43,32 +44,14 @@ pub fn completion(a: &Analysis, ws: &Workspace, offset: usize) -> Vec<Completion
             .paths()
             .any(|p| p.span.start < offset && offset <= p.span.end);
         if inside {
-            return [
-                "start",
-                "end",
-                "turn",
-                "probe",
-                "noprobe",
-                "mill",
-                "mark",
-                "bars",
-                "sub",
-                "sweep",
-                "move",
-                "skip",
-                "drill",
-                "helix",
-                "mark drill",
-                "mark helix",
-                "bars helix",
-            ]
-            .iter()
-            .map(|k| Completion {
-                label: k.to_string(),
-                detail: "element".into(),
-                insert: format!("{k} "),
-            })
-            .collect();
+            return Kind::ALL
+                .iter()
+                .map(|k| Completion {
+                    label: k.words(),
+                    detail: "element".into(),
+                    insert: format!("{} ", k.words()),
+                })
+                .collect();
         }
         return vec![Completion {
             label: "path".into(),

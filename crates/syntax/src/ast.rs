@@ -82,6 +82,29 @@ pub enum Kind {
 }
 
 impl Kind {
+    /// Every kind an element line can start with (all but `raw`), in the order the manual
+    /// lists them.
+    pub const ALL: [Kind; 18] = [
+        Kind::Start,
+        Kind::End,
+        Kind::Turn,
+        Kind::Probe,
+        Kind::NoProbe,
+        Kind::Mill,
+        Kind::Mark,
+        Kind::Bars,
+        Kind::Sub,
+        Kind::Sweep,
+        Kind::Move,
+        Kind::Skip,
+        Kind::Drill(Style::Mill),
+        Kind::Helix(Style::Mill),
+        Kind::Drill(Style::Mark),
+        Kind::Helix(Style::Mark),
+        Kind::Drill(Style::Bars),
+        Kind::Helix(Style::Bars),
+    ];
+
     /// The DXF line type the kind stands for.
     pub fn linetype(&self) -> &str {
         match self {
