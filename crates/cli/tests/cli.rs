@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::millpath;
+use common::{millpath, MACHINE};
 use std::path::Path;
 
 fn example() -> String {
@@ -439,19 +439,10 @@ fn render_without_machine_settings_refuses() {
 fn compile_reports_the_removed_volume() {
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("1234.1P.dxf"), example()).unwrap();
-    let out = millpath(
-        dir.path(),
-        &[
-            "compile",
-            "--feed",
-            "150",
-            "--sweep-speed",
-            "500",
-            "--sweep-height",
-            "15",
-            "1234.1P.dxf",
-        ],
-    );
+    let mut args = vec!["compile"];
+    args.extend(MACHINE);
+    args.push("1234.1P.dxf");
+    let out = millpath(dir.path(), &args);
     assert!(out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
     let line = err

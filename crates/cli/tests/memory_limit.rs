@@ -4,6 +4,7 @@
 mod common;
 
 use common::lsp_client::{uri, Client};
+use common::MACHINE;
 use serde_json::json;
 use std::path::Path;
 use std::process::Command;
@@ -51,18 +52,10 @@ fn hostile_drawings_end_in_errors_under_a_memory_limit() {
     for (i, body) in cases.iter().enumerate() {
         let f = text_drawing(dir.path(), &format!("c{i}.mpath"), body);
         for cmd in ["check", "compile"] {
-            let out = limited(&[
-                cmd,
-                "--feed",
-                "150",
-                "--sweep-speed",
-                "500",
-                "--sweep-height",
-                "15",
-                &f,
-            ])
-            .output()
-            .unwrap();
+            let mut args = vec![cmd];
+            args.extend(MACHINE);
+            args.push(&f);
+            let out = limited(&args).output().unwrap();
             let code = out.status.code();
             assert_eq!(
                 code,

@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::millpath;
+use common::{millpath, MACHINE};
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
@@ -177,15 +177,7 @@ fn every_compiled_program_passes_the_checker() {
         let fx = work.path().join("fixtures");
         copy(&shared.join("conformance/fixtures"), &fx, &[".dxf"]);
         let sources: Vec<String> = files(&fx, ".dxf").into_iter().collect();
-        let machine = [
-            "--feed",
-            "150",
-            "--sweep-speed",
-            "500",
-            "--sweep-height",
-            "15",
-        ];
-        compile_and_verify(&fx, &sources, &machine, &mut fig);
+        compile_and_verify(&fx, &sources, &MACHINE, &mut fig);
         assert!(fig.programs >= 30, "{}", fig.programs);
     }
     eprintln!(
