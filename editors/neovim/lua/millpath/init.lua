@@ -129,6 +129,27 @@ end
 
 --- Opens (or refreshes) the G-code preview of the path under the cursor in a split that
 --- follows every edit of the source buffer.
+-- Calls `refresh` once per burst of edits in `src`, `delay_ms` after its first change (the
+-- server has the new text by then), while `wanted()` holds. on_lines sees every change:
+-- typing, API edits, undo.
+local function follow_edits(src, delay_ms, wanted, refresh)
+  local pending = false
+  vim.api.nvim_buf_attach(src, false, {
+    on_lines = function()
+      if not wanted() then
+        return true -- detach
+      end
+      if not pending then
+        pending = true
+        vim.defer_fn(function()
+          pending = false
+          refresh()
+        end, delay_ms)
+      end
+    end,
+  })
+end
+
 function M.preview(name)
   local src, client
   src, client, name = current(name)
@@ -159,23 +180,7 @@ function M.preview(name)
   refresh()
   if not vim.b[src].millpath_preview_follow then
     vim.b[src].millpath_preview_follow = true
-    local pending = false
-    -- on_lines sees every change (typing, API edits, undo); refresh once per burst, after the
-    -- server has the new text
-    vim.api.nvim_buf_attach(src, false, {
-      on_lines = function()
-        if not vim.api.nvim_buf_is_valid(buf) then
-          return true
-        end
-        if not pending then
-          pending = true
-          vim.defer_fn(function()
-            pending = false
-            refresh()
-          end, 80)
-        end
-      end,
-    })
+    follow_edits(src, 80, function() return vim.api.nvim_buf_is_valid(buf) end, refresh)
   end
   return buf
 end
@@ -244,21 +249,7 @@ function M.toolpath(name)
       end, src)
     end
     server.refresh = refresh
-    local pending = false
-    vim.api.nvim_buf_attach(src, false, {
-      on_lines = function()
-        if M.toolpath_servers[src] ~= server then
-          return true
-        end
-        if not pending then
-          pending = true
-          vim.defer_fn(function()
-            pending = false
-            refresh()
-          end, 150)
-        end
-      end,
-    })
+    follow_edits(src, 150, function() return M.toolpath_servers[src] == server end, refresh)
     local group = vim.api.nvim_create_augroup('millpath_toolpath_' .. src, { clear = true })
     vim.api.nvim_create_autocmd({ 'CursorMoved', 'CursorMovedI' }, {
       group = group,
