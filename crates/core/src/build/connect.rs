@@ -75,7 +75,7 @@ impl Session<'_> {
                 args![target_text],
             ));
         };
-        let target_name = m.as_str().to_string();
+        let target_name = m.to_string();
         if cx.depth > 9 {
             return Err(Diagnostic::error(
                 Msg::NestingTooDeep,

@@ -5,9 +5,9 @@ use crate::args;
 use crate::diag::{Diagnostic, Diags, FileRef, Msg, Origin};
 use crate::geom::{f3, near};
 use crate::geom::{Geom, P2};
+use crate::load::name_regex::NameRegex;
 use crate::params::ParamText;
 use crate::params::{parse_number, MAX_MAGNITUDE};
-use regex::Regex;
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -208,7 +208,7 @@ pub struct DrawingFile {
 /// Start-text checks and `@` resolution, per file (reference-input.md §4.5, §5.1).
 pub fn resolve_start_texts(
     paths: &mut [RawPath],
-    path_pattern: &Regex,
+    path_pattern: &NameRegex,
     pattern_text: &str,
     diags: &mut Diags,
 ) {
@@ -270,7 +270,7 @@ pub struct DrawnObject {
 pub fn build_paths(
     objs: &[DrawnObject],
     file: &Arc<FileRef>,
-    path_pattern: &Regex,
+    path_pattern: &NameRegex,
     pattern_text: &str,
     diags: &mut Diags,
 ) -> Result<Vec<RawPath>, Diagnostic> {

@@ -8,6 +8,7 @@ use crate::front::extended::{self, InputMode};
 use crate::front::linetype_alias;
 use crate::front::mtext::{mtext_plain, replace_percent_codes};
 use crate::geom::{f3, near, normalize_angle, Geom, P2};
+use crate::load::name_regex::NameRegex;
 use crate::params::ParamText;
 use millpath_dxf::{Drawing, Entity, EntityKind, Point3};
 use regex::Regex;
@@ -16,9 +17,9 @@ use std::sync::Arc;
 /// What the front-end needs from the settings.
 pub struct FrontOptions<'a> {
     /// The path-name pattern, anchored and case-insensitive (`^(?i:…)$`).
-    pub layer_pattern: &'a Regex,
+    pub layer_pattern: &'a NameRegex,
     /// The path-name pattern, unanchored and case-sensitive (for `@`).
-    pub path_pattern: &'a Regex,
+    pub path_pattern: &'a NameRegex,
     pub pattern_text: &'a str,
     /// `/x`: print the text assignments whose text matches.
     pub debug: Option<&'a Regex>,

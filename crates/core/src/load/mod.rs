@@ -3,6 +3,7 @@
 
 pub mod config;
 pub mod fs;
+pub mod name_regex;
 pub mod names;
 pub mod parse_cache;
 pub mod regex_cache;

@@ -1,7 +1,7 @@
 //! Path-name and file-name patterns: which file may contain which path (reference-input.md §3).
 
+use crate::load::name_regex::{Groups, NameRegex};
 use crate::load::regex_cache::Memo;
-use regex::{Captures, Regex};
 use std::cmp::Ordering;
 use std::sync::{Arc, OnceLock};
 
@@ -13,17 +13,17 @@ pub const DEFAULT_FILE_PATTERN: &str = "([0-9]{4})(?:[.]([0-9]+))?";
 pub struct Patterns {
     pub path_text: String,
     /// `^(?i:N)$`: layer test and path side of file comparisons.
-    pub path_full: Regex,
+    pub path_full: NameRegex,
     /// `N`, case-sensitive, unanchored: `@` references.
-    pub path_cs: Regex,
+    pub path_cs: NameRegex,
     /// `(?i)N`, unanchored: subpath targets in `>` values.
-    pub path_ci: Regex,
+    pub path_ci: NameRegex,
     /// `^(?i:F)$`.
-    file_full: Regex,
+    file_full: NameRegex,
     /// `(?i)F`, unanchored.
-    file_any: Regex,
+    file_any: NameRegex,
     /// `(?i)(F)-(F)` and the group index of the second part.
-    file_range: Regex,
+    file_range: NameRegex,
     range_second: usize,
 }
 
@@ -41,15 +41,16 @@ impl Patterns {
 
     /// Compiles both patterns; `Err((which option, pattern, message))` for invalid ones.
     pub fn new(path: &str, file: &str) -> Result<Patterns, (char, String, String)> {
-        fn bad(c: char, p: &str) -> impl Fn(regex::Error) -> (char, String, String) + '_ {
-            move |e| (c, p.to_string(), e.to_string())
+        fn bad(c: char, p: &str) -> impl Fn(String) -> (char, String, String) + '_ {
+            move |e| (c, p.to_string(), e)
         }
-        let path_full = Regex::new(&format!("^(?i:{path})$")).map_err(bad('n', path))?;
-        let path_cs = Regex::new(path).map_err(bad('n', path))?;
-        let path_ci = Regex::new(&format!("(?i){path}")).map_err(bad('n', path))?;
-        let file_full = Regex::new(&format!("^(?i:{file})$")).map_err(bad('p', file))?;
-        let file_any = Regex::new(&format!("(?i){file}")).map_err(bad('p', file))?;
-        let file_range = Regex::new(&format!("(?i)({file})-({file})")).map_err(bad('p', file))?;
+        let path_full = NameRegex::new(&format!("^(?i:{path})$")).map_err(bad('n', path))?;
+        let path_cs = NameRegex::new(path).map_err(bad('n', path))?;
+        let path_ci = NameRegex::new(&format!("(?i){path}")).map_err(bad('n', path))?;
+        let file_full = NameRegex::new(&format!("^(?i:{file})$")).map_err(bad('p', file))?;
+        let file_any = NameRegex::new(&format!("(?i){file}")).map_err(bad('p', file))?;
+        let file_range =
+            NameRegex::new(&format!("(?i)({file})-({file})")).map_err(bad('p', file))?;
         let range_second = 2 + file_any.captures_len() - 1;
         Ok(Patterns {
             path_text: path.to_string(),
@@ -102,20 +103,20 @@ impl Patterns {
             let (Some(a), Some(b)) = (c.get(1), c.get(self.range_second)) else {
                 continue;
             };
-            if self.compare(a.as_str(), path_name).is_some_and(|x| x <= 0)
-                && self.compare(b.as_str(), path_name).is_some_and(|x| x >= 0)
+            if self.compare(a, path_name).is_some_and(|x| x <= 0)
+                && self.compare(b, path_name).is_some_and(|x| x >= 0)
             {
                 return true;
             }
         }
         self.file_any
             .find_iter(file_stem)
-            .any(|m| self.compare(m.as_str(), path_name) == Some(0))
+            .any(|m| self.compare(m, path_name) == Some(0))
     }
 }
 
-fn group<'a>(c: &Captures<'a>, i: usize) -> &'a str {
-    c.get(i).map_or("", |m| m.as_str())
+fn group<'a>(c: &Groups<'a>, i: usize) -> &'a str {
+    c.get(i).unwrap_or("")
 }
 
 #[cfg(test)]
