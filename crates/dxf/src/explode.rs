@@ -116,10 +116,24 @@ impl Affine {
     /// The scale factor when the map keeps circles circles (a similarity), else `None`.
     fn uniform_scale(&self) -> Option<f64> {
         let m = &self.m;
-        let (l1, l2) = (m[0] * m[0] + m[2] * m[2], m[1] * m[1] + m[3] * m[3]);
-        let dot = m[0] * m[1] + m[2] * m[3];
-        let tol = 1e-9 * l1.max(l2);
-        ((l1 - l2).abs() <= tol && dot.abs() <= tol && l1 > 0.0).then(|| l1.sqrt())
+        let uniform = |m: [f64; 4]| {
+            let (l1, l2) = (m[0] * m[0] + m[2] * m[2], m[1] * m[1] + m[3] * m[3]);
+            let dot = m[0] * m[1] + m[2] * m[3];
+            let tol = 1e-9 * l1.max(l2);
+            ((l1 - l2).abs() <= tol && dot.abs() <= tol && l1 > 0.0).then(|| l1.sqrt())
+        };
+        let square = [m[0], m[1], m[2], m[3]];
+        match uniform(square) {
+            Some(s) => Some(s),
+            // the squares of a huge (or tiny) scale overflow: a uniform scale of 1e300 is
+            // still uniform (its coordinates are then out of range, which is the error)
+            None => {
+                let k = square.iter().fold(0.0f64, |k, v| k.max(v.abs()));
+                (k.is_finite() && k > 0.0)
+                    .then(|| uniform(square.map(|v| v / k)).map(|s| s * k))
+                    .flatten()
+            }
+        }
     }
 
     /// Rotation of the X axis in degrees.
@@ -694,10 +708,26 @@ mod tests {
         assert!(close(p[0], 10.0) && close(p[1], -2.0), "{p:?}");
         let stretched = Insert {
             scale: [1.0, 2.0, 1.0],
-            ..i
+            ..i.clone()
         };
         assert!(insert_map(&stretched, [0.0; 3], 0, 0)
             .uniform_scale()
             .is_none());
+        // squares that overflow or underflow: uniform all the same, stretched all the same
+        for k in [1e300, -1e300, 1e-300] {
+            let huge = Insert {
+                scale: [k, k, 1.0],
+                ..i.clone()
+            };
+            let s = insert_map(&huge, [0.0; 3], 0, 0).uniform_scale();
+            assert!(s.is_some_and(|s| close(s / k.abs(), 1.0)), "{k}: {s:?}");
+            let stretched = Insert {
+                scale: [k, 2.0 * k, 1.0],
+                ..i.clone()
+            };
+            assert!(insert_map(&stretched, [0.0; 3], 0, 0)
+                .uniform_scale()
+                .is_none());
+        }
     }
 }
