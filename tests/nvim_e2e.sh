@@ -11,6 +11,6 @@ if ! command -v nvim >/dev/null || ! nvim --version | head -1 | grep -qE 'v0\.(1
   nvim="$scripts/nvim"
 fi
 cargo build --release --quiet
-MILLPATH_BIN="$PWD/target/release/millpath" timeout 120 "$nvim" --headless --clean -u NONE \
+MILLPATH_BIN="${CARGO_TARGET_DIR:-$PWD/target}/release/millpath" timeout 120 "$nvim" --headless --clean -u NONE \
   -c "set rtp+=$PWD/editors/neovim" -c "luafile tests/nvim/e2e.lua" 2>&1 | tail -n 20
 echo

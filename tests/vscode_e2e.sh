@@ -2,15 +2,17 @@
 # The extension inside a real VS Code: code-server 4.100.3 (VS Code 1.100.3, from npm) with the
 # packaged .vsix installed, opened in Debian's chromium driven by playwright-core
 # (editors/vscode/test/e2e/vscode.e2e.mjs), on a workspace holding copies of the examples.
-# Needs target/release/millpath and editors/vscode/millpath.vsix (npm run package).
+# Needs the release build of millpath (in $CARGO_TARGET_DIR or target/) and
+# editors/vscode/millpath.vsix (npm run package bundles that build).
 # Prints 'ok - …' / 'not ok - …' per check and 'N passed, M failed'; screenshots in
 # editors/vscode/test-artifacts/vscode-*.png.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 repo="$PWD"
 vsix="$repo/editors/vscode/millpath.vsix"
-[ -x target/release/millpath ] || cargo build --release --quiet
-[ -f "$vsix" ] || (cd editors/vscode && npm run package >/dev/null)
+bin="${CARGO_TARGET_DIR:-$repo/target}/release/millpath"
+[ -x "$bin" ] || cargo build --release --quiet
+[ -f "$vsix" ] || (cd editors/vscode && MILLPATH_BIN="$bin" npm run package >/dev/null)
 [ -d editors/vscode/node_modules/playwright-core ] || (cd editors/vscode && npm ci --no-audit --no-fund)
 if [ ! -x /usr/bin/chromium ]; then
   apt-get update -q && DEBIAN_FRONTEND=noninteractive apt-get install -y -q chromium
