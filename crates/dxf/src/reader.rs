@@ -16,7 +16,7 @@
 
 use crate::decode::{decode_value_into, encoding_for};
 use crate::extra::ExtraReader;
-use crate::tokens::{int, is, num, raw_name, raw_str, Pair, Tokens};
+use crate::tokens::{int, num, raw_name, raw_str, Pair, Tokens};
 use crate::{Drawing, DxfError, DxfErrorKind, Entity, EntityKind, MText, Point3, Text};
 use encoding_rs::Encoding;
 
@@ -28,18 +28,6 @@ enum Body {
     Entities,
     Blocks,
     Other,
-}
-
-/// Where the pass is in the file's structure.
-#[derive(Clone, Copy)]
-enum State {
-    Outside,
-    /// Right after `0`/`SECTION`: this pair names the section (when its code is 2).
-    Name,
-    In(Body),
-    /// After `0`/`EOF` outside a section, or after a structure error: only the pairs are
-    /// still checked.
-    Done,
 }
 
 /// A string of the drawing, still the file's bytes.
@@ -271,54 +259,97 @@ pub fn read_dxf(bytes: &[u8]) -> Result<Drawing, DxfError> {
         in_extra: false,
     };
     let mut tokens = Tokens::new(bytes);
-    let mut state = State::Outside;
+    // the line of the last pair read: where a file that ends inside a section is cut
     let mut last_line = 0;
+    let mut open_section = false;
     while let Some(p) = tokens.next_pair()? {
         last_line = p.line;
-        state = match state {
-            State::Outside if is(&p, 0, "SECTION") => State::Name,
-            State::Outside if is(&p, 0, "EOF") => State::Done,
-            State::Outside | State::Done => state,
-            State::Name => {
-                let body = match (p.code, &*raw_name(p.value)) {
-                    (2, b"HEADER") => Body::Header,
-                    (2, b"TABLES") => Body::Tables,
-                    (2, b"ENTITIES") => Body::Entities,
-                    (2, b"BLOCKS") => Body::Blocks,
-                    _ => Body::Other,
-                };
-                r.begin();
-                State::In(body)
-            }
-            State::In(body) if p.code == 0 => {
-                let marker = p.value.trim_ascii();
-                if marker == b"ENDSEC" {
-                    r.end(body);
-                    State::Outside
-                } else if marker == b"SECTION" || marker == b"EOF" {
-                    r.structure_error = Some(DxfError {
-                        line: p.line,
-                        kind: DxfErrorKind::Truncated,
-                    });
-                    State::Done
-                } else {
-                    r.group(body, &p);
-                    state
-                }
-            }
-            State::In(body) => {
-                r.group(body, &p);
-                state
-            }
+        if p.code != 0 {
+            continue;
+        }
+        match p.value.trim_ascii() {
+            b"SECTION" => {}
+            b"EOF" => break,
+            _ => continue,
+        }
+        // this pair names the section (when its code is 2)
+        let Some(p) = tokens.next_pair()? else {
+            open_section = true;
+            break;
         };
+        last_line = p.line;
+        let body = match (p.code, &*raw_name(p.value)) {
+            (2, b"HEADER") => Body::Header,
+            (2, b"TABLES") => Body::Tables,
+            (2, b"ENTITIES") => Body::Entities,
+            (2, b"BLOCKS") => Body::Blocks,
+            _ => Body::Other,
+        };
+        r.begin();
+        // one loop per kind of section, each with its reading inlined
+        let end = match body {
+            Body::Header => section(&mut tokens, &mut last_line, |p| r.header_group(p))?,
+            Body::Tables => section(&mut tokens, &mut last_line, |p| r.table_group(p))?,
+            Body::Entities => section(&mut tokens, &mut last_line, |p| r.entity_group(p))?,
+            Body::Blocks => section(&mut tokens, &mut last_line, |p| r.block_pairs.push(*p))?,
+            Body::Other => section(&mut tokens, &mut last_line, |_| {})?,
+        };
+        match end {
+            SectionEnd::EndSec => r.end(body),
+            SectionEnd::Marker(line) => {
+                r.structure_error = Some(DxfError {
+                    line,
+                    kind: DxfErrorKind::Truncated,
+                });
+                break;
+            }
+            SectionEnd::FileEnd => {
+                open_section = true;
+                break;
+            }
+        }
     }
-    if let State::Name | State::In(_) = state {
+    // after `0`/`EOF` or a structure error: only the pairs are still checked
+    while tokens.next_pair()?.is_some() {}
+    if open_section {
         r.structure_error = Some(DxfError {
             line: last_line,
             kind: DxfErrorKind::Truncated,
         });
     }
     r.finish()
+}
+
+/// How the pairs of a section ended.
+enum SectionEnd {
+    /// `0`/`ENDSEC`.
+    EndSec,
+    /// `0`/`SECTION` or `0`/`EOF` inside the section (its line): a structure error.
+    Marker(usize),
+    /// The end of the file.
+    FileEnd,
+}
+
+/// The pairs of a section up to its end, each given to `group` (`0` groups too, but not
+/// the one that ends the section).
+#[inline(always)]
+fn section<'a>(
+    tokens: &mut Tokens<'a>,
+    last_line: &mut usize,
+    mut group: impl FnMut(&Pair<'a>),
+) -> Result<SectionEnd, DxfError> {
+    while let Some(p) = tokens.next_pair()? {
+        *last_line = p.line;
+        if p.code == 0 {
+            match p.value.trim_ascii() {
+                b"ENDSEC" => return Ok(SectionEnd::EndSec),
+                b"SECTION" | b"EOF" => return Ok(SectionEnd::Marker(p.line)),
+                _ => {}
+            }
+        }
+        group(&p);
+    }
+    Ok(SectionEnd::FileEnd)
 }
 
 impl<'a> Reader<'a> {
@@ -333,16 +364,6 @@ impl<'a> Reader<'a> {
             Body::Tables => self.end_table_record(),
             Body::Entities => self.end_entity(),
             Body::Header | Body::Blocks | Body::Other => {}
-        }
-    }
-
-    fn group(&mut self, body: Body, p: &Pair<'a>) {
-        match body {
-            Body::Header => self.header_group(p),
-            Body::Tables => self.table_group(p),
-            Body::Entities => self.entity_group(p),
-            Body::Blocks => self.block_pairs.push(*p),
-            Body::Other => {}
         }
     }
 

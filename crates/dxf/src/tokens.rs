@@ -4,6 +4,7 @@
 //! whole file had been decoded with [`String::from_utf8_lossy`] first (an invalid sequence
 //! never spans a line end, so a line decoded on its own is the same line of the decoded file).
 
+use crate::lines::LineEnds;
 use crate::{DxfError, DxfErrorKind};
 use std::borrow::Cow;
 
@@ -19,66 +20,38 @@ pub(crate) struct Pair<'a> {
 /// The pairs of a file, as `bytes.split(|&b| b == b'\n')` lines taken two by two.
 pub(crate) struct Tokens<'a> {
     bytes: &'a [u8],
+    ends: LineEnds<'a>,
     /// Start of the next line; past the end of `bytes` after the last line.
     pos: usize,
     /// Lines taken so far.
     line: usize,
 }
 
-/// The index of the first `\n` at or after `from`, or the length. Lines are short (`  0`,
-/// `LINE`, `1.5`): eight bytes at a time, one well-predicted branch for most lines, is
-/// quicker here than a byte loop or `memchr`'s set-up.
-fn find_newline(b: &[u8], from: usize) -> usize {
-    const ONES: u64 = 0x0101_0101_0101_0101;
-    let mut i = from;
-    while let Some(&word) = b.get(i..).and_then(|rest| rest.first_chunk::<8>()) {
-        // the lowest zero byte of `x` is the first `\n` (bytes above it may be flagged too)
-        let x = u64::from_le_bytes(word) ^ (ONES * u64::from(b'\n'));
-        let zero = x.wrapping_sub(ONES) & !x & (ONES << 7);
-        if zero != 0 {
-            return i + (zero.trailing_zeros() / 8) as usize;
-        }
-        i += 8;
-    }
-    while i < b.len() && b[i] != b'\n' {
-        i += 1;
-    }
-    i
-}
-
-/// A usual group code line (as [`plain_group_code`] takes them) that starts at `at` and
-/// ends with `\r`s and a `\n`: its code and the start of the next line. Read in one go, as
-/// this is where a reader spends its time.
-#[inline]
-fn plain_code_line(b: &[u8], at: usize) -> Option<(i32, usize)> {
-    let mut i = at;
-    while b.get(i) == Some(&b' ') {
-        i += 1;
-    }
-    let digits = i;
-    let mut v = 0i32;
-    while let Some(&c) = b.get(i).filter(|c| c.is_ascii_digit()) {
-        if i - digits == 9 {
-            return None;
-        }
-        v = v * 10 + (c - b'0') as i32;
-        i += 1;
-    }
-    if i == digits {
-        return None;
-    }
-    while b.get(i) == Some(&b' ') {
-        i += 1;
-    }
-    while b.get(i) == Some(&b'\r') {
-        i += 1;
-    }
-    (b.get(i) == Some(&b'\n')).then_some((v, i + 1))
-}
-
 /// The usual group code lines (`  0`, ` 10`, `100`): spaces, at most nine digits, spaces.
 /// `None` for anything else, which then goes the general way.
+#[inline(always)]
 fn plain_group_code(b: &[u8]) -> Option<i32> {
+    // most code lines are three wide: `  0`, ` 10`, `100`
+    if let [x, y, z] = *b {
+        let digit = |c: u8| c.wrapping_sub(b'0');
+        let (x, y, z) = (digit(x), digit(y), digit(z));
+        const SPACE: u8 = b' '.wrapping_sub(b'0');
+        if z < 10 {
+            match (x, y) {
+                (SPACE, SPACE) => return Some(i32::from(z)),
+                (SPACE, 0..=9) => return Some(i32::from(y) * 10 + i32::from(z)),
+                (0..=9, 0..=9) => {
+                    return Some(i32::from(x) * 100 + i32::from(y) * 10 + i32::from(z))
+                }
+                _ => {}
+            }
+        }
+    }
+    plain_group_code_any_width(b)
+}
+
+#[inline(never)]
+fn plain_group_code_any_width(b: &[u8]) -> Option<i32> {
     let mut i = 0;
     while i < b.len() && b[i] == b' ' {
         i += 1;
@@ -89,85 +62,79 @@ fn plain_group_code(b: &[u8]) -> Option<i32> {
         v = v * 10 + (b[i] - b'0') as i32;
         i += 1;
     }
-    (i > digits && b[i..].iter().all(|&c| c == b' ')).then_some(v)
+    if i == digits {
+        return None;
+    }
+    while i < b.len() && b[i] == b' ' {
+        i += 1;
+    }
+    (i == b.len()).then_some(v)
+}
+
+/// A line without the `\r`s before its end.
+#[inline(always)]
+fn without_cr(line: &[u8]) -> &[u8] {
+    match line {
+        [rest @ .., b'\r'] => {
+            let mut line = rest;
+            while let [rest @ .., b'\r'] = line {
+                line = rest;
+            }
+            line
+        }
+        _ => line,
+    }
 }
 
 impl<'a> Tokens<'a> {
     pub(crate) fn new(bytes: &'a [u8]) -> Self {
         Tokens {
             bytes,
+            ends: LineEnds::new(bytes),
             pos: 0,
             line: 0,
         }
     }
 
-    /// The next line without its line end (`\n` and the `\r`s before it).
-    fn next_line(&mut self) -> Option<&'a [u8]> {
-        let b = self.bytes;
-        let start = self.pos;
-        if start > b.len() {
-            return None;
-        }
-        let end = find_newline(b, start);
-        self.pos = end + 1;
-        self.line += 1;
-        let mut line = &b[start..end];
-        while let [rest @ .., b'\r'] = line {
-            line = rest;
-        }
-        Some(line)
-    }
-
-    /// The next pair; `Ok(None)` at the end (trailing blank lines are harmless).
-    #[inline]
+    /// The next pair; `Ok(None)` at the end (trailing blank lines are harmless). Inlined
+    /// into each loop over the pairs: the reader spends most of its time here.
+    #[inline(always)]
     pub(crate) fn next_pair(&mut self) -> Result<Option<Pair<'a>>, DxfError> {
+        let Some((code_end, value_end)) = self.ends.next_two() else {
+            // the last line, without a line end
+            return self.pair_by_lines();
+        };
         let b = self.bytes;
-        if let Some((code, value_start)) = plain_code_line(b, self.pos) {
-            // the value line: `value_start` is at most the length, so there is one
-            let end = find_newline(b, value_start);
-            self.pos = end + 1;
-            self.line += 2;
-            let mut value = &b[value_start..end];
-            while let [rest @ .., b'\r'] = value {
-                value = rest;
-            }
-            return Ok(Some(Pair {
-                code,
-                value,
-                line: self.line - 1,
-            }));
-        }
-        self.general_pair()
+        // every line is taken in order, so `pos` ≤ `code_end` < `value_end` ≤ the length
+        // (the value line may be the last one, without a line end)
+        let code_line = without_cr(b.get(self.pos..code_end).unwrap_or_default());
+        let value = without_cr(b.get(code_end + 1..value_end).unwrap_or_default());
+        let line = self.line + 1;
+        self.line += 2;
+        self.pos = value_end + 1;
+        let code = match plain_group_code(code_line) {
+            Some(code) => code,
+            None => match self.general_code(code_line, line, code_end + 1)? {
+                Some(code) => code,
+                None => return Ok(None),
+            },
+        };
+        Ok(Some(Pair { code, value, line }))
     }
 
-    /// [`Tokens::next_pair`] for any code line (white space, signs, blank lines, the end).
-    #[cold]
-    fn general_pair(&mut self) -> Result<Option<Pair<'a>>, DxfError> {
+    /// [`Tokens::next_pair`] line by line, at the end of the file.
+    #[inline(never)]
+    fn pair_by_lines(&mut self) -> Result<Option<Pair<'a>>, DxfError> {
         let Some(code_line) = self.next_line() else {
             return Ok(None);
         };
         let line = self.line;
         let code = match plain_group_code(code_line) {
             Some(code) => code,
-            None => {
-                let text = String::from_utf8_lossy(code_line);
-                let code = text.trim();
-                if code.is_empty() {
-                    let rest = self.bytes.get(self.pos..).unwrap_or_default();
-                    if rest.iter().all(u8::is_ascii_whitespace) {
-                        self.pos = self.bytes.len() + 1;
-                        return Ok(None);
-                    }
-                    return Err(DxfError {
-                        line,
-                        kind: DxfErrorKind::BadGroupCode(String::new()),
-                    });
-                }
-                code.parse().map_err(|_| DxfError {
-                    line,
-                    kind: DxfErrorKind::BadGroupCode(code.chars().take(40).collect()),
-                })?
-            }
+            None => match self.general_code(code_line, line, self.pos)? {
+                Some(code) => code,
+                None => return Ok(None),
+            },
         };
         let Some(value) = self.next_line() else {
             return Err(DxfError {
@@ -176,6 +143,49 @@ impl<'a> Tokens<'a> {
             });
         };
         Ok(Some(Pair { code, value, line }))
+    }
+
+    /// The next line without its line end (`\n` and the `\r`s before it).
+    #[inline(always)]
+    fn next_line(&mut self) -> Option<&'a [u8]> {
+        let start = self.pos;
+        if start > self.bytes.len() {
+            return None;
+        }
+        // every line is taken here or in `next_pair`, in order: the next line end is this
+        // line's
+        let end = self.ends.next_end();
+        self.pos = end + 1;
+        self.line += 1;
+        Some(without_cr(self.bytes.get(start..end).unwrap_or_default()))
+    }
+
+    /// The code of any other code line (white space, signs, leading zeros) at `line`;
+    /// `None` for blank lines up to the end (`rest`: where the next line starts).
+    #[cold]
+    fn general_code(
+        &mut self,
+        code_line: &[u8],
+        line: usize,
+        rest: usize,
+    ) -> Result<Option<i32>, DxfError> {
+        let text = String::from_utf8_lossy(code_line);
+        let code = text.trim();
+        if code.is_empty() {
+            let rest = self.bytes.get(rest..).unwrap_or_default();
+            if rest.iter().all(u8::is_ascii_whitespace) {
+                self.pos = self.bytes.len() + 1;
+                return Ok(None);
+            }
+            return Err(DxfError {
+                line,
+                kind: DxfErrorKind::BadGroupCode(String::new()),
+            });
+        }
+        code.parse().map(Some).map_err(|_| DxfError {
+            line,
+            kind: DxfErrorKind::BadGroupCode(code.chars().take(40).collect()),
+        })
     }
 }
 
@@ -217,11 +227,6 @@ pub(crate) fn raw_name(v: &[u8]) -> Cow<'_, [u8]> {
         // invalid UTF-8 inside: not an ASCII name either way
         _ => Cow::Borrowed(t),
     }
-}
-
-/// Structure markers (`0`/`SECTION`, …) are compared without ASCII white space only.
-pub(crate) fn is(p: &Pair, code: i32, value: &str) -> bool {
-    p.code == code && p.value.trim_ascii() == value.as_bytes()
 }
 
 fn bad_number(p: &Pair, s: &str) -> DxfError {
