@@ -171,7 +171,7 @@ mod tests {
             let bytes: Vec<u8> = (0..len)
                 .map(|i| {
                     let r = seed.rotate_left(i as u32 % 64) ^ (i as u64).wrapping_mul(0x9e37);
-                    if r % density == 0 {
+                    if r.is_multiple_of(density) {
                         b'\n'
                     } else {
                         b'x'
