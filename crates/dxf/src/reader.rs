@@ -517,12 +517,15 @@ impl<'a> Reader<'a> {
         };
         // consecutive entities mostly share their layer: decoded once
         let mut last_layer: Option<(&[u8], String)> = None;
+        // built in one go at the end: `from_iter` sorts stably and keeps the last of equal
+        // names, as inserting them one by one would
+        let mut layers = Vec::new();
         for k in self.kept {
             match k {
                 Kept::Linetype(name) => d.linetypes.push(decode(name)),
                 Kept::Layer { name, linetype } => {
                     let lt = linetype.map_or_else(|| "Continuous".to_string(), decode);
-                    d.layers.insert(decode(name), lt);
+                    layers.push((decode(name), lt));
                 }
                 Kept::EntityLayer(i, raw) => {
                     let layer = match &last_layer {
@@ -551,6 +554,7 @@ impl<'a> Reader<'a> {
                 },
             }
         }
+        d.layers = layers.into_iter().collect();
         // the geometry the reference ignores, and the blocks, now that the code page is known
         let ctx = Ctx { enc };
         let mut extra = ExtraReader::default();

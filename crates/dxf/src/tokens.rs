@@ -107,8 +107,8 @@ impl<'a> Tokens<'a> {
         let b = self.bytes;
         // every line is taken in order, so `pos` ≤ `code_end` < `value_end` ≤ the length
         // (the value line may be the last one, without a line end)
-        let code_line = without_cr(b.get(self.pos..code_end).unwrap_or_default());
-        let value = without_cr(b.get(code_end + 1..value_end).unwrap_or_default());
+        let code_line = without_cr(&b[self.pos..code_end]);
+        let value = without_cr(&b[code_end + 1..value_end]);
         let line = self.line + 1;
         self.line += 2;
         self.pos = value_end + 1;
@@ -215,7 +215,18 @@ pub(crate) fn raw_str(v: &[u8]) -> Cow<'_, str> {
 
 /// [`raw_str`] as bytes, to compare with ASCII names (`LINE`, `$ACADVER`): borrowed from the
 /// file unless non-ASCII bytes end it (other Unicode white space may be trimmed there).
+#[inline(always)]
 pub(crate) fn raw_name(v: &[u8]) -> Cow<'_, [u8]> {
+    // the usual name: no white space (all of it is at most b' ') and ASCII at both ends
+    match (v.first(), v.last()) {
+        (Some(&a), Some(&z)) if (b'!'..0x80).contains(&a) && (b'!'..0x80).contains(&z) => {
+            Cow::Borrowed(v)
+        }
+        _ => raw_name_trimmed(v),
+    }
+}
+
+fn raw_name_trimmed(v: &[u8]) -> Cow<'_, [u8]> {
     let ws = |c: &u8| matches!(c, b' ' | b'\t' | b'\n' | b'\x0B' | b'\x0C' | b'\r');
     let start = v.iter().position(|c| !ws(c)).unwrap_or(v.len());
     let end = v.iter().rposition(|c| !ws(c)).map_or(start, |i| i + 1);
