@@ -31,7 +31,12 @@ pub(crate) struct Tokens<'a> {
 /// `None` for anything else, which then goes the general way.
 #[inline(always)]
 fn plain_group_code(b: &[u8]) -> Option<i32> {
-    // most code lines are three wide: `  0`, ` 10`, `100`
+    three_wide_code(b).or_else(|| plain_group_code_any_width(b))
+}
+
+/// [`plain_group_code`] of the lines most codes are written as: `  0`, ` 10`, `100`.
+#[inline(always)]
+fn three_wide_code(b: &[u8]) -> Option<i32> {
     if let [x, y, z] = *b {
         let digit = |c: u8| c.wrapping_sub(b'0');
         let (x, y, z) = (digit(x), digit(y), digit(z));
@@ -47,7 +52,7 @@ fn plain_group_code(b: &[u8]) -> Option<i32> {
             }
         }
     }
-    plain_group_code_any_width(b)
+    None
 }
 
 #[inline(never)]
@@ -107,16 +112,20 @@ impl<'a> Tokens<'a> {
         let b = self.bytes;
         // every line is taken in order, so `pos` ≤ `code_end` < `value_end` ≤ the length
         // (the value line may be the last one, without a line end)
-        let code_line = without_cr(&b[self.pos..code_end]);
+        let code_line = &b[self.pos..code_end];
         let value = without_cr(&b[code_end + 1..value_end]);
         let line = self.line + 1;
         self.line += 2;
         self.pos = value_end + 1;
-        let code = match plain_group_code(code_line) {
+        // a three wide code line has no `\r` to strip when it is a code
+        let code = match three_wide_code(code_line) {
             Some(code) => code,
-            None => match self.general_code(code_line, line, code_end + 1)? {
+            None => match plain_group_code(without_cr(code_line)) {
                 Some(code) => code,
-                None => return Ok(None),
+                None => match self.general_code(without_cr(code_line), line, code_end + 1)? {
+                    Some(code) => code,
+                    None => return Ok(None),
+                },
             },
         };
         Ok(Some(Pair { code, value, line }))
