@@ -266,24 +266,43 @@ fn plain_decimal(v: &[u8]) -> Option<f64> {
     const POW10: [f64; 16] = [
         1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
     ];
-    let v = v.trim_ascii();
+    // white space is at most b' ': most values have none to trim
+    let v = match (v.first(), v.last()) {
+        (Some(&a), Some(&z)) if a > b' ' && z > b' ' => v,
+        _ => v.trim_ascii(),
+    };
     let (neg, body) = match v {
         [b'-', rest @ ..] => (true, rest),
         _ => (false, v),
     };
-    let (mut m, mut digits, mut point) = (0u64, 0usize, None);
-    for &c in body {
-        match c {
-            b'0'..=b'9' if digits < 15 => {
-                m = m * 10 + u64::from(c - b'0');
-                digits += 1;
-            }
-            b'.' if point.is_none() && digits > 0 => point = Some(digits),
-            _ => return None,
-        }
+    // fifteen digits and a point at most
+    if body.len() > 16 {
+        return None;
     }
-    let frac = digits - point.unwrap_or(digits);
-    if digits == 0 || point == Some(digits) {
+    let digit = |c: u8| c.wrapping_sub(b'0');
+    let (mut m, mut i) = (0u64, 0);
+    while let Some(&c) = body.get(i).filter(|&&c| digit(c) < 10) {
+        m = m * 10 + u64::from(digit(c));
+        i += 1;
+    }
+    if i == 0 {
+        return None;
+    }
+    let mut frac = 0;
+    if i < body.len() {
+        // a point, then at least one digit
+        if body[i] != b'.' || i + 1 == body.len() {
+            return None;
+        }
+        for &c in &body[i + 1..] {
+            if digit(c) >= 10 {
+                return None;
+            }
+            m = m * 10 + u64::from(digit(c));
+        }
+        frac = body.len() - i - 1;
+    }
+    if i + frac > 15 {
         return None;
     }
     let x = m as f64 / POW10[frac];
