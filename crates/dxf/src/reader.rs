@@ -19,6 +19,7 @@ use crate::extra::ExtraReader;
 use crate::tokens::{int, num, raw_name, raw_str, Pair, Tokens};
 use crate::{Drawing, DxfError, DxfErrorKind, Entity, EntityKind, MText, Point3, Text};
 use encoding_rs::Encoding;
+use std::collections::BTreeMap;
 
 /// What a section's contents are read as.
 #[derive(Clone, Copy, PartialEq)]
@@ -520,11 +521,21 @@ impl<'a> Reader<'a> {
         // built in one go at the end: `from_iter` sorts stably and keeps the last of equal
         // names, as inserting them one by one would
         let mut layers = Vec::new();
+        let mut last_layer_linetype: Option<(&[u8], String)> = None;
         for k in self.kept {
             match k {
                 Kept::Linetype(name) => d.linetypes.push(decode(name)),
                 Kept::Layer { name, linetype } => {
-                    let lt = linetype.map_or_else(|| "Continuous".to_string(), decode);
+                    // most layers share a few line types: decoded once per run
+                    let lt = match (linetype, &last_layer_linetype) {
+                        (None, _) => "Continuous".to_string(),
+                        (Some(raw), Some((r, s))) if *r == raw => s.clone(),
+                        (Some(raw), _) => {
+                            let s = decode(raw);
+                            last_layer_linetype = Some((raw, s.clone()));
+                            s
+                        }
+                    };
                     layers.push((decode(name), lt));
                 }
                 Kept::EntityLayer(i, raw) => {
@@ -554,7 +565,7 @@ impl<'a> Reader<'a> {
                 },
             }
         }
-        d.layers = layers.into_iter().collect();
+        d.layers = layer_map(layers);
         // the geometry the reference ignores, and the blocks, now that the code page is known
         let ctx = Ctx { enc };
         let mut extra = ExtraReader::default();
@@ -566,6 +577,33 @@ impl<'a> Reader<'a> {
         crate::blocks::read_blocks(&ctx, &self.block_pairs, d);
         Ok(self.d)
     }
+}
+
+/// The LAYER table as a map, the last of equal names kept (as inserting them one by one
+/// would). Sorted once by an index and the names' first eight bytes, which mostly decide;
+/// `from_iter` then finds the order made and only drops the duplicates.
+fn layer_map(layers: Vec<(String, String)>) -> BTreeMap<String, String> {
+    let prefix = |name: &str| {
+        let b = name.as_bytes();
+        (0..8).fold(0u64, |p, k| {
+            p << 8 | u64::from(b.get(k).copied().unwrap_or(0))
+        })
+    };
+    let mut order: Vec<(u64, usize)> = layers
+        .iter()
+        .enumerate()
+        .map(|(i, (name, _))| (prefix(name), i))
+        .collect();
+    order.sort_unstable_by(|a, b| {
+        a.0.cmp(&b.0)
+            .then_with(|| layers[a.1].0.cmp(&layers[b.1].0))
+            .then(a.1.cmp(&b.1))
+    });
+    let mut slots: Vec<Option<(String, String)>> = layers.into_iter().map(Some).collect();
+    order
+        .iter()
+        .filter_map(|&(_, i)| slots.get_mut(i).and_then(Option::take))
+        .collect()
 }
 
 /// Decoding of kept values for `extra.rs` and `blocks.rs`.
@@ -901,6 +939,36 @@ mod tests {
             err(read_dxf(b"  0\nEOF\n")),
             "line 1: not a DXF file (no SECTION found)"
         );
+    }
+
+    #[test]
+    fn the_layer_map_keeps_the_last_of_equal_names_as_inserting_does() {
+        let names = [
+            "P1",
+            "P1 ",
+            "1234_1P~A",
+            "1234_1P~B",
+            "1234_1P",
+            "",
+            "Ä",
+            "a",
+            "1234_1P~A",
+        ];
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        for _ in 0..2_000 {
+            let mut layers = Vec::new();
+            let mut inserted = BTreeMap::new();
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            for k in 0..(seed % 40) {
+                let name = names[(seed >> (k % 50)) as usize % names.len()].to_string();
+                let lt = format!("LT{k}");
+                inserted.insert(name.clone(), lt.clone());
+                layers.push((name, lt));
+            }
+            assert_eq!(layer_map(layers), inserted);
+        }
     }
 
     #[test]
