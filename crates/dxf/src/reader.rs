@@ -121,6 +121,7 @@ impl<'a> EntityRecord<'a> {
         }
     }
 
+    #[inline(always)]
     fn group(&mut self, p: &Pair<'a>) -> Result<(), DxfError> {
         match p.code {
             5 => self.handle = Some(p.value),

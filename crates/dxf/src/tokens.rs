@@ -262,6 +262,7 @@ fn bad_number(p: &Pair, s: &str) -> DxfError {
 /// Plain decimals (`-12.375`: a sign, at most 15 digits with a point between two of them) as
 /// `str::parse` reads them: the digits and the power of ten are both exact doubles, so the one
 /// division rounds once, correctly (Clinger's fast path). `None` for anything else.
+#[inline(always)]
 fn plain_decimal(v: &[u8]) -> Option<f64> {
     const POW10: [f64; 16] = [
         1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
@@ -309,10 +310,16 @@ fn plain_decimal(v: &[u8]) -> Option<f64> {
     Some(if neg { -x } else { x })
 }
 
+#[inline(always)]
 pub(crate) fn num(p: &Pair) -> Result<f64, DxfError> {
-    if let Some(x) = plain_decimal(p.value) {
-        return Ok(x);
+    match plain_decimal(p.value) {
+        Some(x) => Ok(x),
+        None => any_num(p),
     }
+}
+
+#[inline(never)]
+fn any_num(p: &Pair) -> Result<f64, DxfError> {
     let s = raw_str(p.value);
     s.parse::<f64>().map_err(|_| bad_number(p, &s))
 }
