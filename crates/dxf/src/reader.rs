@@ -96,6 +96,12 @@ struct EntityRecord<'a> {
 }
 
 impl<'a> EntityRecord<'a> {
+    /// A new record in place of this one, its pieces buffer kept.
+    fn reset(&mut self, kind: Kind, line: usize) {
+        let pieces = std::mem::take(&mut self.pieces);
+        *self = EntityRecord::new(kind, line, pieces);
+    }
+
     fn new(kind: Kind, line: usize, mut pieces: Vec<&'a [u8]>) -> Self {
         pieces.clear();
         EntityRecord {
@@ -216,9 +222,10 @@ struct Reader<'a> {
     table: TableRecord,
     table_name: Option<&'a [u8]>,
     table_linetype: Option<&'a [u8]>,
-    entity: Option<EntityRecord<'a>>,
-    /// The MTEXT pieces buffer, reused from entity to entity.
-    spare_pieces: Vec<&'a [u8]>,
+    /// The entity being read when `entity_open`: one record reused from entity to entity
+    /// (it is large, and its MTEXT pieces buffer is kept).
+    entity: EntityRecord<'a>,
+    entity_open: bool,
     sections: usize,
     structure_error: Option<DxfError>,
     header_error: Option<DxfError>,
@@ -250,8 +257,8 @@ pub fn read_dxf(bytes: &[u8]) -> Result<Drawing, DxfError> {
         table: TableRecord::Skip,
         table_name: None,
         table_linetype: None,
-        entity: None,
-        spare_pieces: Vec::new(),
+        entity: EntityRecord::new(Kind::Line, 0, Vec::new()),
+        entity_open: false,
         sections: 0,
         structure_error: None,
         header_error: None,
@@ -458,26 +465,27 @@ impl<'a> Reader<'a> {
                 }
                 return;
             };
-            let pieces = std::mem::take(&mut self.spare_pieces);
-            self.entity = Some(EntityRecord::new(kind, p.line, pieces));
+            self.entity.reset(kind, p.line);
+            self.entity_open = true;
             return;
         }
         if self.in_extra {
             self.extra_pairs.push(*p);
             return;
         }
-        if let Some(e) = &mut self.entity {
-            if let Err(err) = e.group(p) {
+        if self.entity_open {
+            if let Err(err) = self.entity.group(p) {
                 self.entity_error = Some(err);
-                self.entity = None;
+                self.entity_open = false;
             }
         }
     }
 
     fn end_entity(&mut self) {
-        let Some(mut e) = self.entity.take() else {
+        if !std::mem::take(&mut self.entity_open) {
             return;
-        };
+        }
+        let e = &mut self.entity;
         if !e.paper_space {
             let i = self.d.entities.len();
             self.d.entities.push(e.entity());
@@ -493,7 +501,6 @@ impl<'a> Reader<'a> {
             self.kept
                 .extend(e.pieces.drain(..).map(|t| Kept::EntityText(i, t)));
         }
-        self.spare_pieces = e.pieces;
     }
 
     /// The drawing, its strings decoded with the code page of the header; or the file's error.
