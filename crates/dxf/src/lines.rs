@@ -39,6 +39,18 @@ impl<'a> LineEnds<'a> {
 
     #[inline(never)]
     fn next_two_across(&mut self) -> Option<(usize, usize)> {
+        // the usual case: one line end left here, the next one in the next block
+        if self.mask != 0 && self.base + 64 < self.bytes.len() {
+            let first = self.base + self.mask.trailing_zeros() as usize;
+            self.base += 64;
+            self.mask = block_mask(self.bytes, self.base);
+            if self.mask != 0 {
+                let second = self.base + self.mask.trailing_zeros() as usize;
+                self.mask &= self.mask - 1;
+                return Some((first, second));
+            }
+            return Some((first, self.next_end()));
+        }
         let first = self.next_end();
         (first < self.bytes.len()).then(|| (first, self.next_end()))
     }

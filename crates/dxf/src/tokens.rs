@@ -210,6 +210,10 @@ pub(crate) fn raw_str(v: &[u8]) -> Cow<'_, str> {
         (None, _) => return Cow::Borrowed(""),
         // other Unicode white space may be at the ends, or invalid UTF-8 in the middle
         (Some(&a), Some(&z)) if a < 0x80 && z < 0x80 => {
+            // borrowed exactly when ASCII: quicker than `from_utf8` on short values
+            if let Cow::Borrowed(s) = encoding_rs::mem::decode_latin1(t) {
+                return Cow::Borrowed(s);
+            }
             if let Ok(s) = std::str::from_utf8(t) {
                 return Cow::Borrowed(s);
             }
