@@ -55,6 +55,12 @@ impl<'a> LineEnds<'a> {
         (first < self.bytes.len()).then(|| (first, self.next_end()))
     }
 
+    /// No line end is left to take (the rest of the file is read otherwise).
+    pub(crate) fn exhaust(&mut self) {
+        self.mask = 0;
+        self.base = self.bytes.len();
+    }
+
     /// The index of the next `\n`, or the length once there is none left.
     #[inline]
     pub(crate) fn next_end(&mut self) -> usize {

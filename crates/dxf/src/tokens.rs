@@ -183,7 +183,9 @@ impl<'a> Tokens<'a> {
         if code.is_empty() {
             let rest = self.bytes.get(rest..).unwrap_or_default();
             if rest.iter().all(u8::is_ascii_whitespace) {
+                // the end: the line ends of those blank lines are not lines of pairs
                 self.pos = self.bytes.len() + 1;
+                self.ends.exhaust();
                 return Ok(None);
             }
             return Err(DxfError {

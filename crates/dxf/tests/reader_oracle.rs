@@ -85,7 +85,11 @@ macro_rules! float_bits {
 /// `None` when both readers agree on `bytes`, else what differs.
 fn differs(bytes: &[u8]) -> Option<String> {
     let old = reader::read_dxf(bytes);
-    let new = millpath_dxf::read_dxf(bytes);
+    // a panic is a difference too (the input is then written out like any other)
+    let new = match std::panic::catch_unwind(|| millpath_dxf::read_dxf(bytes)) {
+        Ok(new) => new,
+        Err(_) => return Some("the reader panicked".into()),
+    };
     let (o, n) = (format!("{old:?}"), format!("{new:?}"));
     if o != n {
         let at = o
@@ -587,6 +591,41 @@ fn real_drawings_read_as_before() {
         }
     }
     eprintln!("{} real drawings compared", real.len());
+}
+
+/// Inputs that once told the two apart, and the edges of the line-end masks.
+#[test]
+fn edge_cases_read_as_before() {
+    let mut cases: Vec<Vec<u8>> = vec![
+        // blank lines at the end of an open section: the pairs are read again after it
+        b"  0\nSECTION\n  2\nENTITIES\n\n \n\n".to_vec(),
+        b"  0\r\nSECTION\r\n  2\r\nHEADER\r\n \r\n\r\n".to_vec(),
+        b"  0\nEOF\n\n\n".to_vec(),
+        b"".to_vec(),
+        b"\n".to_vec(),
+        b"  0".to_vec(),
+        b"  0\n".to_vec(),
+        b"  0\nSECTION".to_vec(),
+    ];
+    // a pair around every block boundary, lines longer than a block
+    let pair = b"  0\nLINE\n  8\nP1\n 10\n1.5\n";
+    for pad in 0..70 {
+        let mut v = b"  0\nSECTION\n  2\nENTITIES\n999\n".to_vec();
+        v.extend(std::iter::repeat_n(b'x', pad));
+        v.push(b'\n');
+        for _ in 0..6 {
+            v.extend(pair);
+        }
+        v.extend(b"  0\nENDSEC\n  0\nEOF");
+        cases.push(v.clone());
+        v.extend(b"\n\n  \n");
+        cases.push(v);
+    }
+    for bytes in &cases {
+        if let Some(d) = differs(bytes) {
+            report(&format!("{:?}", String::from_utf8_lossy(bytes)), bytes, d);
+        }
+    }
 }
 
 #[test]
