@@ -10,6 +10,7 @@ mod blocks;
 mod decode;
 pub mod explode;
 mod extra;
+mod lines;
 mod reader;
 mod tokens;
 pub mod units;

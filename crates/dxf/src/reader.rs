@@ -16,9 +16,10 @@
 
 use crate::decode::{decode_value_into, encoding_for};
 use crate::extra::ExtraReader;
-use crate::tokens::{int, is, num, raw_name, raw_str, Pair, Tokens};
+use crate::tokens::{int, num, raw_name, raw_str, Pair, Tokens};
 use crate::{Drawing, DxfError, DxfErrorKind, Entity, EntityKind, MText, Point3, Text};
 use encoding_rs::Encoding;
+use std::collections::BTreeMap;
 
 /// What a section's contents are read as.
 #[derive(Clone, Copy, PartialEq)]
@@ -28,18 +29,6 @@ enum Body {
     Entities,
     Blocks,
     Other,
-}
-
-/// Where the pass is in the file's structure.
-#[derive(Clone, Copy)]
-enum State {
-    Outside,
-    /// Right after `0`/`SECTION`: this pair names the section (when its code is 2).
-    Name,
-    In(Body),
-    /// After `0`/`EOF` outside a section, or after a structure error: only the pairs are
-    /// still checked.
-    Done,
 }
 
 /// A string of the drawing, still the file's bytes.
@@ -107,6 +96,12 @@ struct EntityRecord<'a> {
 }
 
 impl<'a> EntityRecord<'a> {
+    /// A new record in place of this one, its pieces buffer kept.
+    fn reset(&mut self, kind: Kind, line: usize) {
+        let pieces = std::mem::take(&mut self.pieces);
+        *self = EntityRecord::new(kind, line, pieces);
+    }
+
     fn new(kind: Kind, line: usize, mut pieces: Vec<&'a [u8]>) -> Self {
         pieces.clear();
         EntityRecord {
@@ -132,6 +127,7 @@ impl<'a> EntityRecord<'a> {
         }
     }
 
+    #[inline(always)]
     fn group(&mut self, p: &Pair<'a>) -> Result<(), DxfError> {
         match p.code {
             5 => self.handle = Some(p.value),
@@ -226,9 +222,10 @@ struct Reader<'a> {
     table: TableRecord,
     table_name: Option<&'a [u8]>,
     table_linetype: Option<&'a [u8]>,
-    entity: Option<EntityRecord<'a>>,
-    /// The MTEXT pieces buffer, reused from entity to entity.
-    spare_pieces: Vec<&'a [u8]>,
+    /// The entity being read when `entity_open`: one record reused from entity to entity
+    /// (it is large, and its MTEXT pieces buffer is kept).
+    entity: EntityRecord<'a>,
+    entity_open: bool,
     sections: usize,
     structure_error: Option<DxfError>,
     header_error: Option<DxfError>,
@@ -260,8 +257,8 @@ pub fn read_dxf(bytes: &[u8]) -> Result<Drawing, DxfError> {
         table: TableRecord::Skip,
         table_name: None,
         table_linetype: None,
-        entity: None,
-        spare_pieces: Vec::new(),
+        entity: EntityRecord::new(Kind::Line, 0, Vec::new()),
+        entity_open: false,
         sections: 0,
         structure_error: None,
         header_error: None,
@@ -271,54 +268,97 @@ pub fn read_dxf(bytes: &[u8]) -> Result<Drawing, DxfError> {
         in_extra: false,
     };
     let mut tokens = Tokens::new(bytes);
-    let mut state = State::Outside;
+    // the line of the last pair read: where a file that ends inside a section is cut
     let mut last_line = 0;
+    let mut open_section = false;
     while let Some(p) = tokens.next_pair()? {
         last_line = p.line;
-        state = match state {
-            State::Outside if is(&p, 0, "SECTION") => State::Name,
-            State::Outside if is(&p, 0, "EOF") => State::Done,
-            State::Outside | State::Done => state,
-            State::Name => {
-                let body = match (p.code, &*raw_name(p.value)) {
-                    (2, b"HEADER") => Body::Header,
-                    (2, b"TABLES") => Body::Tables,
-                    (2, b"ENTITIES") => Body::Entities,
-                    (2, b"BLOCKS") => Body::Blocks,
-                    _ => Body::Other,
-                };
-                r.begin();
-                State::In(body)
-            }
-            State::In(body) if p.code == 0 => {
-                let marker = p.value.trim_ascii();
-                if marker == b"ENDSEC" {
-                    r.end(body);
-                    State::Outside
-                } else if marker == b"SECTION" || marker == b"EOF" {
-                    r.structure_error = Some(DxfError {
-                        line: p.line,
-                        kind: DxfErrorKind::Truncated,
-                    });
-                    State::Done
-                } else {
-                    r.group(body, &p);
-                    state
-                }
-            }
-            State::In(body) => {
-                r.group(body, &p);
-                state
-            }
+        if p.code != 0 {
+            continue;
+        }
+        match p.value.trim_ascii() {
+            b"SECTION" => {}
+            b"EOF" => break,
+            _ => continue,
+        }
+        // this pair names the section (when its code is 2)
+        let Some(p) = tokens.next_pair()? else {
+            open_section = true;
+            break;
         };
+        last_line = p.line;
+        let body = match (p.code, &*raw_name(p.value)) {
+            (2, b"HEADER") => Body::Header,
+            (2, b"TABLES") => Body::Tables,
+            (2, b"ENTITIES") => Body::Entities,
+            (2, b"BLOCKS") => Body::Blocks,
+            _ => Body::Other,
+        };
+        r.begin();
+        // one loop per kind of section, each with its reading inlined
+        let end = match body {
+            Body::Header => section(&mut tokens, &mut last_line, |p| r.header_group(p))?,
+            Body::Tables => section(&mut tokens, &mut last_line, |p| r.table_group(p))?,
+            Body::Entities => section(&mut tokens, &mut last_line, |p| r.entity_group(p))?,
+            Body::Blocks => section(&mut tokens, &mut last_line, |p| r.block_pairs.push(*p))?,
+            Body::Other => section(&mut tokens, &mut last_line, |_| {})?,
+        };
+        match end {
+            SectionEnd::EndSec => r.end(body),
+            SectionEnd::Marker(line) => {
+                r.structure_error = Some(DxfError {
+                    line,
+                    kind: DxfErrorKind::Truncated,
+                });
+                break;
+            }
+            SectionEnd::FileEnd => {
+                open_section = true;
+                break;
+            }
+        }
     }
-    if let State::Name | State::In(_) = state {
+    // after `0`/`EOF` or a structure error: only the pairs are still checked
+    while tokens.next_pair()?.is_some() {}
+    if open_section {
         r.structure_error = Some(DxfError {
             line: last_line,
             kind: DxfErrorKind::Truncated,
         });
     }
     r.finish()
+}
+
+/// How the pairs of a section ended.
+enum SectionEnd {
+    /// `0`/`ENDSEC`.
+    EndSec,
+    /// `0`/`SECTION` or `0`/`EOF` inside the section (its line): a structure error.
+    Marker(usize),
+    /// The end of the file.
+    FileEnd,
+}
+
+/// The pairs of a section up to its end, each given to `group` (`0` groups too, but not
+/// the one that ends the section).
+#[inline(always)]
+fn section<'a>(
+    tokens: &mut Tokens<'a>,
+    last_line: &mut usize,
+    mut group: impl FnMut(&Pair<'a>),
+) -> Result<SectionEnd, DxfError> {
+    while let Some(p) = tokens.next_pair()? {
+        *last_line = p.line;
+        if p.code == 0 {
+            match p.value.trim_ascii() {
+                b"ENDSEC" => return Ok(SectionEnd::EndSec),
+                b"SECTION" | b"EOF" => return Ok(SectionEnd::Marker(p.line)),
+                _ => {}
+            }
+        }
+        group(&p);
+    }
+    Ok(SectionEnd::FileEnd)
 }
 
 impl<'a> Reader<'a> {
@@ -333,16 +373,6 @@ impl<'a> Reader<'a> {
             Body::Tables => self.end_table_record(),
             Body::Entities => self.end_entity(),
             Body::Header | Body::Blocks | Body::Other => {}
-        }
-    }
-
-    fn group(&mut self, body: Body, p: &Pair<'a>) {
-        match body {
-            Body::Header => self.header_group(p),
-            Body::Tables => self.table_group(p),
-            Body::Entities => self.entity_group(p),
-            Body::Blocks => self.block_pairs.push(*p),
-            Body::Other => {}
         }
     }
 
@@ -435,26 +465,27 @@ impl<'a> Reader<'a> {
                 }
                 return;
             };
-            let pieces = std::mem::take(&mut self.spare_pieces);
-            self.entity = Some(EntityRecord::new(kind, p.line, pieces));
+            self.entity.reset(kind, p.line);
+            self.entity_open = true;
             return;
         }
         if self.in_extra {
             self.extra_pairs.push(*p);
             return;
         }
-        if let Some(e) = &mut self.entity {
-            if let Err(err) = e.group(p) {
+        if self.entity_open {
+            if let Err(err) = self.entity.group(p) {
                 self.entity_error = Some(err);
-                self.entity = None;
+                self.entity_open = false;
             }
         }
     }
 
     fn end_entity(&mut self) {
-        let Some(mut e) = self.entity.take() else {
+        if !std::mem::take(&mut self.entity_open) {
             return;
-        };
+        }
+        let e = &mut self.entity;
         if !e.paper_space {
             let i = self.d.entities.len();
             self.d.entities.push(e.entity());
@@ -470,7 +501,6 @@ impl<'a> Reader<'a> {
             self.kept
                 .extend(e.pieces.drain(..).map(|t| Kept::EntityText(i, t)));
         }
-        self.spare_pieces = e.pieces;
     }
 
     /// The drawing, its strings decoded with the code page of the header; or the file's error.
@@ -496,12 +526,25 @@ impl<'a> Reader<'a> {
         };
         // consecutive entities mostly share their layer: decoded once
         let mut last_layer: Option<(&[u8], String)> = None;
+        // built in one go at the end: `from_iter` sorts stably and keeps the last of equal
+        // names, as inserting them one by one would
+        let mut layers = Vec::new();
+        let mut last_layer_linetype: Option<(&[u8], String)> = None;
         for k in self.kept {
             match k {
                 Kept::Linetype(name) => d.linetypes.push(decode(name)),
                 Kept::Layer { name, linetype } => {
-                    let lt = linetype.map_or_else(|| "Continuous".to_string(), decode);
-                    d.layers.insert(decode(name), lt);
+                    // most layers share a few line types: decoded once per run
+                    let lt = match (linetype, &last_layer_linetype) {
+                        (None, _) => "Continuous".to_string(),
+                        (Some(raw), Some((r, s))) if *r == raw => s.clone(),
+                        (Some(raw), _) => {
+                            let s = decode(raw);
+                            last_layer_linetype = Some((raw, s.clone()));
+                            s
+                        }
+                    };
+                    layers.push((decode(name), lt));
                 }
                 Kept::EntityLayer(i, raw) => {
                     let layer = match &last_layer {
@@ -530,6 +573,7 @@ impl<'a> Reader<'a> {
                 },
             }
         }
+        d.layers = layer_map(layers);
         // the geometry the reference ignores, and the blocks, now that the code page is known
         let ctx = Ctx { enc };
         let mut extra = ExtraReader::default();
@@ -541,6 +585,33 @@ impl<'a> Reader<'a> {
         crate::blocks::read_blocks(&ctx, &self.block_pairs, d);
         Ok(self.d)
     }
+}
+
+/// The LAYER table as a map, the last of equal names kept (as inserting them one by one
+/// would). Sorted once by an index and the names' first eight bytes, which mostly decide;
+/// `from_iter` then finds the order made and only drops the duplicates.
+fn layer_map(layers: Vec<(String, String)>) -> BTreeMap<String, String> {
+    let prefix = |name: &str| {
+        let b = name.as_bytes();
+        (0..8).fold(0u64, |p, k| {
+            p << 8 | u64::from(b.get(k).copied().unwrap_or(0))
+        })
+    };
+    let mut order: Vec<(u64, usize)> = layers
+        .iter()
+        .enumerate()
+        .map(|(i, (name, _))| (prefix(name), i))
+        .collect();
+    order.sort_unstable_by(|a, b| {
+        a.0.cmp(&b.0)
+            .then_with(|| layers[a.1].0.cmp(&layers[b.1].0))
+            .then(a.1.cmp(&b.1))
+    });
+    let mut slots: Vec<Option<(String, String)>> = layers.into_iter().map(Some).collect();
+    order
+        .iter()
+        .filter_map(|&(_, i)| slots.get_mut(i).and_then(Option::take))
+        .collect()
 }
 
 /// Decoding of kept values for `extra.rs` and `blocks.rs`.
@@ -876,6 +947,36 @@ mod tests {
             err(read_dxf(b"  0\nEOF\n")),
             "line 1: not a DXF file (no SECTION found)"
         );
+    }
+
+    #[test]
+    fn the_layer_map_keeps_the_last_of_equal_names_as_inserting_does() {
+        let names = [
+            "P1",
+            "P1 ",
+            "1234_1P~A",
+            "1234_1P~B",
+            "1234_1P",
+            "",
+            "Ä",
+            "a",
+            "1234_1P~A",
+        ];
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        for _ in 0..2_000 {
+            let mut layers = Vec::new();
+            let mut inserted = BTreeMap::new();
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            for k in 0..(seed % 40) {
+                let name = names[(seed >> (k % 50)) as usize % names.len()].to_string();
+                let lt = format!("LT{k}");
+                inserted.insert(name.clone(), lt.clone());
+                layers.push((name, lt));
+            }
+            assert_eq!(layer_map(layers), inserted);
+        }
     }
 
     #[test]

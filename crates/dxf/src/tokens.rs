@@ -4,6 +4,7 @@
 //! whole file had been decoded with [`String::from_utf8_lossy`] first (an invalid sequence
 //! never spans a line end, so a line decoded on its own is the same line of the decoded file).
 
+use crate::lines::LineEnds;
 use crate::{DxfError, DxfErrorKind};
 use std::borrow::Cow;
 
@@ -19,66 +20,43 @@ pub(crate) struct Pair<'a> {
 /// The pairs of a file, as `bytes.split(|&b| b == b'\n')` lines taken two by two.
 pub(crate) struct Tokens<'a> {
     bytes: &'a [u8],
+    ends: LineEnds<'a>,
     /// Start of the next line; past the end of `bytes` after the last line.
     pos: usize,
     /// Lines taken so far.
     line: usize,
 }
 
-/// The index of the first `\n` at or after `from`, or the length. Lines are short (`  0`,
-/// `LINE`, `1.5`): eight bytes at a time, one well-predicted branch for most lines, is
-/// quicker here than a byte loop or `memchr`'s set-up.
-fn find_newline(b: &[u8], from: usize) -> usize {
-    const ONES: u64 = 0x0101_0101_0101_0101;
-    let mut i = from;
-    while let Some(&word) = b.get(i..).and_then(|rest| rest.first_chunk::<8>()) {
-        // the lowest zero byte of `x` is the first `\n` (bytes above it may be flagged too)
-        let x = u64::from_le_bytes(word) ^ (ONES * u64::from(b'\n'));
-        let zero = x.wrapping_sub(ONES) & !x & (ONES << 7);
-        if zero != 0 {
-            return i + (zero.trailing_zeros() / 8) as usize;
-        }
-        i += 8;
-    }
-    while i < b.len() && b[i] != b'\n' {
-        i += 1;
-    }
-    i
-}
-
-/// A usual group code line (as [`plain_group_code`] takes them) that starts at `at` and
-/// ends with `\r`s and a `\n`: its code and the start of the next line. Read in one go, as
-/// this is where a reader spends its time.
-#[inline]
-fn plain_code_line(b: &[u8], at: usize) -> Option<(i32, usize)> {
-    let mut i = at;
-    while b.get(i) == Some(&b' ') {
-        i += 1;
-    }
-    let digits = i;
-    let mut v = 0i32;
-    while let Some(&c) = b.get(i).filter(|c| c.is_ascii_digit()) {
-        if i - digits == 9 {
-            return None;
-        }
-        v = v * 10 + (c - b'0') as i32;
-        i += 1;
-    }
-    if i == digits {
-        return None;
-    }
-    while b.get(i) == Some(&b' ') {
-        i += 1;
-    }
-    while b.get(i) == Some(&b'\r') {
-        i += 1;
-    }
-    (b.get(i) == Some(&b'\n')).then_some((v, i + 1))
-}
-
 /// The usual group code lines (`  0`, ` 10`, `100`): spaces, at most nine digits, spaces.
 /// `None` for anything else, which then goes the general way.
+#[inline(always)]
 fn plain_group_code(b: &[u8]) -> Option<i32> {
+    three_wide_code(b).or_else(|| plain_group_code_any_width(b))
+}
+
+/// [`plain_group_code`] of the lines most codes are written as: `  0`, ` 10`, `100`.
+#[inline(always)]
+fn three_wide_code(b: &[u8]) -> Option<i32> {
+    if let [x, y, z] = *b {
+        let digit = |c: u8| c.wrapping_sub(b'0');
+        let (x, y, z) = (digit(x), digit(y), digit(z));
+        const SPACE: u8 = b' '.wrapping_sub(b'0');
+        if z < 10 {
+            match (x, y) {
+                (SPACE, SPACE) => return Some(i32::from(z)),
+                (SPACE, 0..=9) => return Some(i32::from(y) * 10 + i32::from(z)),
+                (0..=9, 0..=9) => {
+                    return Some(i32::from(x) * 100 + i32::from(y) * 10 + i32::from(z))
+                }
+                _ => {}
+            }
+        }
+    }
+    None
+}
+
+#[inline(never)]
+fn plain_group_code_any_width(b: &[u8]) -> Option<i32> {
     let mut i = 0;
     while i < b.len() && b[i] == b' ' {
         i += 1;
@@ -89,85 +67,83 @@ fn plain_group_code(b: &[u8]) -> Option<i32> {
         v = v * 10 + (b[i] - b'0') as i32;
         i += 1;
     }
-    (i > digits && b[i..].iter().all(|&c| c == b' ')).then_some(v)
+    if i == digits {
+        return None;
+    }
+    while i < b.len() && b[i] == b' ' {
+        i += 1;
+    }
+    (i == b.len()).then_some(v)
+}
+
+/// A line without the `\r`s before its end.
+#[inline(always)]
+fn without_cr(line: &[u8]) -> &[u8] {
+    match line {
+        [rest @ .., b'\r'] => {
+            let mut line = rest;
+            while let [rest @ .., b'\r'] = line {
+                line = rest;
+            }
+            line
+        }
+        _ => line,
+    }
 }
 
 impl<'a> Tokens<'a> {
     pub(crate) fn new(bytes: &'a [u8]) -> Self {
         Tokens {
             bytes,
+            ends: LineEnds::new(bytes),
             pos: 0,
             line: 0,
         }
     }
 
-    /// The next line without its line end (`\n` and the `\r`s before it).
-    fn next_line(&mut self) -> Option<&'a [u8]> {
-        let b = self.bytes;
-        let start = self.pos;
-        if start > b.len() {
-            return None;
-        }
-        let end = find_newline(b, start);
-        self.pos = end + 1;
-        self.line += 1;
-        let mut line = &b[start..end];
-        while let [rest @ .., b'\r'] = line {
-            line = rest;
-        }
-        Some(line)
-    }
-
-    /// The next pair; `Ok(None)` at the end (trailing blank lines are harmless).
-    #[inline]
+    /// The next pair; `Ok(None)` at the end (trailing blank lines are harmless). Inlined
+    /// into each loop over the pairs: the reader spends most of its time here.
+    #[inline(always)]
     pub(crate) fn next_pair(&mut self) -> Result<Option<Pair<'a>>, DxfError> {
+        let Some((code_end, value_end)) = self.ends.next_two() else {
+            // the last line, without a line end
+            return self.pair_by_lines();
+        };
         let b = self.bytes;
-        if let Some((code, value_start)) = plain_code_line(b, self.pos) {
-            // the value line: `value_start` is at most the length, so there is one
-            let end = find_newline(b, value_start);
-            self.pos = end + 1;
-            self.line += 2;
-            let mut value = &b[value_start..end];
-            while let [rest @ .., b'\r'] = value {
-                value = rest;
-            }
-            return Ok(Some(Pair {
-                code,
-                value,
-                line: self.line - 1,
-            }));
-        }
-        self.general_pair()
+        // every line is taken in order, so `pos` ≤ `code_end` < `value_end` ≤ the length
+        // (the value line may be the last one, without a line end)
+        let code_line = &b[self.pos..code_end];
+        let value = without_cr(&b[code_end + 1..value_end]);
+        let line = self.line + 1;
+        self.line += 2;
+        self.pos = value_end + 1;
+        // a three wide code line has no `\r` to strip when it is a code
+        let code = match three_wide_code(code_line) {
+            Some(code) => code,
+            None => match plain_group_code(without_cr(code_line)) {
+                Some(code) => code,
+                None => match self.general_code(without_cr(code_line), line, code_end + 1)? {
+                    Some(code) => code,
+                    None => return Ok(None),
+                },
+            },
+        };
+        Ok(Some(Pair { code, value, line }))
     }
 
-    /// [`Tokens::next_pair`] for any code line (white space, signs, blank lines, the end).
-    #[cold]
-    fn general_pair(&mut self) -> Result<Option<Pair<'a>>, DxfError> {
+    /// [`Tokens::next_pair`] line by line, at the end of the file.
+    #[inline(never)]
+    fn pair_by_lines(&mut self) -> Result<Option<Pair<'a>>, DxfError> {
         let Some(code_line) = self.next_line() else {
             return Ok(None);
         };
         let line = self.line;
         let code = match plain_group_code(code_line) {
             Some(code) => code,
-            None => {
-                let text = String::from_utf8_lossy(code_line);
-                let code = text.trim();
-                if code.is_empty() {
-                    let rest = self.bytes.get(self.pos..).unwrap_or_default();
-                    if rest.iter().all(u8::is_ascii_whitespace) {
-                        self.pos = self.bytes.len() + 1;
-                        return Ok(None);
-                    }
-                    return Err(DxfError {
-                        line,
-                        kind: DxfErrorKind::BadGroupCode(String::new()),
-                    });
-                }
-                code.parse().map_err(|_| DxfError {
-                    line,
-                    kind: DxfErrorKind::BadGroupCode(code.chars().take(40).collect()),
-                })?
-            }
+            None => match self.general_code(code_line, line, self.pos)? {
+                Some(code) => code,
+                None => return Ok(None),
+            },
         };
         let Some(value) = self.next_line() else {
             return Err(DxfError {
@@ -176,6 +152,51 @@ impl<'a> Tokens<'a> {
             });
         };
         Ok(Some(Pair { code, value, line }))
+    }
+
+    /// The next line without its line end (`\n` and the `\r`s before it).
+    #[inline(always)]
+    fn next_line(&mut self) -> Option<&'a [u8]> {
+        let start = self.pos;
+        if start > self.bytes.len() {
+            return None;
+        }
+        // every line is taken here or in `next_pair`, in order: the next line end is this
+        // line's
+        let end = self.ends.next_end();
+        self.pos = end + 1;
+        self.line += 1;
+        Some(without_cr(self.bytes.get(start..end).unwrap_or_default()))
+    }
+
+    /// The code of any other code line (white space, signs, leading zeros) at `line`;
+    /// `None` for blank lines up to the end (`rest`: where the next line starts).
+    #[cold]
+    fn general_code(
+        &mut self,
+        code_line: &[u8],
+        line: usize,
+        rest: usize,
+    ) -> Result<Option<i32>, DxfError> {
+        let text = String::from_utf8_lossy(code_line);
+        let code = text.trim();
+        if code.is_empty() {
+            let rest = self.bytes.get(rest..).unwrap_or_default();
+            if rest.iter().all(u8::is_ascii_whitespace) {
+                // the end: the line ends of those blank lines are not lines of pairs
+                self.pos = self.bytes.len() + 1;
+                self.ends.exhaust();
+                return Ok(None);
+            }
+            return Err(DxfError {
+                line,
+                kind: DxfErrorKind::BadGroupCode(String::new()),
+            });
+        }
+        code.parse().map(Some).map_err(|_| DxfError {
+            line,
+            kind: DxfErrorKind::BadGroupCode(code.chars().take(40).collect()),
+        })
     }
 }
 
@@ -191,6 +212,10 @@ pub(crate) fn raw_str(v: &[u8]) -> Cow<'_, str> {
         (None, _) => return Cow::Borrowed(""),
         // other Unicode white space may be at the ends, or invalid UTF-8 in the middle
         (Some(&a), Some(&z)) if a < 0x80 && z < 0x80 => {
+            // borrowed exactly when ASCII: quicker than `from_utf8` on short values
+            if let Cow::Borrowed(s) = encoding_rs::mem::decode_latin1(t) {
+                return Cow::Borrowed(s);
+            }
             if let Ok(s) = std::str::from_utf8(t) {
                 return Cow::Borrowed(s);
             }
@@ -205,7 +230,18 @@ pub(crate) fn raw_str(v: &[u8]) -> Cow<'_, str> {
 
 /// [`raw_str`] as bytes, to compare with ASCII names (`LINE`, `$ACADVER`): borrowed from the
 /// file unless non-ASCII bytes end it (other Unicode white space may be trimmed there).
+#[inline(always)]
 pub(crate) fn raw_name(v: &[u8]) -> Cow<'_, [u8]> {
+    // the usual name: no white space (all of it is at most b' ') and ASCII at both ends
+    match (v.first(), v.last()) {
+        (Some(&a), Some(&z)) if (b'!'..0x80).contains(&a) && (b'!'..0x80).contains(&z) => {
+            Cow::Borrowed(v)
+        }
+        _ => raw_name_trimmed(v),
+    }
+}
+
+fn raw_name_trimmed(v: &[u8]) -> Cow<'_, [u8]> {
     let ws = |c: &u8| matches!(c, b' ' | b'\t' | b'\n' | b'\x0B' | b'\x0C' | b'\r');
     let start = v.iter().position(|c| !ws(c)).unwrap_or(v.len());
     let end = v.iter().rposition(|c| !ws(c)).map_or(start, |i| i + 1);
@@ -217,11 +253,6 @@ pub(crate) fn raw_name(v: &[u8]) -> Cow<'_, [u8]> {
         // invalid UTF-8 inside: not an ASCII name either way
         _ => Cow::Borrowed(t),
     }
-}
-
-/// Structure markers (`0`/`SECTION`, …) are compared without ASCII white space only.
-pub(crate) fn is(p: &Pair, code: i32, value: &str) -> bool {
-    p.code == code && p.value.trim_ascii() == value.as_bytes()
 }
 
 fn bad_number(p: &Pair, s: &str) -> DxfError {
@@ -237,38 +268,64 @@ fn bad_number(p: &Pair, s: &str) -> DxfError {
 /// Plain decimals (`-12.375`: a sign, at most 15 digits with a point between two of them) as
 /// `str::parse` reads them: the digits and the power of ten are both exact doubles, so the one
 /// division rounds once, correctly (Clinger's fast path). `None` for anything else.
+#[inline(always)]
 fn plain_decimal(v: &[u8]) -> Option<f64> {
     const POW10: [f64; 16] = [
         1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
     ];
-    let v = v.trim_ascii();
+    // white space is at most b' ': most values have none to trim
+    let v = match (v.first(), v.last()) {
+        (Some(&a), Some(&z)) if a > b' ' && z > b' ' => v,
+        _ => v.trim_ascii(),
+    };
     let (neg, body) = match v {
         [b'-', rest @ ..] => (true, rest),
         _ => (false, v),
     };
-    let (mut m, mut digits, mut point) = (0u64, 0usize, None);
-    for &c in body {
-        match c {
-            b'0'..=b'9' if digits < 15 => {
-                m = m * 10 + u64::from(c - b'0');
-                digits += 1;
-            }
-            b'.' if point.is_none() && digits > 0 => point = Some(digits),
-            _ => return None,
-        }
+    // fifteen digits and a point at most
+    if body.len() > 16 {
+        return None;
     }
-    let frac = digits - point.unwrap_or(digits);
-    if digits == 0 || point == Some(digits) {
+    let digit = |c: u8| c.wrapping_sub(b'0');
+    let (mut m, mut i) = (0u64, 0);
+    while let Some(&c) = body.get(i).filter(|&&c| digit(c) < 10) {
+        m = m * 10 + u64::from(digit(c));
+        i += 1;
+    }
+    if i == 0 {
+        return None;
+    }
+    let mut frac = 0;
+    if i < body.len() {
+        // a point, then at least one digit
+        if body[i] != b'.' || i + 1 == body.len() {
+            return None;
+        }
+        for &c in &body[i + 1..] {
+            if digit(c) >= 10 {
+                return None;
+            }
+            m = m * 10 + u64::from(digit(c));
+        }
+        frac = body.len() - i - 1;
+    }
+    if i + frac > 15 {
         return None;
     }
     let x = m as f64 / POW10[frac];
     Some(if neg { -x } else { x })
 }
 
+#[inline(always)]
 pub(crate) fn num(p: &Pair) -> Result<f64, DxfError> {
-    if let Some(x) = plain_decimal(p.value) {
-        return Ok(x);
+    match plain_decimal(p.value) {
+        Some(x) => Ok(x),
+        None => any_num(p),
     }
+}
+
+#[inline(never)]
+fn any_num(p: &Pair) -> Result<f64, DxfError> {
     let s = raw_str(p.value);
     s.parse::<f64>().map_err(|_| bad_number(p, &s))
 }
