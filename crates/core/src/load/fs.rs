@@ -12,6 +12,11 @@ pub fn is_text_file(p: &Path) -> bool {
 /// File access, so that editors can serve unsaved buffers and tests can use memory.
 pub trait FileSystem {
     fn read(&self, path: &Path) -> std::io::Result<Vec<u8>>;
+    /// [`FileSystem::read`] into `buf` (cleared first), so that a caller can reuse one buffer.
+    fn read_into(&self, path: &Path, buf: &mut Vec<u8>) -> std::io::Result<()> {
+        *buf = self.read(path)?;
+        Ok(())
+    }
     /// The files of a directory (any order).
     fn list_dir(&self, dir: &Path) -> std::io::Result<Vec<PathBuf>>;
     fn is_dir(&self, dir: &Path) -> bool;
@@ -28,6 +33,15 @@ pub struct OsFileSystem;
 impl FileSystem for OsFileSystem {
     fn read(&self, path: &Path) -> std::io::Result<Vec<u8>> {
         std::fs::read(path)
+    }
+    fn read_into(&self, path: &Path, buf: &mut Vec<u8>) -> std::io::Result<()> {
+        use std::io::Read;
+        buf.clear();
+        let mut file = std::fs::File::open(path)?;
+        let size = file.metadata().map(|m| m.len()).unwrap_or(0);
+        buf.try_reserve_exact(usize::try_from(size).unwrap_or(0))?;
+        file.read_to_end(buf)?;
+        Ok(())
     }
     fn list_dir(&self, dir: &Path) -> std::io::Result<Vec<PathBuf>> {
         let mut v = Vec::new();
@@ -88,4 +102,32 @@ impl FileSystem for MemFileSystem {
         };
         self.files.keys().any(|p| p.parent() == Some(dir))
     }
+}
+
+/// Reads `path` into this thread's reused buffer and hands its bytes to `f`: reading many
+/// files one after another (`check`) then touches the same memory instead of fresh pages
+/// for every file, and page faults cost more than reading a small drawing.
+pub fn with_file_bytes<R>(
+    fs: &dyn FileSystem,
+    path: &Path,
+    f: impl FnOnce(std::io::Result<&[u8]>) -> R,
+) -> R {
+    use std::cell::RefCell;
+    /// A buffer larger than this is given back after use (one huge drawing must not keep
+    /// its size for the rest of the run).
+    const KEEP: usize = 8 << 20;
+    thread_local! {
+        static BUF: RefCell<Vec<u8>> = const { RefCell::new(Vec::new()) };
+    }
+    // taken out for the call: a nested read (none today) would get a buffer of its own
+    let mut buf = BUF.with(|b| std::mem::take(&mut *b.borrow_mut()));
+    let out = match fs.read_into(path, &mut buf) {
+        Ok(()) => f(Ok(&buf)),
+        Err(e) => f(Err(e)),
+    };
+    if buf.capacity() <= KEEP {
+        buf.clear();
+        BUF.with(|b| *b.borrow_mut() = buf);
+    }
+    out
 }

@@ -6,7 +6,7 @@ use crate::args;
 use crate::diag::{Diagnostic, Diags, FileRef, Lang, Msg, Origin};
 use crate::front::drawing::RawPath;
 use crate::front::dxf::{dxf_to_drawing, FrontOptions};
-use crate::load::fs::{is_text_file, FileSystem};
+use crate::load::fs::{is_text_file, with_file_bytes, FileSystem};
 use crate::load::names::Patterns;
 use crate::load::parse_cache::{self, ParseKey, ParsedFile};
 use crate::load::regex_cache::regex;
@@ -170,7 +170,7 @@ impl<'a> Session<'a> {
     pub(crate) fn parse_file(&self, path: &Path) -> ParsedFile {
         let mut diags = Diags::default();
         let mut info = Vec::new();
-        let result = match self.fs.read(path) {
+        let result = with_file_bytes(self.fs, path, |bytes| match bytes {
             Err(e) => Err(Diagnostic::error(
                 Msg::CannotRead,
                 Origin::Input,
@@ -178,10 +178,10 @@ impl<'a> Session<'a> {
             )),
             Ok(bytes) => {
                 let file = FileRef::new(path.to_path_buf());
-                self.parse_drawing(&bytes, &file, &mut diags, &mut info)
+                self.parse_drawing(bytes, &file, &mut diags, &mut info)
                     .map(|d| d.paths.into_iter().map(Arc::new).collect())
             }
-        };
+        });
         ParsedFile {
             result,
             diags: diags.list,
