@@ -405,7 +405,7 @@ mod tests {
         let file = FileRef::new("dir/a.dxf".into());
         Diagnostic::error(
             Msg::ValueMissing,
-            Origin::Entity(Box::new(EntityOrigin {
+            Origin::Entity(std::sync::Arc::new(EntityOrigin {
                 file,
                 line: 120,
                 handle: "A4".into(),

@@ -35,7 +35,7 @@ pub enum Severity {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Origin {
     /// A DXF entity.
-    Entity(Box<EntityOrigin>),
+    Entity(Arc<EntityOrigin>),
     /// A path as a whole: `name[file]`.
     Path { name: String, file: Arc<FileRef> },
     /// A whole input file.

@@ -49,7 +49,7 @@ pub(crate) fn with_pos(o: &Origin, pos: P2) -> Origin {
     match o {
         Origin::Entity(e) => {
             let mut e = e.clone();
-            e.pos = pos;
+            std::sync::Arc::make_mut(&mut e).pos = pos;
             Origin::Entity(e)
         }
         o => o.clone(),

@@ -100,7 +100,7 @@ struct Ctx<'a> {
 
 impl Ctx<'_> {
     fn origin(&self, e: &Entity, layer: &str, path: &str, pos: P2) -> Origin {
-        Origin::Entity(Box::new(EntityOrigin {
+        Origin::Entity(Arc::new(EntityOrigin {
             file: self.file.clone(),
             line: e.line,
             handle: e.handle.clone(),
@@ -166,26 +166,38 @@ pub fn dxf_objects(
         /// `None` unless the path name matches the pattern; else the layer's line type.
         linetype: Option<String>,
     }
-    let mut layers: std::collections::HashMap<&str, OnLayer> = std::collections::HashMap::new();
+    let mut layer_index: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
+    let mut on_layers: Vec<OnLayer> = Vec::new();
+    // consecutive entities mostly share their layer: no hashing for those
+    let mut last: Option<(&str, usize)> = None;
 
     // 1. elements (circles, lines, arcs) and texts on path layers
     let mut objs: Vec<Obj> = Vec::new();
     let mut texts: Vec<(&Entity, &str, String)> = Vec::new();
     for e in &d.entities {
-        let on = layers.entry(e.layer.as_str()).or_insert_with(|| {
-            let layer = effective_layer(&e.layer);
-            let path = path_name_of_layer(layer);
-            let linetype = opts.layer_pattern.is_match(&path).then(|| {
-                d.layers
-                    .get(layer)
-                    .map_or_else(|| "Continuous".into(), |lt| table_lt(lt))
-            });
-            OnLayer {
-                layer,
-                path,
-                linetype,
+        let i = match last {
+            Some((name, i)) if name == e.layer => i,
+            _ => {
+                let i = *layer_index.entry(e.layer.as_str()).or_insert_with(|| {
+                    let layer = effective_layer(&e.layer);
+                    let path = path_name_of_layer(layer);
+                    let linetype = opts.layer_pattern.is_match(&path).then(|| {
+                        d.layers
+                            .get(layer)
+                            .map_or_else(|| "Continuous".into(), |lt| table_lt(lt))
+                    });
+                    on_layers.push(OnLayer {
+                        layer,
+                        path,
+                        linetype,
+                    });
+                    on_layers.len() - 1
+                });
+                last = Some((e.layer.as_str(), i));
+                i
             }
-        });
+        };
+        let on = &on_layers[i];
         let Some(layer_lt) = &on.linetype else {
             continue;
         };

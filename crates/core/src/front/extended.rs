@@ -40,7 +40,7 @@ fn origin(
     pos: Point3,
 ) -> Origin {
     let layer = crate::front::dxf::effective_layer(layer);
-    Origin::Entity(Box::new(EntityOrigin {
+    Origin::Entity(Arc::new(EntityOrigin {
         file: file.clone(),
         line,
         handle: handle.to_string(),

@@ -3,13 +3,14 @@
 use crate::load::name_regex::{Groups, NameRegex};
 use crate::load::regex_cache::Memo;
 use std::cmp::Ordering;
-use std::sync::{Arc, OnceLock};
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex, OnceLock};
 
 pub const DEFAULT_PATH_PATTERN: &str = "([0-9]{4})[.]([0-9]+)([A-Z])";
 pub const DEFAULT_FILE_PATTERN: &str = "([0-9]{4})(?:[.]([0-9]+))?";
 
 /// The compiled forms of the user's `/n` and `/p` patterns.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct Patterns {
     pub path_text: String,
     /// `^(?i:N)$`: layer test and path side of file comparisons.
@@ -25,7 +26,13 @@ pub struct Patterns {
     /// `(?i)(F)-(F)` and the group index of the second part.
     file_range: NameRegex,
     range_second: usize,
+    /// [`Patterns::file_contains`] answers by file stem and path name: every session of a
+    /// `check` run asks the same questions about the same folder.
+    contains: Mutex<(usize, HashMap<String, HashMap<String, bool>>)>,
 }
+
+/// Answers remembered at most (then the table starts again).
+const CONTAINS_CAPACITY: usize = 100_000;
 
 impl Patterns {
     /// Both patterns compiled, shared by every file and analysis of the process;
@@ -61,6 +68,7 @@ impl Patterns {
             file_any,
             file_range,
             range_second,
+            contains: Mutex::default(),
         })
     }
 
@@ -99,6 +107,23 @@ impl Patterns {
 
     /// Whether a file (name without directory and extension) may contain the path.
     pub fn file_contains(&self, file_stem: &str, path_name: &str) -> bool {
+        let table = || self.contains.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(&known) = table().1.get(file_stem).and_then(|m| m.get(path_name)) {
+            return known;
+        }
+        let answer = self.file_contains_uncached(file_stem, path_name);
+        let (len, map) = &mut *table();
+        if *len >= CONTAINS_CAPACITY {
+            (*len, *map) = (0, HashMap::new());
+        }
+        let by_name = map.entry(file_stem.to_string()).or_default();
+        if by_name.insert(path_name.to_string(), answer).is_none() {
+            *len += 1;
+        }
+        answer
+    }
+
+    fn file_contains_uncached(&self, file_stem: &str, path_name: &str) -> bool {
         for c in self.file_range.captures_iter(file_stem) {
             let (Some(a), Some(b)) = (c.get(1), c.get(self.range_second)) else {
                 continue;
@@ -126,6 +151,13 @@ mod tests {
     #[test]
     fn default_patterns() {
         let p = Patterns::new(DEFAULT_PATH_PATTERN, DEFAULT_FILE_PATTERN).unwrap();
+        // the second round answers from the table
+        for _ in 0..2 {
+            default_answers(&p);
+        }
+    }
+
+    fn default_answers(p: &Patterns) {
         assert!(p.file_contains("8998", "8998.2P"));
         assert!(p.file_contains("8998", "8998.31T"));
         assert!(p.file_contains("8999.01P", "8999.1P"));
