@@ -28,8 +28,11 @@ pub struct Patterns {
     range_second: usize,
     /// [`Patterns::file_contains`] answers by file stem and path name: every session of a
     /// `check` run asks the same questions about the same folder.
-    contains: Mutex<(usize, HashMap<String, HashMap<String, bool>>)>,
+    contains: Mutex<(usize, ContainsTable)>,
 }
+
+/// File stem → path name → whether the file may contain the path.
+type ContainsTable = HashMap<String, HashMap<String, bool>>;
 
 /// Answers remembered at most (then the table starts again).
 const CONTAINS_CAPACITY: usize = 100_000;
