@@ -347,18 +347,43 @@ fn section<'a>(
     last_line: &mut usize,
     mut group: impl FnMut(&Pair<'a>),
 ) -> Result<SectionEnd, DxfError> {
-    while let Some(p) = tokens.next_pair()? {
+    // a local copy the usual pairs are taken from (kept in registers); the others are taken
+    // by `next_pair` from `tokens`
+    let mut t = *tokens;
+    let end = loop {
+        let p = match t.quick_pair() {
+            Some(p) => p,
+            None => {
+                *tokens = t;
+                let p = tokens.next_pair()?;
+                t = *tokens;
+                match p {
+                    Some(p) => p,
+                    None => break SectionEnd::FileEnd,
+                }
+            }
+        };
         *last_line = p.line;
         if p.code == 0 {
-            match p.value.trim_ascii() {
-                b"ENDSEC" => return Ok(SectionEnd::EndSec),
-                b"SECTION" | b"EOF" => return Ok(SectionEnd::Marker(p.line)),
+            match trimmed_name(p.value) {
+                b"ENDSEC" => break SectionEnd::EndSec,
+                b"SECTION" | b"EOF" => break SectionEnd::Marker(p.line),
                 _ => {}
             }
         }
         group(&p);
+    };
+    *tokens = t;
+    Ok(end)
+}
+
+/// `trim_ascii` of a value, without its calls for the usual values (nothing to trim).
+#[inline(always)]
+fn trimmed_name(v: &[u8]) -> &[u8] {
+    match (v.first(), v.last()) {
+        (Some(&a), Some(&z)) if a > b' ' && z > b' ' => v,
+        _ => v.trim_ascii(),
     }
-    Ok(SectionEnd::FileEnd)
 }
 
 impl<'a> Reader<'a> {

@@ -18,6 +18,7 @@ pub(crate) struct Pair<'a> {
 }
 
 /// The pairs of a file, as `bytes.split(|&b| b == b'\n')` lines taken two by two.
+#[derive(Clone, Copy)]
 pub(crate) struct Tokens<'a> {
     bytes: &'a [u8],
     ends: LineEnds<'a>,
@@ -129,6 +130,23 @@ impl<'a> Tokens<'a> {
             },
         };
         Ok(Some(Pair { code, value, line }))
+    }
+
+    /// The next pair when it is the usual kind (a three wide code, both line ends found by
+    /// [`LineEnds::quick_two`]); `None`, nothing taken, when [`Tokens::next_pair`] must take
+    /// it. The section loops call it on a copy of the tokens, which then lives in registers.
+    #[inline(always)]
+    pub(crate) fn quick_pair(&mut self) -> Option<Pair<'a>> {
+        let mut ends = self.ends;
+        let (code_end, value_end) = ends.quick_two()?;
+        let b = self.bytes;
+        let code = three_wide_code(&b[self.pos..code_end])?;
+        let value = without_cr(&b[code_end + 1..value_end]);
+        let line = self.line + 1;
+        self.ends = ends;
+        self.line += 2;
+        self.pos = value_end + 1;
+        Some(Pair { code, value, line })
     }
 
     /// [`Tokens::next_pair`] line by line, at the end of the file.
