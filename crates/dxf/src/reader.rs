@@ -354,20 +354,31 @@ fn section<'a>(
         let p = match t.quick_pair() {
             Some(p) => p,
             None => {
+                // every pair taken leaves the line after its value line as the last one
+                // taken: before this try, the last pair's line is the one before
+                let before = t.last_pair_line();
                 *tokens = t;
                 let p = tokens.next_pair()?;
                 t = *tokens;
                 match p {
                     Some(p) => p,
-                    None => break SectionEnd::FileEnd,
+                    None => {
+                        *last_line = before;
+                        break SectionEnd::FileEnd;
+                    }
                 }
             }
         };
-        *last_line = p.line;
         if p.code == 0 {
             match trimmed_name(p.value) {
-                b"ENDSEC" => break SectionEnd::EndSec,
-                b"SECTION" | b"EOF" => break SectionEnd::Marker(p.line),
+                b"ENDSEC" => {
+                    *last_line = p.line;
+                    break SectionEnd::EndSec;
+                }
+                b"SECTION" | b"EOF" => {
+                    *last_line = p.line;
+                    break SectionEnd::Marker(p.line);
+                }
                 _ => {}
             }
         }

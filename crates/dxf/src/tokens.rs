@@ -93,6 +93,11 @@ fn without_cr(line: &[u8]) -> &[u8] {
 }
 
 impl<'a> Tokens<'a> {
+    /// The line of the last pair taken (0 before the first).
+    pub(crate) fn last_pair_line(&self) -> usize {
+        self.line.saturating_sub(1)
+    }
+
     pub(crate) fn new(bytes: &'a [u8]) -> Self {
         Tokens {
             bytes,
