@@ -119,7 +119,7 @@ impl<'a> LineEnds<'a> {
 }
 
 /// The `\n`s of the 64 bytes from `base` (fewer at the end of the file).
-#[inline]
+#[inline(always)]
 fn block_mask(b: &[u8], base: usize) -> u64 {
     let rest = b.get(base..).unwrap_or_default();
     match rest.first_chunk::<64>() {
@@ -252,10 +252,7 @@ mod tests {
                             continue;
                         }
                         // nothing taken
-                        None => assert_eq!(
-                            (ends.base, ends.mask),
-                            (before.base, before.mask)
-                        ),
+                        None => assert_eq!((ends.base, ends.mask), (before.base, before.mask)),
                     }
                 }
                 if (seed >> (k % 64)) & 1 == 0 {

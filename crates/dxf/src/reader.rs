@@ -237,6 +237,17 @@ struct Reader<'a> {
     block_pairs: Vec<Pair<'a>>,
     /// Whether the ENTITIES record being read goes to `extra_pairs`.
     in_extra: bool,
+    /// Where the ENTITIES groups other than `0` go, from the three fields above: one test
+    /// per group instead of three.
+    route: Route,
+}
+
+/// See [`Reader::route`].
+#[derive(Clone, Copy, PartialEq)]
+enum Route {
+    Entity,
+    Extra,
+    Nowhere,
 }
 
 /// Reads a DXF file (ASCII, R12 to current versions).
@@ -266,6 +277,7 @@ pub fn read_dxf(bytes: &[u8]) -> Result<Drawing, DxfError> {
         extra_pairs: Vec::new(),
         block_pairs: Vec::new(),
         in_extra: false,
+        route: Route::Nowhere,
     };
     let mut tokens = Tokens::new(bytes);
     // the line of the last pair read: where a file that ends inside a section is cut
@@ -340,8 +352,8 @@ enum SectionEnd {
 }
 
 /// The pairs of a section up to its end, each given to `group` (`0` groups too, but not
-/// the one that ends the section).
-#[inline(always)]
+/// the one that ends the section). Not inlined: each loop gets the registers to itself.
+#[inline(never)]
 fn section<'a>(
     tokens: &mut Tokens<'a>,
     last_line: &mut usize,
@@ -407,7 +419,12 @@ impl<'a> Reader<'a> {
         self.sections += 1;
         match body {
             Body::Tables => self.end_table_record(),
-            Body::Entities => self.end_entity(),
+            Body::Entities => {
+                self.end_entity();
+                if self.route == Route::Entity {
+                    self.route = Route::Nowhere;
+                }
+            }
             Body::Header | Body::Blocks | Body::Other => {}
         }
     }
@@ -469,7 +486,33 @@ impl<'a> Reader<'a> {
         self.table = TableRecord::Skip;
     }
 
+    #[inline(always)]
     fn entity_group(&mut self, p: &Pair<'a>) {
+        if p.code != 0 {
+            match self.route {
+                Route::Entity => {
+                    if let Err(err) = self.entity.group(p) {
+                        self.entity_error = Some(err);
+                        self.entity_open = false;
+                        self.route = Route::Nowhere;
+                    }
+                }
+                Route::Extra => self.extra_pairs.push(*p),
+                Route::Nowhere => {}
+            }
+            return;
+        }
+        self.entity_record(p);
+        self.route = match (self.entity_error.is_some(), self.in_extra, self.entity_open) {
+            (true, _, _) => Route::Nowhere,
+            (false, true, _) => Route::Extra,
+            (false, false, true) => Route::Entity,
+            (false, false, false) => Route::Nowhere,
+        };
+    }
+
+    /// A `0` group of the ENTITIES section.
+    fn entity_record(&mut self, p: &Pair<'a>) {
         if self.entity_error.is_some() {
             return; // the file's answer is that error (or an earlier one)
         }
@@ -503,17 +546,6 @@ impl<'a> Reader<'a> {
             };
             self.entity.reset(kind, p.line);
             self.entity_open = true;
-            return;
-        }
-        if self.in_extra {
-            self.extra_pairs.push(*p);
-            return;
-        }
-        if self.entity_open {
-            if let Err(err) = self.entity.group(p) {
-                self.entity_error = Some(err);
-                self.entity_open = false;
-            }
         }
     }
 

@@ -353,7 +353,33 @@ fn any_num(p: &Pair) -> Result<f64, DxfError> {
     s.parse::<f64>().map_err(|_| bad_number(p, &s))
 }
 
+/// Plain integers (`-12`: a sign, at most nine digits) as `str::parse::<i32>` reads them.
+#[inline(always)]
+fn plain_int(v: &[u8]) -> Option<i32> {
+    // integers are often written right-aligned (`     7`)
+    let v = v.trim_ascii();
+    let (neg, body) = match v {
+        [b'-', rest @ ..] => (true, rest),
+        _ => (false, v),
+    };
+    if body.is_empty() || body.len() > 9 {
+        return None;
+    }
+    let mut x = 0i32;
+    for &c in body {
+        let d = c.wrapping_sub(b'0');
+        if d >= 10 {
+            return None;
+        }
+        x = x * 10 + i32::from(d);
+    }
+    Some(if neg { -x } else { x })
+}
+
 pub(crate) fn int(p: &Pair) -> Result<i32, DxfError> {
+    if let Some(x) = plain_int(p.value) {
+        return Ok(x);
+    }
     let s = raw_str(p.value);
     s.parse::<i32>()
         .or_else(|_| s.parse::<f64>().map(|f| f as i32))
@@ -420,6 +446,37 @@ mod tests {
         ] {
             assert_eq!(plain_decimal(t.as_bytes()), None, "{t}");
         }
+    }
+
+    #[test]
+    fn plain_ints_read_as_str_parse_reads_them() {
+        for t in [
+            "0",
+            "-0",
+            "7",
+            "-12",
+            "999999999",
+            "-999999999",
+            "1000000000",
+            "+5",
+            " 5",
+            "5 ",
+            "\t-3\r",
+            "",
+            "-",
+            "--1",
+            "1.0",
+            "1e3",
+            "12a",
+            "\u{a0}3",
+        ] {
+            if let Some(x) = plain_int(t.as_bytes()) {
+                assert_eq!(Ok(x), t.trim().parse::<i32>(), "{t:?}");
+            }
+        }
+        assert_eq!(plain_int(b"1000000000"), None);
+        assert_eq!(plain_int(b"     5 "), Some(5));
+        assert_eq!(plain_int(b"\x0b5"), None);
     }
 
     /// The pairs and `raw_str` of every value match the lossy decoding of the whole file.
