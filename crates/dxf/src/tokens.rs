@@ -56,6 +56,15 @@ fn three_wide_code(b: &[u8]) -> Option<i32> {
     None
 }
 
+/// [`three_wide_code`] of a line that ends with one `\r` (CR LF files).
+#[inline(never)]
+fn crlf_code(b: &[u8]) -> Option<i32> {
+    match *b {
+        [x, y, z, b'\r'] => three_wide_code(&[x, y, z]),
+        _ => None,
+    }
+}
+
 #[inline(never)]
 fn plain_group_code_any_width(b: &[u8]) -> Option<i32> {
     let mut i = 0;
@@ -145,7 +154,11 @@ impl<'a> Tokens<'a> {
         let mut ends = self.ends;
         let (code_end, value_end) = ends.quick_two()?;
         let b = self.bytes;
-        let code = three_wide_code(&b[self.pos..code_end])?;
+        let code_line = &b[self.pos..code_end];
+        let code = match three_wide_code(code_line) {
+            Some(code) => code,
+            None => crlf_code(code_line)?,
+        };
         let value = without_cr(&b[code_end + 1..value_end]);
         let line = self.line + 1;
         self.ends = ends;
