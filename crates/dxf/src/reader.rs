@@ -198,9 +198,7 @@ impl<'a> EntityRecord<'a> {
         };
         Entity {
             line: self.line,
-            handle: self
-                .handle
-                .map_or_else(String::new, |h| raw_str(h).into_owned()),
+            handle: self.handle.map_or_else(String::new, handle_text),
             layer: if self.layer.is_some() {
                 String::new()
             } else {
@@ -212,6 +210,16 @@ impl<'a> EntityRecord<'a> {
             kind,
         }
     }
+}
+
+/// [`raw_str`] of a handle, owned: the usual one (hex digits) has nothing to trim or decode.
+fn handle_text(h: &[u8]) -> String {
+    if h.iter().all(u8::is_ascii_graphic) {
+        if let Ok(s) = std::str::from_utf8(h) {
+            return s.to_owned();
+        }
+    }
+    raw_str(h).into_owned()
 }
 
 /// Everything the pass gathers.
