@@ -95,6 +95,12 @@ impl<'a> LineEnds<'a> {
         (first < self.bytes.len()).then(|| (first, self.next_end()))
     }
 
+    /// The file.
+    #[inline(always)]
+    pub(crate) fn bytes(&self) -> &'a [u8] {
+        self.bytes
+    }
+
     /// No line end is left to take (the rest of the file is read otherwise).
     pub(crate) fn exhaust(&mut self) {
         self.mask = 0;

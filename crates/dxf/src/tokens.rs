@@ -20,7 +20,8 @@ pub(crate) struct Pair<'a> {
 /// The pairs of a file, as `bytes.split(|&b| b == b'\n')` lines taken two by two.
 #[derive(Clone, Copy)]
 pub(crate) struct Tokens<'a> {
-    bytes: &'a [u8],
+    /// The line ends, and the file's bytes (held once: the copies the section loops make
+    /// then need fewer registers).
     ends: LineEnds<'a>,
     /// Start of the next line; past the end of `bytes` after the last line.
     pos: usize,
@@ -109,7 +110,6 @@ impl<'a> Tokens<'a> {
 
     pub(crate) fn new(bytes: &'a [u8]) -> Self {
         Tokens {
-            bytes,
             ends: LineEnds::new(bytes),
             pos: 0,
             line: 0,
@@ -124,7 +124,7 @@ impl<'a> Tokens<'a> {
             // the last line, without a line end
             return self.pair_by_lines();
         };
-        let b = self.bytes;
+        let b = self.ends.bytes();
         // every line is taken in order, so `pos` ≤ `code_end` < `value_end` ≤ the length
         // (the value line may be the last one, without a line end)
         let code_line = &b[self.pos..code_end];
@@ -153,7 +153,7 @@ impl<'a> Tokens<'a> {
     pub(crate) fn quick_pair(&mut self) -> Option<Pair<'a>> {
         let mut ends = self.ends;
         let (code_end, value_end) = ends.quick_two()?;
-        let b = self.bytes;
+        let b = self.ends.bytes();
         let code_line = &b[self.pos..code_end];
         let code = match three_wide_code(code_line) {
             Some(code) => code,
@@ -194,7 +194,7 @@ impl<'a> Tokens<'a> {
     #[inline(always)]
     fn next_line(&mut self) -> Option<&'a [u8]> {
         let start = self.pos;
-        if start > self.bytes.len() {
+        if start > self.ends.bytes().len() {
             return None;
         }
         // every line is taken here or in `next_pair`, in order: the next line end is this
@@ -202,7 +202,9 @@ impl<'a> Tokens<'a> {
         let end = self.ends.next_end();
         self.pos = end + 1;
         self.line += 1;
-        Some(without_cr(self.bytes.get(start..end).unwrap_or_default()))
+        Some(without_cr(
+            self.ends.bytes().get(start..end).unwrap_or_default(),
+        ))
     }
 
     /// The code of any other code line (white space, signs, leading zeros) at `line`;
@@ -217,10 +219,10 @@ impl<'a> Tokens<'a> {
         let text = String::from_utf8_lossy(code_line);
         let code = text.trim();
         if code.is_empty() {
-            let rest = self.bytes.get(rest..).unwrap_or_default();
+            let rest = self.ends.bytes().get(rest..).unwrap_or_default();
             if rest.iter().all(u8::is_ascii_whitespace) {
                 // the end: the line ends of those blank lines are not lines of pairs
-                self.pos = self.bytes.len() + 1;
+                self.pos = self.ends.bytes().len() + 1;
                 self.ends.exhaust();
                 return Ok(None);
             }
