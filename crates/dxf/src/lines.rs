@@ -3,6 +3,7 @@
 //! are short (`  0`, `LINE`, `1.5`), so a search per line would pay its set-up every few
 //! bytes.
 
+#[derive(Clone, Copy)]
 pub(crate) struct LineEnds<'a> {
     bytes: &'a [u8],
     /// Start of the block `mask` describes.
@@ -37,6 +38,45 @@ impl<'a> LineEnds<'a> {
         ))
     }
 
+    /// [`LineEnds::next_two`] for the usual cases only (two line ends in this block, or in
+    /// this block and the next, or both in the next), inlined whole so that a caller's copy
+    /// stays in registers; `None`, nothing taken, for the others.
+    #[inline(always)]
+    pub(crate) fn quick_two(&mut self) -> Option<(usize, usize)> {
+        let first = self.mask;
+        let rest = first & first.wrapping_sub(1);
+        if rest != 0 {
+            self.mask = rest & (rest - 1);
+            return Some((
+                self.base + first.trailing_zeros() as usize,
+                self.base + rest.trailing_zeros() as usize,
+            ));
+        }
+        let next_base = self.base + 64;
+        if next_base >= self.bytes.len() {
+            return None;
+        }
+        let next = block_mask(self.bytes, next_base);
+        let next_rest = next & next.wrapping_sub(1);
+        let two = if first != 0 && next != 0 {
+            self.mask = next_rest;
+            (
+                self.base + first.trailing_zeros() as usize,
+                next_base + next.trailing_zeros() as usize,
+            )
+        } else if first == 0 && next_rest != 0 {
+            self.mask = next_rest & (next_rest - 1);
+            (
+                next_base + next.trailing_zeros() as usize,
+                next_base + next_rest.trailing_zeros() as usize,
+            )
+        } else {
+            return None;
+        };
+        self.base = next_base;
+        Some(two)
+    }
+
     #[inline(never)]
     fn next_two_across(&mut self) -> Option<(usize, usize)> {
         // the usual case: one line end left here, the next one in the next block
@@ -53,6 +93,12 @@ impl<'a> LineEnds<'a> {
         }
         let first = self.next_end();
         (first < self.bytes.len()).then(|| (first, self.next_end()))
+    }
+
+    /// The file.
+    #[inline(always)]
+    pub(crate) fn bytes(&self) -> &'a [u8] {
+        self.bytes
     }
 
     /// No line end is left to take (the rest of the file is read otherwise).
@@ -79,6 +125,7 @@ impl<'a> LineEnds<'a> {
 }
 
 /// The `\n`s of the 64 bytes from `base` (fewer at the end of the file).
+#[inline(always)]
 fn block_mask(b: &[u8], base: usize) -> u64 {
     let rest = b.get(base..).unwrap_or_default();
     match rest.first_chunk::<64>() {
@@ -202,7 +249,18 @@ mod tests {
             let mut k = 0u32;
             while got.len() < want.len() {
                 k += 1;
-                // both ways of taking them, mixed
+                // the three ways of taking them, mixed
+                if (seed >> (k % 64)) & 3 == 1 {
+                    let before = ends;
+                    match ends.quick_two() {
+                        Some((a, b)) => {
+                            got.extend([a, b]);
+                            continue;
+                        }
+                        // nothing taken
+                        None => assert_eq!((ends.base, ends.mask), (before.base, before.mask)),
+                    }
+                }
                 if (seed >> (k % 64)) & 1 == 0 {
                     if let Some((a, b)) = ends.next_two() {
                         got.push(a);

@@ -198,9 +198,7 @@ impl<'a> EntityRecord<'a> {
         };
         Entity {
             line: self.line,
-            handle: self
-                .handle
-                .map_or_else(String::new, |h| raw_str(h).into_owned()),
+            handle: self.handle.map_or_else(String::new, handle_text),
             layer: if self.layer.is_some() {
                 String::new()
             } else {
@@ -212,6 +210,16 @@ impl<'a> EntityRecord<'a> {
             kind,
         }
     }
+}
+
+/// [`raw_str`] of a handle, owned: the usual one (hex digits) has nothing to trim or decode.
+fn handle_text(h: &[u8]) -> String {
+    if h.iter().all(u8::is_ascii_graphic) {
+        if let Ok(s) = std::str::from_utf8(h) {
+            return s.to_owned();
+        }
+    }
+    raw_str(h).into_owned()
 }
 
 /// Everything the pass gathers.
@@ -237,6 +245,17 @@ struct Reader<'a> {
     block_pairs: Vec<Pair<'a>>,
     /// Whether the ENTITIES record being read goes to `extra_pairs`.
     in_extra: bool,
+    /// Where the ENTITIES groups other than `0` go, from the three fields above: one test
+    /// per group instead of three.
+    route: Route,
+}
+
+/// See [`Reader::route`].
+#[derive(Clone, Copy, PartialEq)]
+enum Route {
+    Entity,
+    Extra,
+    Nowhere,
 }
 
 /// Reads a DXF file (ASCII, R12 to current versions).
@@ -266,6 +285,7 @@ pub fn read_dxf(bytes: &[u8]) -> Result<Drawing, DxfError> {
         extra_pairs: Vec::new(),
         block_pairs: Vec::new(),
         in_extra: false,
+        route: Route::Nowhere,
     };
     let mut tokens = Tokens::new(bytes);
     // the line of the last pair read: where a file that ends inside a section is cut
@@ -340,25 +360,61 @@ enum SectionEnd {
 }
 
 /// The pairs of a section up to its end, each given to `group` (`0` groups too, but not
-/// the one that ends the section).
-#[inline(always)]
+/// the one that ends the section). Not inlined: each loop gets the registers to itself.
+#[inline(never)]
 fn section<'a>(
     tokens: &mut Tokens<'a>,
     last_line: &mut usize,
     mut group: impl FnMut(&Pair<'a>),
 ) -> Result<SectionEnd, DxfError> {
-    while let Some(p) = tokens.next_pair()? {
-        *last_line = p.line;
+    // a local copy the usual pairs are taken from (kept in registers); the others are taken
+    // by `next_pair` from `tokens`
+    let mut t = *tokens;
+    let end = loop {
+        let p = match t.quick_pair() {
+            Some(p) => p,
+            None => {
+                // every pair taken leaves the line after its value line as the last one
+                // taken: before this try, the last pair's line is the one before
+                let before = t.last_pair_line();
+                *tokens = t;
+                let p = tokens.next_pair()?;
+                t = *tokens;
+                match p {
+                    Some(p) => p,
+                    None => {
+                        *last_line = before;
+                        break SectionEnd::FileEnd;
+                    }
+                }
+            }
+        };
         if p.code == 0 {
-            match p.value.trim_ascii() {
-                b"ENDSEC" => return Ok(SectionEnd::EndSec),
-                b"SECTION" | b"EOF" => return Ok(SectionEnd::Marker(p.line)),
+            match trimmed_name(p.value) {
+                b"ENDSEC" => {
+                    *last_line = p.line;
+                    break SectionEnd::EndSec;
+                }
+                b"SECTION" | b"EOF" => {
+                    *last_line = p.line;
+                    break SectionEnd::Marker(p.line);
+                }
                 _ => {}
             }
         }
         group(&p);
+    };
+    *tokens = t;
+    Ok(end)
+}
+
+/// `trim_ascii` of a value, without its calls for the usual values (nothing to trim).
+#[inline(always)]
+fn trimmed_name(v: &[u8]) -> &[u8] {
+    match (v.first(), v.last()) {
+        (Some(&a), Some(&z)) if a > b' ' && z > b' ' => v,
+        _ => v.trim_ascii(),
     }
-    Ok(SectionEnd::FileEnd)
 }
 
 impl<'a> Reader<'a> {
@@ -371,7 +427,12 @@ impl<'a> Reader<'a> {
         self.sections += 1;
         match body {
             Body::Tables => self.end_table_record(),
-            Body::Entities => self.end_entity(),
+            Body::Entities => {
+                self.end_entity();
+                if self.route == Route::Entity {
+                    self.route = Route::Nowhere;
+                }
+            }
             Body::Header | Body::Blocks | Body::Other => {}
         }
     }
@@ -433,7 +494,33 @@ impl<'a> Reader<'a> {
         self.table = TableRecord::Skip;
     }
 
+    #[inline(always)]
     fn entity_group(&mut self, p: &Pair<'a>) {
+        if p.code != 0 {
+            match self.route {
+                Route::Entity => {
+                    if let Err(err) = self.entity.group(p) {
+                        self.entity_error = Some(err);
+                        self.entity_open = false;
+                        self.route = Route::Nowhere;
+                    }
+                }
+                Route::Extra => self.extra_pairs.push(*p),
+                Route::Nowhere => {}
+            }
+            return;
+        }
+        self.entity_record(p);
+        self.route = match (self.entity_error.is_some(), self.in_extra, self.entity_open) {
+            (true, _, _) => Route::Nowhere,
+            (false, true, _) => Route::Extra,
+            (false, false, true) => Route::Entity,
+            (false, false, false) => Route::Nowhere,
+        };
+    }
+
+    /// A `0` group of the ENTITIES section.
+    fn entity_record(&mut self, p: &Pair<'a>) {
         if self.entity_error.is_some() {
             return; // the file's answer is that error (or an earlier one)
         }
@@ -467,17 +554,6 @@ impl<'a> Reader<'a> {
             };
             self.entity.reset(kind, p.line);
             self.entity_open = true;
-            return;
-        }
-        if self.in_extra {
-            self.extra_pairs.push(*p);
-            return;
-        }
-        if self.entity_open {
-            if let Err(err) = self.entity.group(p) {
-                self.entity_error = Some(err);
-                self.entity_open = false;
-            }
         }
     }
 

@@ -18,8 +18,10 @@ pub(crate) struct Pair<'a> {
 }
 
 /// The pairs of a file, as `bytes.split(|&b| b == b'\n')` lines taken two by two.
+#[derive(Clone, Copy)]
 pub(crate) struct Tokens<'a> {
-    bytes: &'a [u8],
+    /// The line ends, and the file's bytes (held once: the copies the section loops make
+    /// then need fewer registers).
     ends: LineEnds<'a>,
     /// Start of the next line; past the end of `bytes` after the last line.
     pos: usize,
@@ -53,6 +55,15 @@ fn three_wide_code(b: &[u8]) -> Option<i32> {
         }
     }
     None
+}
+
+/// [`three_wide_code`] of a line that ends with one `\r` (CR LF files).
+#[inline(never)]
+fn crlf_code(b: &[u8]) -> Option<i32> {
+    match *b {
+        [x, y, z, b'\r'] => three_wide_code(&[x, y, z]),
+        _ => None,
+    }
 }
 
 #[inline(never)]
@@ -92,9 +103,13 @@ fn without_cr(line: &[u8]) -> &[u8] {
 }
 
 impl<'a> Tokens<'a> {
+    /// The line of the last pair taken (0 before the first).
+    pub(crate) fn last_pair_line(&self) -> usize {
+        self.line.saturating_sub(1)
+    }
+
     pub(crate) fn new(bytes: &'a [u8]) -> Self {
         Tokens {
-            bytes,
             ends: LineEnds::new(bytes),
             pos: 0,
             line: 0,
@@ -109,7 +124,7 @@ impl<'a> Tokens<'a> {
             // the last line, without a line end
             return self.pair_by_lines();
         };
-        let b = self.bytes;
+        let b = self.ends.bytes();
         // every line is taken in order, so `pos` ≤ `code_end` < `value_end` ≤ the length
         // (the value line may be the last one, without a line end)
         let code_line = &b[self.pos..code_end];
@@ -129,6 +144,27 @@ impl<'a> Tokens<'a> {
             },
         };
         Ok(Some(Pair { code, value, line }))
+    }
+
+    /// The next pair when it is the usual kind (a three wide code, both line ends found by
+    /// [`LineEnds::quick_two`]); `None`, nothing taken, when [`Tokens::next_pair`] must take
+    /// it. The section loops call it on a copy of the tokens, which then lives in registers.
+    #[inline(always)]
+    pub(crate) fn quick_pair(&mut self) -> Option<Pair<'a>> {
+        let mut ends = self.ends;
+        let (code_end, value_end) = ends.quick_two()?;
+        let b = self.ends.bytes();
+        let code_line = &b[self.pos..code_end];
+        let code = match three_wide_code(code_line) {
+            Some(code) => code,
+            None => crlf_code(code_line)?,
+        };
+        let value = without_cr(&b[code_end + 1..value_end]);
+        let line = self.line + 1;
+        self.ends = ends;
+        self.line += 2;
+        self.pos = value_end + 1;
+        Some(Pair { code, value, line })
     }
 
     /// [`Tokens::next_pair`] line by line, at the end of the file.
@@ -158,7 +194,7 @@ impl<'a> Tokens<'a> {
     #[inline(always)]
     fn next_line(&mut self) -> Option<&'a [u8]> {
         let start = self.pos;
-        if start > self.bytes.len() {
+        if start > self.ends.bytes().len() {
             return None;
         }
         // every line is taken here or in `next_pair`, in order: the next line end is this
@@ -166,7 +202,9 @@ impl<'a> Tokens<'a> {
         let end = self.ends.next_end();
         self.pos = end + 1;
         self.line += 1;
-        Some(without_cr(self.bytes.get(start..end).unwrap_or_default()))
+        Some(without_cr(
+            self.ends.bytes().get(start..end).unwrap_or_default(),
+        ))
     }
 
     /// The code of any other code line (white space, signs, leading zeros) at `line`;
@@ -181,10 +219,10 @@ impl<'a> Tokens<'a> {
         let text = String::from_utf8_lossy(code_line);
         let code = text.trim();
         if code.is_empty() {
-            let rest = self.bytes.get(rest..).unwrap_or_default();
+            let rest = self.ends.bytes().get(rest..).unwrap_or_default();
             if rest.iter().all(u8::is_ascii_whitespace) {
                 // the end: the line ends of those blank lines are not lines of pairs
-                self.pos = self.bytes.len() + 1;
+                self.pos = self.ends.bytes().len() + 1;
                 self.ends.exhaust();
                 return Ok(None);
             }
@@ -330,7 +368,33 @@ fn any_num(p: &Pair) -> Result<f64, DxfError> {
     s.parse::<f64>().map_err(|_| bad_number(p, &s))
 }
 
+/// Plain integers (`-12`: a sign, at most nine digits) as `str::parse::<i32>` reads them.
+#[inline(always)]
+fn plain_int(v: &[u8]) -> Option<i32> {
+    // integers are often written right-aligned (`     7`)
+    let v = v.trim_ascii();
+    let (neg, body) = match v {
+        [b'-', rest @ ..] => (true, rest),
+        _ => (false, v),
+    };
+    if body.is_empty() || body.len() > 9 {
+        return None;
+    }
+    let mut x = 0i32;
+    for &c in body {
+        let d = c.wrapping_sub(b'0');
+        if d >= 10 {
+            return None;
+        }
+        x = x * 10 + i32::from(d);
+    }
+    Some(if neg { -x } else { x })
+}
+
 pub(crate) fn int(p: &Pair) -> Result<i32, DxfError> {
+    if let Some(x) = plain_int(p.value) {
+        return Ok(x);
+    }
     let s = raw_str(p.value);
     s.parse::<i32>()
         .or_else(|_| s.parse::<f64>().map(|f| f as i32))
@@ -397,6 +461,37 @@ mod tests {
         ] {
             assert_eq!(plain_decimal(t.as_bytes()), None, "{t}");
         }
+    }
+
+    #[test]
+    fn plain_ints_read_as_str_parse_reads_them() {
+        for t in [
+            "0",
+            "-0",
+            "7",
+            "-12",
+            "999999999",
+            "-999999999",
+            "1000000000",
+            "+5",
+            " 5",
+            "5 ",
+            "\t-3\r",
+            "",
+            "-",
+            "--1",
+            "1.0",
+            "1e3",
+            "12a",
+            "\u{a0}3",
+        ] {
+            if let Some(x) = plain_int(t.as_bytes()) {
+                assert_eq!(Ok(x), t.trim().parse::<i32>(), "{t:?}");
+            }
+        }
+        assert_eq!(plain_int(b"1000000000"), None);
+        assert_eq!(plain_int(b"     5 "), Some(5));
+        assert_eq!(plain_int(b"\x0b5"), None);
     }
 
     /// The pairs and `raw_str` of every value match the lossy decoding of the whole file.
