@@ -285,7 +285,23 @@ enum Command {
     },
 }
 
+/// Tunes memory for a command that runs a few milliseconds: no transparent huge pages. The
+/// allocator asks for them (its arena is advised as huge pages), which serves the language
+/// server's large analyses (a fifth faster on a 20,000-element chain) but makes a short
+/// `check` zero 2 MiB on every first touch (about 9 times, 1 ms of its 7).
+fn short_lived() {
+    #[cfg(target_os = "linux")]
+    // SAFETY: PR_SET_THP_DISABLE takes plain integers and touches no memory of ours; an
+    // error (an old kernel) leaves the setting as it was, which is harmless.
+    unsafe {
+        libc::prctl(libc::PR_SET_THP_DISABLE, 1, 0, 0, 0);
+    }
+}
+
 fn main() -> ExitCode {
+    if std::env::args_os().nth(1).is_none_or(|c| c != "lsp") {
+        short_lived();
+    }
     let raw: Vec<String> = std::env::args().collect();
     // The compatibility commands take the reference's command line unchanged.
     match raw.get(1).map(String::as_str) {
