@@ -751,21 +751,18 @@ fn check_all(
         bar.inc(1);
         r
     };
-    if inputs.len() < 2 {
-        let results = inputs.iter().map(one).collect(); // no thread to start
-        bar.finish_and_clear();
-        return results;
-    }
-    // The main thread is one of the workers (one thread fewer to start on a short run); the
-    // others get the main thread's usual 8 MiB stack, so that a drawing checks on a worker
-    // exactly as it would on the main thread.
-    let pool = rayon::ThreadPoolBuilder::new()
-        .stack_size(8 << 20)
-        .use_current_thread()
-        .build();
+    // The main thread is one of the workers (one thread fewer to start on a short run, none
+    // for one file); the others get the main thread's usual 8 MiB stack, so that a drawing
+    // checks on a worker exactly as it would on the main thread.
+    let pool = (inputs.len() > 1).then(|| {
+        rayon::ThreadPoolBuilder::new()
+            .stack_size(8 << 20)
+            .use_current_thread()
+            .build()
+    });
     let results = match pool {
-        Ok(pool) => pool.install(|| inputs.par_iter().map(one).collect()),
-        Err(_) => inputs.iter().map(one).collect(),
+        Some(Ok(pool)) => pool.install(|| inputs.par_iter().map(one).collect()),
+        _ => inputs.iter().map(one).collect(),
     };
     bar.finish_and_clear();
     results

@@ -156,7 +156,12 @@ pub fn tidy(diags: Vec<Diagnostic>) -> Vec<Diagnostic> {
     use millpath_core::Msg;
     let unreadable: Vec<String> = diags
         .iter()
-        .filter(|d| matches!(d.msg, Msg::CannotRead | Msg::CannotLoadDxf))
+        .filter(|d| {
+            matches!(
+                d.msg,
+                Msg::CannotRead | Msg::CannotLoadDxf | Msg::FileTooLarge
+            )
+        })
         .filter_map(|d| d.args.first().cloned())
         .collect();
     diags
@@ -166,7 +171,9 @@ pub fn tidy(diags: Vec<Diagnostic>) -> Vec<Diagnostic> {
                 && d.args.first().is_some_and(|f| unreadable.contains(f)))
         })
         .map(|mut d| {
-            if d.msg == Msg::CannotRead && matches!(d.origin, Origin::Input) {
+            if matches!(d.msg, Msg::CannotRead | Msg::FileTooLarge)
+                && matches!(d.origin, Origin::Input)
+            {
                 if let Some(f) = d.args.first() {
                     d.origin = Origin::File(FileRef::new(f.into()));
                 }

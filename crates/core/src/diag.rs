@@ -312,6 +312,7 @@ messages! {
     BadArray = "{0}: a block array needs at least one row and one column", "{0}: eine Block-Anordnung braucht mindestens eine Zeile und eine Spalte";
     NotFiniteGeometry = "{0} has a coordinate, bulge, scale or angle that is not a finite number", "{0} hat eine Koordinate, Wölbung, Skalierung oder einen Winkel, der keine endliche Zahl ist";
     UnitsScaled = "The drawing's unit is $INSUNITS = {0} ({1} mm per unit): coordinates scaled to millimetres", "Die Einheit der Zeichnung ist $INSUNITS = {0} ({1} mm je Einheit): Koordinaten auf Millimeter skaliert";
+    FileTooLarge = "File {0} is larger than {1} MiB, the most a drawing may have", "Datei {0} ist größer als {1} MiB, das Höchstmaß für eine Zeichnung";
 }
 
 impl Msg {

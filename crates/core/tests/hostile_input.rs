@@ -288,3 +288,25 @@ fn huge_coordinates_do_not_overflow_the_traversal() {
     let errors = within(20, move || compile_one(&d).errors());
     assert!(errors.contains(&Msg::CoordinateOutOfRange), "{errors:?}");
 }
+
+// ---- a drawing file too large to read
+
+#[test]
+fn a_file_larger_than_the_limit_is_an_error_not_an_exhausted_memory() {
+    use millpath_core::load::fs::MAX_FILE_BYTES;
+    use millpath_core::{compile_file, OsFileSystem, Session};
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("9000.dxf");
+    // sparse: no disk space taken, but the size the reader sees
+    std::fs::File::create(&path)
+        .unwrap()
+        .set_len(MAX_FILE_BYTES + 1)
+        .unwrap();
+    let fs = OsFileSystem;
+    let errors = within(20, move || {
+        let mut session = Session::new(settings(), &fs).expect("settings");
+        compile_file(&mut session, &path, "millpath test");
+        session.diags.list.iter().map(|d| d.msg).collect::<Vec<_>>()
+    });
+    assert_eq!(errors.first(), Some(&Msg::FileTooLarge), "{errors:?}");
+}

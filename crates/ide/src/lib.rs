@@ -88,7 +88,7 @@ impl FileSystem for WorkspaceFs<'_> {
     fn read(&self, path: &Path) -> std::io::Result<Vec<u8>> {
         match self.overlay(path) {
             Some(t) => Ok(t.clone().into_bytes()),
-            None => std::fs::read(path),
+            None => millpath_core::OsFileSystem.read(path),
         }
     }
     fn list_dir(&self, dir: &Path) -> std::io::Result<Vec<PathBuf>> {

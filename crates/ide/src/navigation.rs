@@ -105,7 +105,8 @@ pub(crate) fn objects_of_file(ws: &Workspace, f: &std::path::Path) -> Vec<DrawnO
             .map(|t| t.objects)
             .unwrap_or_default();
     }
-    let Ok(bytes) = std::fs::read(f) else {
+    let Ok(bytes) = millpath_core::load::fs::FileSystem::read(&millpath_core::OsFileSystem, f)
+    else {
         return Vec::new();
     };
     let Ok(dxf) = millpath_dxf::read_dxf(&bytes) else {

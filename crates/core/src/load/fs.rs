@@ -27,20 +27,36 @@ pub trait FileSystem {
     }
 }
 
+/// The largest drawing file read (a 100,000-segment chain is 13 MB): a bigger one is an
+/// error, not an exhausted memory.
+pub const MAX_FILE_BYTES: u64 = 1 << 30;
+
 /// The real file system.
 pub struct OsFileSystem;
 
 impl FileSystem for OsFileSystem {
     fn read(&self, path: &Path) -> std::io::Result<Vec<u8>> {
-        std::fs::read(path)
+        let mut buf = Vec::new();
+        self.read_into(path, &mut buf)?;
+        Ok(buf)
     }
     fn read_into(&self, path: &Path, buf: &mut Vec<u8>) -> std::io::Result<()> {
         use std::io::Read;
         buf.clear();
-        let mut file = std::fs::File::open(path)?;
+        let file = std::fs::File::open(path)?;
         let size = file.metadata().map(|m| m.len()).unwrap_or(0);
+        // the reader reports this kind in the user's language (`Msg::FileTooLarge`)
+        let too_large = || std::io::Error::from(std::io::ErrorKind::FileTooLarge);
+        if size > MAX_FILE_BYTES {
+            return Err(too_large());
+        }
         buf.try_reserve_exact(usize::try_from(size).unwrap_or(0))?;
-        file.read_to_end(buf)?;
+        // bounded also for files that grow while read or report no size (pipes, /proc)
+        file.take(MAX_FILE_BYTES + 1).read_to_end(buf)?;
+        if buf.len() as u64 > MAX_FILE_BYTES {
+            buf.clear();
+            return Err(too_large());
+        }
         Ok(())
     }
     fn list_dir(&self, dir: &Path) -> std::io::Result<Vec<PathBuf>> {
@@ -113,9 +129,9 @@ pub fn with_file_bytes<R>(
     f: impl FnOnce(std::io::Result<&[u8]>) -> R,
 ) -> R {
     use std::cell::RefCell;
-    /// A buffer larger than this is given back after use (one huge drawing must not keep
-    /// its size for the rest of the run).
-    const KEEP: usize = 8 << 20;
+    /// A buffer larger than this is given back after use: a big drawing gains nothing from
+    /// reuse, and must not keep its size in every thread for the rest of the process.
+    const KEEP: usize = 1 << 20;
     thread_local! {
         static BUF: RefCell<Vec<u8>> = const { RefCell::new(Vec::new()) };
     }

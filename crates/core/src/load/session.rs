@@ -6,7 +6,7 @@ use crate::args;
 use crate::diag::{Diagnostic, Diags, FileRef, Lang, Msg, Origin};
 use crate::front::drawing::RawPath;
 use crate::front::dxf::{dxf_to_drawing, FrontOptions};
-use crate::load::fs::{is_text_file, with_file_bytes, FileSystem};
+use crate::load::fs::{is_text_file, with_file_bytes, FileSystem, MAX_FILE_BYTES};
 use crate::load::names::Patterns;
 use crate::load::parse_cache::{self, ParseKey, ParsedFile};
 use crate::load::regex_cache::regex;
@@ -171,6 +171,11 @@ impl<'a> Session<'a> {
         let mut diags = Diags::default();
         let mut info = Vec::new();
         let result = with_file_bytes(self.fs, path, |bytes| match bytes {
+            Err(e) if e.kind() == std::io::ErrorKind::FileTooLarge => Err(Diagnostic::error(
+                Msg::FileTooLarge,
+                Origin::Input,
+                args![path.display(), MAX_FILE_BYTES >> 20],
+            )),
             Err(e) => Err(Diagnostic::error(
                 Msg::CannotRead,
                 Origin::Input,
