@@ -8,7 +8,7 @@ use crate::diag::{Diagnostic, Lang};
 use crate::front::drawing::RawPath;
 use crate::load::regex_cache::Memo;
 use std::path::{Path, PathBuf};
-use std::sync::{Arc, OnceLock};
+use std::sync::{Arc, Mutex, OnceLock};
 
 /// What a file system says identifies one version of a file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -21,7 +21,10 @@ pub struct FileStamp {
 impl FileStamp {
     /// The stamp of a file on disk; `None` when it cannot be had (then nothing is cached).
     pub fn of_disk_file(path: &Path) -> Option<FileStamp> {
-        let meta = std::fs::metadata(path).ok()?;
+        FileStamp::of_metadata(&std::fs::metadata(path).ok()?)
+    }
+    /// The stamp of a file on disk from its metadata.
+    pub fn of_metadata(meta: &std::fs::Metadata) -> Option<FileStamp> {
         let modified = meta.modified().ok()?;
         let since = modified.duration_since(std::time::UNIX_EPOCH).ok()?;
         Some(FileStamp {
@@ -69,6 +72,35 @@ const CAPACITY: usize = 4096;
 /// The process-wide table of parsed files.
 pub fn parsed(key: ParseKey, parse: impl FnOnce() -> ParsedFile) -> Arc<ParsedFile> {
     static MEMO: OnceLock<Memo<ParseKey, Arc<ParsedFile>>> = OnceLock::new();
-    MEMO.get_or_init(|| Memo::with_capacity(CAPACITY))
-        .get_or(&key, || Arc::new(parse()))
+    let parsed = MEMO
+        .get_or_init(|| Memo::with_capacity(CAPACITY))
+        .get_or(&key, || Arc::new(parse()));
+    remember_path(&key.path);
+    parsed
+}
+
+/// The paths the table has seen (some perhaps forgotten since, when it started again).
+fn seen() -> std::sync::MutexGuard<'static, std::collections::HashSet<PathBuf>> {
+    static SEEN: OnceLock<Mutex<std::collections::HashSet<PathBuf>>> = OnceLock::new();
+    let seen = SEEN.get_or_init(Mutex::default);
+    // a panic elsewhere while holding the lock leaves a usable set
+    seen.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+fn remember_path(path: &Path) {
+    let mut seen = seen();
+    if !seen.contains(path) {
+        if seen.len() >= CAPACITY {
+            seen.clear();
+        }
+        seen.insert(path.to_path_buf());
+    }
+}
+
+/// Whether `path` may have a parse in the table. A file never parsed (each top-level file of
+/// a `check` run) is read at once and stamped from the open file, which saves looking its
+/// path up on disk once more; a file parsed before is stamped first, so that an unchanged one
+/// is not read again. Either answer is safe: only the number of system calls depends on it.
+pub fn may_hold(path: &Path) -> bool {
+    seen().contains(path)
 }

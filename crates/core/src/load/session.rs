@@ -6,9 +6,11 @@ use crate::args;
 use crate::diag::{Diagnostic, Diags, FileRef, Lang, Msg, Origin};
 use crate::front::drawing::RawPath;
 use crate::front::dxf::{dxf_to_drawing, FrontOptions};
-use crate::load::fs::{is_text_file, with_file_bytes, FileSystem, MAX_FILE_BYTES};
+use crate::load::fs::{
+    is_text_file, with_file_bytes, with_stamped_file_bytes, FileSystem, MAX_FILE_BYTES,
+};
 use crate::load::names::Patterns;
-use crate::load::parse_cache::{self, ParseKey, ParsedFile};
+use crate::load::parse_cache::{self, FileStamp, ParseKey, ParsedFile};
 use crate::load::regex_cache::regex;
 use crate::load::settings::Settings;
 use crate::model::*;
@@ -109,19 +111,24 @@ impl<'a> Session<'a> {
             return names.clone();
         }
         self.loaded.insert(path.to_path_buf(), Vec::new());
-        let parsed = match self.fs.stamp(path) {
-            Some(stamp) => {
-                let key = ParseKey {
-                    path: path.to_path_buf(),
-                    stamp,
-                    path_pattern: self.settings.path_pattern.clone(),
-                    debug_pattern: self.settings.debug_pattern.clone(),
-                    lang: self.lang(),
-                    input: self.settings.input,
-                };
-                parse_cache::parsed(key, || self.parse_file(path))
+        let key = |stamp| ParseKey {
+            path: path.to_path_buf(),
+            stamp,
+            path_pattern: self.settings.path_pattern.clone(),
+            debug_pattern: self.settings.debug_pattern.clone(),
+            lang: self.lang(),
+            input: self.settings.input,
+        };
+        let parsed = if parse_cache::may_hold(path) {
+            match self.fs.stamp(path) {
+                Some(stamp) => parse_cache::parsed(key(stamp), || self.parse_file(path)),
+                None => Arc::new(self.parse_file(path)),
             }
-            None => Arc::new(self.parse_file(path)),
+        } else {
+            match self.parse_stamped_file(path) {
+                (parsed, Some(stamp)) => parse_cache::parsed(key(stamp), || parsed),
+                (parsed, None) => Arc::new(parsed),
+            }
         };
         for d in &parsed.diags {
             self.diags.push(d.clone());
@@ -168,9 +175,21 @@ impl<'a> Session<'a> {
 
     /// Reads and parses one file, with its own diagnostics and progress lines.
     pub(crate) fn parse_file(&self, path: &Path) -> ParsedFile {
+        with_file_bytes(self.fs, path, |bytes| self.parse_bytes(path, bytes))
+    }
+
+    /// [`Session::parse_file`] and the stamp of the version read.
+    fn parse_stamped_file(&self, path: &Path) -> (ParsedFile, Option<FileStamp>) {
+        with_stamped_file_bytes(self.fs, path, |read| match read {
+            Ok((bytes, stamp)) => (self.parse_bytes(path, Ok(bytes)), stamp),
+            Err(e) => (self.parse_bytes(path, Err(e)), None),
+        })
+    }
+
+    fn parse_bytes(&self, path: &Path, bytes: std::io::Result<&[u8]>) -> ParsedFile {
         let mut diags = Diags::default();
         let mut info = Vec::new();
-        let result = with_file_bytes(self.fs, path, |bytes| match bytes {
+        let result = match bytes {
             Err(e) if e.kind() == std::io::ErrorKind::FileTooLarge => Err(Diagnostic::error(
                 Msg::FileTooLarge,
                 Origin::Input,
@@ -186,7 +205,7 @@ impl<'a> Session<'a> {
                 self.parse_drawing(bytes, &file, &mut diags, &mut info)
                     .map(|d| d.paths.into_iter().map(Arc::new).collect())
             }
-        });
+        };
         ParsedFile {
             result,
             diags: diags.list,
