@@ -7,6 +7,7 @@ mod config;
 mod png;
 mod report;
 mod verify;
+mod workers;
 mod write;
 
 #[global_allocator]
@@ -770,15 +771,8 @@ fn check_all(
         bar.inc(1);
         r
     };
-    // The main thread is one of the workers (one thread fewer to start on a short run, none
-    // for one file); the others get the main thread's usual 8 MiB stack, so that a drawing
-    // checks on a worker exactly as it would on the main thread.
-    let pool = (inputs.len() > 1).then(|| {
-        rayon::ThreadPoolBuilder::new()
-            .stack_size(8 << 20)
-            .use_current_thread()
-            .build()
-    });
+    // no thread to start for one file
+    let pool = (inputs.len() > 1).then(workers::check_pool);
     let results = match pool {
         Some(Ok(pool)) => pool.install(|| inputs.par_iter().map(one).collect()),
         _ => inputs.iter().map(one).collect(),
