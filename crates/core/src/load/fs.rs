@@ -98,37 +98,49 @@ fn too_large() -> std::io::Error {
     std::io::Error::from(std::io::ErrorKind::FileTooLarge)
 }
 
+/// The largest file [`read_sized`] reads into zeroed memory (a drawing of 100,000 segments
+/// is 13 MB).
+const PREFILL_MAX: usize = 16 << 20;
+
 /// Reads all of `file`, which says it holds `size` bytes, into `buf` (its old bytes replaced).
 ///
 /// One `read` for the whole file and one that finds its end, where `read_to_end` starts at
 /// 8 KiB and doubles (four calls for a 50 KB drawing, and a system call costs more than
 /// parsing a kilobyte). The bytes `buf` already holds are overwritten, not zeroed first: a
-/// reused buffer is filled once per file, not twice. A file longer than it said (growing,
+/// reused buffer is filled once per file, not twice. Files over [`PREFILL_MAX`] go by
+/// `read_to_end`. A file longer than it said (growing,
 /// or `/proc`-like with no size) is read on to its end, still bounded by [`MAX_FILE_BYTES`].
 fn read_sized(file: &mut impl std::io::Read, size: u64, buf: &mut Vec<u8>) -> std::io::Result<()> {
     use std::io::{ErrorKind, Read};
-    // one byte more than said: reading it shows a file longer than its size
-    let want = usize::try_from(size)
-        .map_err(|_| too_large())?
-        .saturating_add(1);
-    if buf.len() < want {
-        buf.try_reserve_exact(want - buf.len())?;
-        buf.resize(want, 0);
-    }
+    let size = usize::try_from(size).map_err(|_| too_large())?;
     let mut filled = 0;
-    while filled < buf.len() {
-        match file.read(&mut buf[filled..]) {
-            Ok(0) => {
-                buf.truncate(filled);
-                return Ok(());
-            }
-            Ok(n) => filled += n,
-            Err(e) if e.kind() == ErrorKind::Interrupted => {}
-            Err(e) => {
-                buf.clear();
-                return Err(e);
+    if size > PREFILL_MAX {
+        // reserved, not zeroed: a size that lies (a file cut short while read) costs no
+        // memory, and a few system calls more are nothing beside reading this much
+        buf.clear();
+        buf.try_reserve_exact(size)?;
+    } else {
+        // one byte more than said: reading it shows a file longer than its size
+        let want = size + 1;
+        if buf.len() < want {
+            buf.try_reserve_exact(want - buf.len())?;
+            buf.resize(want, 0);
+        }
+        while filled < buf.len() {
+            match file.read(&mut buf[filled..]) {
+                Ok(0) => {
+                    buf.truncate(filled);
+                    return Ok(());
+                }
+                Ok(n) => filled += n,
+                Err(e) if e.kind() == ErrorKind::Interrupted => {}
+                Err(e) => {
+                    buf.clear();
+                    return Err(e);
+                }
             }
         }
+        buf.truncate(filled);
     }
     let rest = (MAX_FILE_BYTES + 1).saturating_sub(filled as u64);
     if let Err(e) = file.take(rest).read_to_end(buf) {
@@ -271,6 +283,18 @@ mod tests {
             let mut buf = Vec::new();
             read(&data, said, &mut buf).unwrap();
             assert_eq!(buf, data, "said {said}");
+        }
+    }
+
+    #[test]
+    fn a_file_that_says_it_is_big_is_read_as_it_is() {
+        let mut buf = b"old".to_vec();
+        read(b"short after all", 200 << 20, &mut buf).unwrap();
+        assert_eq!(buf, b"short after all");
+        let data = vec![7u8; PREFILL_MAX + 10];
+        for said in [data.len() as u64, PREFILL_MAX as u64 + 1, 0] {
+            read(&data, said, &mut buf).unwrap();
+            assert_eq!(buf, data);
         }
     }
 
