@@ -489,7 +489,11 @@ fn run_dxf2gcode(args: &[String]) -> u8 {
     let ours = |d: &&Diagnostic| {
         !matches!(
             d.msg,
-            Msg::OrderDecides | Msg::OrderDecidesText | Msg::OrderDecidesNoPin | Msg::IgnoredEntity
+            Msg::OrderDecides
+                | Msg::OrderDecidesText
+                | Msg::OrderDecidesNoPin
+                | Msg::IgnoredEntity
+                | Msg::TextTakenFirst
         )
     };
     for d in session

@@ -529,6 +529,44 @@ fn order_warning_in_check_and_compile_not_in_pathdxf2gcode() {
     );
 }
 
+/// Two texts that want one element: `check` warns (the file order decides), the reference's
+/// command line stays silent about it.
+#[test]
+fn text_order_warning_in_check_not_in_pathdxf2gcode() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut w = millpath_dxf::writer::DxfWriter::new();
+    let l = "1000_1P";
+    w.circle(l, Some("PHANTOM"), (0.0, 0.0), 0.5)
+        .mtext(l, (0.0, 0.0), 0.5, &["O2", "T2", "M20x2", "I2", "B-1"])
+        .circle(l, Some("PHANTOM"), (40.0, 0.0), 1.0)
+        .line(l, Some("DASHED"), (0.0, 0.0), (40.0, 0.0))
+        .circle(l, Some("CONTINUOUS"), (10.0, 0.0), 3.0)
+        .circle(l, Some("CONTINUOUS"), (16.0, 0.0), 3.0)
+        .text(l, (12.0, 0.0), 0.5, "F100")
+        .text(l, (12.5, 0.0), 0.5, "F200");
+    std::fs::write(dir.path().join("1000.dxf"), w.finish()).unwrap();
+    let code = millpath_core::Msg::TextTakenFirst.code();
+    let o = millpath(dir.path(), &["check", "--format", "json", "1000.dxf"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let codes: Vec<&str> = v["diagnostics"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|d| d["code"].as_str().unwrap())
+        .collect();
+    assert!(codes.contains(&code.as_str()), "{v}");
+    let o = millpath(
+        dir.path(),
+        &["pathdxf2gcode", "/f150", "/v500", "/s5", "1000.dxf"],
+    );
+    let all = format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(!all.contains("F200") && !all.contains("order"), "{all}");
+}
+
 /// A text element's diagnostic spans the element, not its trailing comment (the same range
 /// the editor shows).
 #[test]

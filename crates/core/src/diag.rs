@@ -313,6 +313,8 @@ messages! {
     NotFiniteGeometry = "{0} has a coordinate, bulge, scale or angle that is not a finite number", "{0} hat eine Koordinate, Wölbung, Skalierung oder einen Winkel, der keine endliche Zahl ist";
     UnitsScaled = "The drawing's unit is $INSUNITS = {0} ({1} mm per unit): coordinates scaled to millimetres", "Die Einheit der Zeichnung ist $INSUNITS = {0} ({1} mm je Einheit): Koordinaten auf Millimeter skaliert";
     FileTooLarge = "File {0} is larger than {1} MiB, the most a drawing may have", "Datei {0} ist größer als {1} MiB, das Höchstmaß für eine Zeichnung";
+    // entity order in the assignment of texts (reference-input.md §2.4)
+    TextTakenFirst = "The drawing's entity order decides which element text '{0}' belongs to: it overlaps best the element that text '{1}' took, which comes first in the file, so a CAD re-save can change the G-code; move the texts so that each is nearest to its own element", "Die Reihenfolge der Elemente in der Zeichnung entscheidet, zu welchem Element der Text '{0}' gehört: er überlappt am besten das Element, das der Text '{1}' bekam, der in der Datei zuerst kommt; ein erneutes Speichern im CAD kann also den G-Code ändern; die Texte so verschieben, dass jeder seinem eigenen Element am nächsten liegt";
 }
 
 impl Msg {

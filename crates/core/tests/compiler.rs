@@ -134,14 +134,18 @@ fn arcs_use_i_j_and_direction() {
 #[test]
 fn traversal_prefers_numbered_segments() {
     // star at (10,0): the numbered long branch N1 (out) / N2 (back) comes before the
-    // unnumbered short sweep to the end
+    // unnumbered short sweep to the end. The two texts sit off the middle of the two
+    // coincident lines, each nearest to its own (by the reference's line metric): in the
+    // middle both would be equally near both, and the file order would decide (MP132).
     let mut d = Drawing::new();
     d.start(L, (0.0, 0.0), "O2 T1 I2 B0")
         .end(L, (10.0, 5.0))
         .line(L, "DASHED", (0.0, 0.0), (10.0, 0.0), "")
         .line(L, "DASHED", (10.0, 0.0), (10.0, 5.0), "")
-        .line(L, "CONTINUOUS", (10.0, 0.0), (40.0, 0.0), "N1")
-        .line(L, "DASHED", (40.0, 0.0), (10.0, 0.0), "N2");
+        .line(L, "CONTINUOUS", (10.0, 0.0), (40.0, 0.0), "")
+        .line(L, "DASHED", (40.0, 0.0), (10.0, 0.0), "");
+    d.w.text(L, (20.0, 0.0), 0.5, "N1")
+        .text(L, (30.0, 0.0), 0.5, "N2");
     let run = compile_one(&d);
     assert!(run.diags.is_empty(), "{:?}", run.messages());
     let body = run.body().join("\n");

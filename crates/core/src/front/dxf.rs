@@ -269,6 +269,7 @@ pub fn dxf_objects(
     // 2. texts → elements: TEXT first, then MTEXT, each in file order
     let mut debug = Vec::new();
     let mut assigned: Vec<(usize, String, P2, f64)> = Vec::new();
+    let mut taken_by: Vec<Option<TakenBy>> = vec![None; objs.len()];
     let ordered: Vec<_> = texts
         .iter()
         .filter(|(e, _, _)| matches!(e.kind, EntityKind::Text(_)))
@@ -291,13 +292,38 @@ pub fn dxf_objects(
         };
         let _ = raw;
         let origin = ctx.origin(e, layer, path, pos);
-        match find_overlap(&objs, layer, centre, radius) {
+        let mtext = matches!(e.kind, EntityKind::MText(_));
+        let free = |_: usize, o: &Obj| o.candidate && o.text.is_none() && o.layer == *layer;
+        match find_overlap(&objs, centre, radius, free) {
             None => diags.error(
                 Msg::NoOverlap,
                 origin,
                 args![value, centre, f3(2.0 * radius)],
             ),
             Some(idx) => {
+                // the file order decides where a text of the same kind came first (all TEXT
+                // goes before all MTEXT, whatever the order)
+                let unless_same_kind = |i: usize, o: &Obj| {
+                    o.candidate
+                        && o.layer == *layer
+                        && taken_by[i]
+                            .as_ref()
+                            .is_none_or(|t: &TakenBy| t.mtext == mtext)
+                };
+                let first = find_overlap(&objs, centre, radius, unless_same_kind)
+                    .and_then(|best| taken_by[best].as_ref().filter(|_| best != idx))
+                    .filter(|t| t.value.trim() != value.trim());
+                if let Some(t) = first {
+                    diags.push(Diagnostic::warning(
+                        Msg::TextTakenFirst,
+                        origin.clone(),
+                        args![value, t.value],
+                    ));
+                }
+                taken_by[idx] = Some(TakenBy {
+                    mtext,
+                    value: value.clone(),
+                });
                 let pt = ParamText::parse(&value, origin)?;
                 objs[idx].text = Some(pt);
                 assigned.push((idx, value, centre, radius));
@@ -485,19 +511,37 @@ fn search_circle(e: &Entity, default_height: f64) -> Option<(String, String, P2,
 }
 
 /// The element a text belongs to: any overlapping circle beats any arc beats any line.
-fn find_overlap(objs: &[Obj], layer: &str, c: P2, radius: f64) -> Option<usize> {
-    let free = |o: &Obj| o.candidate && o.text.is_none() && o.layer == layer;
+/// Which text took an element.
+#[derive(Debug, Clone)]
+struct TakenBy {
+    mtext: bool,
+    value: String,
+}
+
+/// The element a text's search circle overlaps best (§2.4) among those `free` lets in (by
+/// index and element); of equally near ones the first in the file.
+fn find_overlap(
+    objs: &[Obj],
+    c: P2,
+    radius: f64,
+    free: impl Fn(usize, &Obj) -> bool,
+) -> Option<usize> {
     let mut best: Option<(usize, f64)> = None;
+    fn consider(best: &mut Option<(usize, f64)>, i: usize, d: f64) {
+        if best.is_none_or(|(_, bd)| d < bd) {
+            *best = Some((i, d));
+        }
+    }
     for (i, o) in objs.iter().enumerate() {
-        if let (true, Shape::Circle { c: cc, r }) = (free(o), &o.shape) {
+        if let (true, Shape::Circle { c: cc, r }) = (free(i, o), &o.shape) {
             let d = c.dist(*cc);
-            if d < radius + r && best.is_none_or(|(_, bd)| d < bd) {
-                best = Some((i, d));
+            if d < radius + r {
+                consider(&mut best, i, d);
             }
         }
     }
-    if best.is_some() {
-        return best.map(|b| b.0);
+    if let Some((i, _)) = best {
+        return Some(i);
     }
     for (i, o) in objs.iter().enumerate() {
         if let (
@@ -505,7 +549,7 @@ fn find_overlap(objs: &[Obj], layer: &str, c: P2, radius: f64) -> Option<usize> 
             Shape::Path(Geom::Arc {
                 c: ac, r, a0, a1, ..
             }),
-        ) = (free(o), &o.shape)
+        ) = (free(i, o), &o.shape)
         {
             let v = c.sub(*ac);
             let mut ang = v.y.atan2(v.x);
@@ -523,16 +567,16 @@ fn find_overlap(objs: &[Obj], layer: &str, c: P2, radius: f64) -> Option<usize> 
             } else {
                 f64::INFINITY
             };
-            if d <= radius && best.is_none_or(|(_, bd)| d < bd) {
-                best = Some((i, d));
+            if d <= radius {
+                consider(&mut best, i, d);
             }
         }
     }
-    if best.is_some() {
-        return best.map(|b| b.0);
+    if let Some((i, _)) = best {
+        return Some(i);
     }
     for (i, o) in objs.iter().enumerate() {
-        if let (true, Shape::Path(Geom::Line { a, b })) = (free(o), &o.shape) {
+        if let (true, Shape::Path(Geom::Line { a, b })) = (free(i, o), &o.shape) {
             let d = b.sub(*a);
             let len = d.len();
             if len == 0.0 {
@@ -549,13 +593,10 @@ fn find_overlap(objs: &[Obj], layer: &str, c: P2, radius: f64) -> Option<usize> 
             }
             // the reference compares overlapping lines with this distorted metric
             let t = d.dot(c.sub(*a));
-            let metric = c.dist(a.add(d.scale(t)));
-            if best.is_none_or(|(_, bd)| metric < bd) {
-                best = Some((i, metric));
-            }
+            consider(&mut best, i, c.dist(a.add(d.scale(t))));
         }
     }
-    best.map(|b| b.0)
+    best.map(|(i, _)| i)
 }
 
 #[cfg(test)]
