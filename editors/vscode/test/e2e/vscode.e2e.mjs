@@ -101,10 +101,20 @@ async function openFile(name) {
 }
 
 async function goTo(line, col = 1) {
-  await page.keyboard.press('Control+G');
-  const input = page.locator('.quick-input-widget input');
-  await input.waitFor({ state: 'visible', timeout: 5000 });
-  await input.fill(`:${line}:${col}`);
+  // a second try: once in CI the Go to Line box showed but took no text for 30 s
+  for (let attempt = 1; ; attempt++) {
+    try {
+      await page.keyboard.press('Control+G');
+      const input = page.locator('.quick-input-widget input');
+      await input.waitFor({ state: 'visible', timeout: 5000 });
+      await input.fill(`:${line}:${col}`, { timeout: 10000 });
+      break;
+    } catch (e) {
+      if (attempt >= 2) throw e;
+      await page.keyboard.press('Escape');
+      await sleep(500);
+    }
+  }
   await sleep(200);
   await page.keyboard.press('Enter');
   await sleep(200);
