@@ -306,8 +306,8 @@ fn main() -> ExitCode {
     let raw: Vec<String> = std::env::args().collect();
     // The compatibility commands take the reference's command line unchanged.
     match raw.get(1).map(String::as_str) {
-        Some("pathdxf2gcode") => return ExitCode::from(run_dxf2gcode(&raw[2..])),
-        Some("pathgcodeadjustz") => return ExitCode::from(run_adjustz_compat(&raw[2..])),
+        Some("pathdxf2gcode") => return leave(run_dxf2gcode(&raw[2..])),
+        Some("pathgcodeadjustz") => return leave(run_adjustz_compat(&raw[2..])),
         _ => {}
     }
     let cli = Cli::parse();

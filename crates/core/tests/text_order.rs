@@ -53,38 +53,25 @@ fn a_text_whose_element_an_earlier_text_took_is_warned_in_either_order() {
     }
 }
 
+/// Checks `texts`: every text finds an element (no NoOverlap) and none is warned (MP132).
+fn assert_unwarned(texts: &[((f64, f64), &str, bool)]) {
+    let run = compile_one(&drawing(texts));
+    let shown = run.messages();
+    assert!(!run.errors().contains(&Msg::NoOverlap), "{shown:?}");
+    assert!(warned(&run, Msg::TextTakenFirst).is_empty(), "{shown:?}");
+}
+
 #[test]
 fn equal_texts_and_texts_of_the_other_kind_are_no_order_question() {
     // the same value on either circle gives the same parameters
-    let same = [((12.0, 0.0), "F100", false), ((12.5, 0.0), "F100", false)];
+    assert_unwarned(&[((12.0, 0.0), "F100", false), ((12.5, 0.0), "F100", false)]);
     // every TEXT is assigned before every MTEXT, whatever the file order
-    let kinds = [((12.0, 0.0), "F100", true), ((12.5, 0.0), "F200", false)];
-    for texts in [&same[..], &kinds[..]] {
-        let run = compile_one(&drawing(texts));
-        assert!(
-            !run.errors().contains(&Msg::NoOverlap),
-            "{:?}",
-            run.messages()
-        );
-        assert!(
-            warned(&run, Msg::TextTakenFirst).is_empty(),
-            "{:?}",
-            run.messages()
-        );
-    }
+    assert_unwarned(&[((12.0, 0.0), "F100", true), ((12.5, 0.0), "F200", false)]);
 }
 
 #[test]
 fn texts_each_nearest_to_their_own_free_element_are_not_warned() {
-    let run = compile_one(&drawing(&[
-        ((11.0, 0.0), "F100", false),
-        ((15.0, 0.0), "F200", false),
-    ]));
-    assert!(
-        warned(&run, Msg::TextTakenFirst).is_empty(),
-        "{:?}",
-        run.messages()
-    );
+    assert_unwarned(&[((11.0, 0.0), "F100", false), ((15.0, 0.0), "F200", false)]);
 }
 
 #[test]

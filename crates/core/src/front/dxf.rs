@@ -510,7 +510,6 @@ fn search_circle(e: &Entity, default_height: f64) -> Option<(String, String, P2,
     }
 }
 
-/// The element a text belongs to: any overlapping circle beats any arc beats any line.
 /// Which text took an element.
 #[derive(Debug, Clone)]
 struct TakenBy {
@@ -518,8 +517,9 @@ struct TakenBy {
     value: String,
 }
 
-/// The element a text's search circle overlaps best (§2.4) among those `free` lets in (by
-/// index and element); of equally near ones the first in the file.
+/// The element a text belongs to (§2.4), among those `free` lets in (given index and
+/// element): any overlapping circle beats any arc beats any line; of equally near ones the
+/// first in the file.
 fn find_overlap(
     objs: &[Obj],
     c: P2,
@@ -527,21 +527,16 @@ fn find_overlap(
     free: impl Fn(usize, &Obj) -> bool,
 ) -> Option<usize> {
     let mut best: Option<(usize, f64)> = None;
-    fn consider(best: &mut Option<(usize, f64)>, i: usize, d: f64) {
-        if best.is_none_or(|(_, bd)| d < bd) {
-            *best = Some((i, d));
-        }
-    }
     for (i, o) in objs.iter().enumerate() {
         if let (true, Shape::Circle { c: cc, r }) = (free(i, o), &o.shape) {
             let d = c.dist(*cc);
-            if d < radius + r {
-                consider(&mut best, i, d);
+            if d < radius + r && best.is_none_or(|(_, bd)| d < bd) {
+                best = Some((i, d));
             }
         }
     }
-    if let Some((i, _)) = best {
-        return Some(i);
+    if best.is_some() {
+        return best.map(|b| b.0);
     }
     for (i, o) in objs.iter().enumerate() {
         if let (
@@ -567,13 +562,13 @@ fn find_overlap(
             } else {
                 f64::INFINITY
             };
-            if d <= radius {
-                consider(&mut best, i, d);
+            if d <= radius && best.is_none_or(|(_, bd)| d < bd) {
+                best = Some((i, d));
             }
         }
     }
-    if let Some((i, _)) = best {
-        return Some(i);
+    if best.is_some() {
+        return best.map(|b| b.0);
     }
     for (i, o) in objs.iter().enumerate() {
         if let (true, Shape::Path(Geom::Line { a, b })) = (free(i, o), &o.shape) {
@@ -593,10 +588,13 @@ fn find_overlap(
             }
             // the reference compares overlapping lines with this distorted metric
             let t = d.dot(c.sub(*a));
-            consider(&mut best, i, c.dist(a.add(d.scale(t))));
+            let metric = c.dist(a.add(d.scale(t)));
+            if best.is_none_or(|(_, bd)| metric < bd) {
+                best = Some((i, metric));
+            }
         }
     }
-    best.map(|(i, _)| i)
+    best.map(|b| b.0)
 }
 
 #[cfg(test)]

@@ -108,8 +108,8 @@ const PREFILL_MAX: usize = 16 << 20;
 /// 8 KiB and doubles (four calls for a 50 KB drawing, and a system call costs more than
 /// parsing a kilobyte). The bytes `buf` already holds are overwritten, not zeroed first: a
 /// reused buffer is filled once per file, not twice. Files over [`PREFILL_MAX`] go by
-/// `read_to_end`. A file longer than it said (growing,
-/// or `/proc`-like with no size) is read on to its end, still bounded by [`MAX_FILE_BYTES`].
+/// `read_to_end`. A file longer than it said (growing, or `/proc`-like with no size) is read
+/// on to its end, still bounded by [`MAX_FILE_BYTES`].
 fn read_sized(file: &mut impl std::io::Read, size: u64, buf: &mut Vec<u8>) -> std::io::Result<()> {
     use std::io::{ErrorKind, Read};
     let size = usize::try_from(size).map_err(|_| too_large())?;
