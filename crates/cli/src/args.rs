@@ -1,0 +1,252 @@
+//! Command-line argument types shared by several commands, and the settings they give.
+
+use crate::config;
+use clap::ValueEnum;
+use millpath_core::{Lang, Settings};
+use std::path::{Path, PathBuf};
+
+#[derive(clap::Args, Clone, Default)]
+pub struct MachineArgs {
+    /// Feed for milling moves, mm/min (or `feed` in millpath.toml)
+    #[arg(long, short = 'f')]
+    pub feed: Option<f64>,
+    /// Sweep speed for time estimates, mm/min (or `sweep_speed`)
+    #[arg(long, short = 'v')]
+    pub sweep_speed: Option<f64>,
+    /// Sweep height of the top-level path, mm (or `sweep_height`)
+    #[arg(long, short = 's')]
+    pub sweep_height: Option<f64>,
+    /// Probe feed, mm/min (default: the feed)
+    #[arg(long, short = 'z')]
+    pub probe_feed: Option<f64>,
+    /// Further directory to search for subpaths (repeatable)
+    #[arg(long = "search-dir", short = 'd')]
+    pub search_dirs: Vec<PathBuf>,
+    /// Path-name pattern
+    #[arg(long)]
+    pub path_pattern: Option<String>,
+    /// File-name pattern
+    #[arg(long)]
+    pub file_pattern: Option<String>,
+    /// PARENT:CHILD — paths matching PARENT may only embed subpaths matching CHILD
+    #[arg(long = "restrict", short = 'e')]
+    pub restrictions: Vec<String>,
+    /// Show which element each text matching REGEX was assigned to
+    #[arg(long)]
+    pub debug_texts: Option<String>,
+    /// Message language
+    #[arg(long, value_enum)]
+    pub lang: Option<LangArg>,
+    /// Settings file (default: nearest millpath.toml above the first input)
+    #[arg(long)]
+    pub config: Option<PathBuf>,
+    /// Controller the programs are written for (or `dialect`; default reference)
+    #[arg(long, value_parser = dialect_parser())]
+    pub dialect: Option<millpath_core::Dialect>,
+    /// Plunge feed in linuxcnc/grbl, mm/min (or `plunge_feed`; default half the feed)
+    #[arg(long)]
+    pub plunge_feed: Option<f64>,
+    /// Spindle speed in linuxcnc/grbl: M3 S… at the start, M5 at the end (or `spindle_rpm`)
+    #[arg(long)]
+    pub spindle_rpm: Option<f64>,
+    /// Seconds to wait after the spindle start (or `spindle_dwell`; default 2)
+    #[arg(long)]
+    pub spindle_dwell: Option<f64>,
+    /// Read polylines, blocks, line-type names of other CAD programs and $INSUNITS (or
+    /// `input = "extended"`; default: as PathDxf2GCode, with a warning for what it ignores)
+    #[arg(long)]
+    pub extended: bool,
+}
+
+/// The settings the conversions use: path and file names, the message language.
+#[derive(clap::Args, Clone, Default)]
+pub struct NameArgs {
+    /// Path-name pattern
+    #[arg(long)]
+    pub path_pattern: Option<String>,
+    /// File-name pattern
+    #[arg(long)]
+    pub file_pattern: Option<String>,
+    /// Message language
+    #[arg(long, value_enum)]
+    pub lang: Option<LangArg>,
+    /// Settings file (default: nearest millpath.toml above the input)
+    #[arg(long)]
+    pub config: Option<PathBuf>,
+    /// Polylines and blocks become plain elements (or `input = "extended"`)
+    #[arg(long)]
+    pub extended: bool,
+}
+
+impl NameArgs {
+    pub fn machine(&self) -> MachineArgs {
+        MachineArgs {
+            path_pattern: self.path_pattern.clone(),
+            file_pattern: self.file_pattern.clone(),
+            lang: self.lang,
+            config: self.config.clone(),
+            extended: self.extended,
+            ..MachineArgs::default()
+        }
+    }
+}
+
+/// `-o -` means standard output.
+pub fn stdout_dash(output: Option<PathBuf>) -> Option<PathBuf> {
+    output.filter(|p| p.as_os_str() != "-")
+}
+
+pub fn dialect_parser() -> impl clap::builder::TypedValueParser<Value = millpath_core::Dialect> {
+    use clap::builder::TypedValueParser;
+    let names = millpath_core::Dialect::ALL.map(|d| d.name());
+    clap::builder::PossibleValuesParser::new(names)
+        .map(|s| millpath_core::Dialect::from_name(&s).unwrap_or_default())
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+pub enum LangArg {
+    En,
+    De,
+}
+
+#[derive(Clone, Copy, ValueEnum, Default, PartialEq)]
+pub enum Format {
+    #[default]
+    Human,
+    Json,
+    Github,
+    Sarif,
+}
+
+#[derive(Clone, Copy, ValueEnum, Default, PartialEq)]
+pub enum DialectArg {
+    #[default]
+    Reference,
+    Linuxcnc,
+    Grbl,
+}
+
+#[derive(Clone, Copy, ValueEnum, Default, PartialEq)]
+pub enum VerifyFormat {
+    #[default]
+    Human,
+    Json,
+}
+
+pub fn to_lang(l: LangArg) -> Lang {
+    match l {
+        LangArg::En => Lang::En,
+        LangArg::De => Lang::De,
+    }
+}
+
+/// Settings: millpath.toml (nearest above the first input, or --config), then the flags.
+pub fn settings_for(
+    m: &MachineArgs,
+    first_input: Option<&Path>,
+    require_machine: bool,
+) -> Result<Settings, String> {
+    let mut s = Settings::default();
+    let mut have = config::Have::default();
+    let cfg_path = m
+        .config
+        .clone()
+        .or_else(|| first_input.and_then(config::find));
+    if let Some(p) = cfg_path {
+        config::load(&p)?.apply(&mut s, &mut have);
+    }
+    if let Some(v) = m.feed {
+        s.feed = v;
+        have.feed = true;
+    }
+    if let Some(v) = m.sweep_speed {
+        s.sweep_speed = v;
+        have.sweep_speed = true;
+    }
+    if let Some(v) = m.sweep_height {
+        s.sweep_height = v;
+        have.sweep_height = true;
+    }
+    if m.probe_feed.is_some() {
+        s.probe_feed = m.probe_feed;
+    }
+    s.search_dirs.extend(m.search_dirs.iter().cloned());
+    if let Some(p) = &m.path_pattern {
+        s.path_pattern = p.clone();
+    }
+    if let Some(p) = &m.file_pattern {
+        s.file_pattern = p.clone();
+    }
+    for r in &m.restrictions {
+        let (a, b) = r
+            .split_once(':')
+            .ok_or_else(|| format!("--restrict {r}: expected PARENT:CHILD"))?;
+        s.restrictions.push((a.to_string(), b.to_string()));
+    }
+    s.debug_pattern = m.debug_texts.clone();
+    if let Some(d) = m.dialect {
+        s.dialect = d;
+    }
+    if m.plunge_feed.is_some() {
+        s.plunge_feed = m.plunge_feed;
+    }
+    if m.spindle_rpm.is_some() {
+        s.spindle_rpm = m.spindle_rpm;
+    }
+    if let Some(v) = m.spindle_dwell {
+        s.spindle_dwell = v;
+    }
+    if let Some(l) = m.lang {
+        s.lang = to_lang(l);
+    }
+    if m.extended {
+        s.input = millpath_core::InputMode::Extended;
+    }
+    if require_machine {
+        let missing: Vec<&str> = [
+            ("--feed / feed", have.feed),
+            ("--sweep-speed / sweep_speed", have.sweep_speed),
+            ("--sweep-height / sweep_height", have.sweep_height),
+        ]
+        .iter()
+        .filter(|(_, h)| !h)
+        .map(|(n, _)| *n)
+        .collect();
+        if !missing.is_empty() {
+            return Err(match s.lang {
+                Lang::En => format!(
+                    "missing machine settings: {} (give them as options or in millpath.toml)",
+                    missing.join(", ")
+                ),
+                Lang::De => format!(
+                    "Maschinenwerte fehlen: {} (als Option oder in millpath.toml angeben)",
+                    missing.join(", ")
+                ),
+            });
+        }
+        for (name, v) in [
+            ("feed", s.feed),
+            ("sweep speed", s.sweep_speed),
+            ("sweep height", s.sweep_height),
+        ] {
+            if v.is_nan() || v <= 0.0 {
+                return Err(format!("{name} must be > 0 (is {v})"));
+            }
+        }
+    }
+    Ok(s)
+}
+
+pub fn lang_of(m: &MachineArgs) -> Lang {
+    m.lang.map_or(Lang::En, to_lang)
+}
+
+pub fn patterns_for(
+    m: &MachineArgs,
+    input: &Path,
+) -> Result<(std::sync::Arc<millpath_core::load::names::Patterns>, Lang), String> {
+    let s = settings_for(m, Some(input), false)?;
+    let p = millpath_core::load::names::Patterns::shared(&s.path_pattern, &s.file_pattern)
+        .map_err(|(c, p, e)| format!("invalid /{c} pattern '{p}': {e}"))?;
+    Ok((p, s.lang))
+}

@@ -1,0 +1,177 @@
+//! `millpath check`: every path of every drawing checked, nothing written (the CI lint).
+
+use crate::args::{lang_of, settings_for, Format, MachineArgs};
+use crate::inputs::{collect_files, is_drawing};
+use crate::output::print_human;
+use crate::{out, report, workers};
+use millpath_core::diag::{Diagnostic, Severity};
+use millpath_core::{compile_file, Lang, OsFileSystem, Session, Settings};
+use std::path::{Path, PathBuf};
+
+/// What checking one file gives: its progress lines and its diagnostics, in order.
+pub struct FileCheck {
+    pub info: Vec<String>,
+    pub diags: Vec<Diagnostic>,
+}
+
+/// The session that checks one file. Each file gets its own (files are checked on their own,
+/// like separate lint targets), built inside the worker thread that checks the file.
+fn check_session<'a>(
+    settings: &Settings,
+    fs: &'a OsFileSystem,
+) -> Result<Session<'a>, Vec<Diagnostic>> {
+    Session::new(settings.clone(), fs)
+}
+
+/// Checks one file in a session of its own.
+pub fn check_file(settings: &Settings, input: &Path) -> Result<FileCheck, Vec<Diagnostic>> {
+    let fs = OsFileSystem;
+    let mut session = check_session(settings, &fs)?;
+    compile_file(&mut session, input, &millpath_core::banner());
+    Ok(FileCheck {
+        info: std::mem::take(&mut session.info),
+        diags: std::mem::take(&mut session.diags.list),
+    })
+}
+
+/// From this many files on, `check` shows a progress bar (on a terminal, without `--quiet`).
+const PROGRESS_MIN_FILES: usize = 50;
+
+/// Checks every input on all cores; the results come back in input order.
+fn check_all(
+    settings: &Settings,
+    inputs: &[PathBuf],
+    quiet: bool,
+) -> Vec<Result<FileCheck, Vec<Diagnostic>>> {
+    use rayon::prelude::*;
+    use std::io::IsTerminal;
+    let bar = if !quiet && inputs.len() >= PROGRESS_MIN_FILES && std::io::stderr().is_terminal() {
+        let bar = indicatif::ProgressBar::new(inputs.len() as u64);
+        if let Ok(style) = indicatif::ProgressStyle::with_template(
+            "{bar:40} {pos}/{len} files  {elapsed_precise} (eta {eta})",
+        ) {
+            bar.set_style(style);
+        }
+        bar
+    } else {
+        indicatif::ProgressBar::hidden()
+    };
+    let one = |input: &PathBuf| {
+        let r = check_file(settings, input);
+        bar.inc(1);
+        r
+    };
+    // no thread to start for one file
+    let pool = (inputs.len() > 1).then(workers::check_pool);
+    let results = match pool {
+        Some(Ok(pool)) => pool.install(|| inputs.par_iter().map(one).collect()),
+        _ => inputs.iter().map(one).collect(),
+    };
+    bar.finish_and_clear();
+    results
+}
+
+pub fn run(m: &MachineArgs, format: Format, quiet: bool, paths: &[PathBuf]) -> u8 {
+    let mut inputs = Vec::new();
+    collect_files(paths, is_drawing, &mut inputs);
+    let mut settings = match settings_for(m, inputs.first().map(PathBuf::as_path), false) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!(
+                "{}: {e}",
+                report::severity_word(Severity::Error, lang_of(m))
+            );
+            return 2;
+        }
+    };
+    settings.check = true;
+    let lang = settings.lang;
+    if inputs.is_empty() {
+        // like the reference's "no files" (exit 3)
+        let shown: Vec<String> = paths.iter().map(|p| p.display().to_string()).collect();
+        eprintln!(
+            "{}",
+            match lang {
+                Lang::En => format!(
+                    "error: no drawings (*.dxf, *.mpath) found in {}",
+                    shown.join(", ")
+                ),
+                Lang::De => format!(
+                    "Fehler: keine Zeichnungen (*.dxf, *.mpath) in {} gefunden",
+                    shown.join(", ")
+                ),
+            }
+        );
+        return 3;
+    }
+    let mut all = Vec::new();
+    // Printed in input order, whatever order the workers finished in; gathered first and
+    // written at once (a write per line cost more than reading a small drawing).
+    let mut info = String::new();
+    for result in check_all(&settings, &inputs, quiet) {
+        match result {
+            Ok(file) => {
+                if format == Format::Human {
+                    for line in file.info {
+                        info.push_str(&line);
+                        info.push('\n');
+                    }
+                }
+                all.extend(file.diags);
+            }
+            Err(errs) => {
+                eprint!("{info}");
+                print_human(&errs, lang);
+                return 2;
+            }
+        }
+    }
+    eprint!("{info}");
+    let all = report::tidy(all);
+    let errors = all.iter().filter(|d| d.severity == Severity::Error).count();
+    match format {
+        Format::Human => {
+            // diagnostics and the summary are the report (stdout); progress lines stay on stderr
+            let color = report::use_color(std::io::IsTerminal::is_terminal(&std::io::stdout()));
+            let mut report = String::new();
+            for d in &all {
+                report.push_str(&report::human_rich(d, lang, color));
+                report.push('\n');
+            }
+            out::write(&report);
+            let warnings = all.len() - errors;
+            outln!(
+                "{}",
+                match lang {
+                    Lang::En => format!(
+                        "checked {} file(s): {errors} error(s), {warnings} warning(s)",
+                        inputs.len()
+                    ),
+                    Lang::De => format!(
+                        "{} Datei(en) geprüft: {errors} Fehler, {warnings} Warnung(en)",
+                        inputs.len()
+                    ),
+                }
+            );
+        }
+        Format::Json => {
+            let v: Vec<serde_json::Value> =
+                all.iter().map(|d| report::json_value(d, lang)).collect();
+            outln!("{}", serde_json::to_string_pretty(&serde_json::json!({ "files": inputs.len(), "errors": errors, "diagnostics": v })).unwrap_or_default());
+        }
+        Format::Github => {
+            let lines: String = all
+                .iter()
+                .map(|d| format!("{}\n", report::github(d, lang)))
+                .collect();
+            out::write(&lines);
+        }
+        Format::Sarif => {
+            outln!(
+                "{}",
+                serde_json::to_string_pretty(&report::sarif(&all, lang)).unwrap_or_default()
+            );
+        }
+    }
+    u8::from(errors > 0)
+}

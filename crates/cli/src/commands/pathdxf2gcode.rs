@@ -1,0 +1,77 @@
+//! `millpath pathdxf2gcode`: the reference PathDxf2GCode command line, unchanged.
+
+use crate::compat;
+use crate::output::{flush_info, print_stats, write_outputs};
+use millpath_core::diag::{Diagnostic, Diags, Msg, Origin, Severity};
+use millpath_core::{compile_file, complete_input, OsFileSystem, Session};
+
+/// `millpath pathdxf2gcode …`: the reference command line.
+pub fn run(args: &[String]) -> u8 {
+    let parsed = compat::parse(args, compat::Tool::Dxf2GCode);
+    let lang = parsed.settings.lang;
+    eprintln!(
+        "---- {} (PathDxf2GCode-compatible)",
+        millpath_core::banner()
+    );
+    eprintln!();
+    if args.is_empty() || parsed.help || !parsed.errors.is_empty() {
+        for e in &parsed.errors {
+            eprintln!("{}", e.reference_line(lang));
+        }
+        eprintln!();
+        eprintln!("{}", compat::help_dxf2gcode(lang));
+        return 2;
+    }
+    if parsed.files.is_empty() {
+        eprintln!(
+            "{}",
+            Diagnostic::error(Msg::NoDxfFiles, Origin::Options, vec![]).reference_line(lang)
+        );
+        return 3;
+    }
+    let fs = OsFileSystem;
+    let mut session = match Session::new(parsed.settings, &fs) {
+        Ok(s) => s,
+        Err(errs) => {
+            for e in errs {
+                eprintln!("{}", e.reference_line(lang));
+            }
+            eprintln!();
+            eprintln!("{}", compat::help_dxf2gcode(lang));
+            return 2;
+        }
+    };
+    let mut write_errors = Diags::default();
+    for f in &parsed.files {
+        let input = complete_input(f);
+        let outcome = compile_file(&mut session, &input, &millpath_core::banner());
+        flush_info(&mut session);
+        if write_outputs(&outcome.outputs, lang, &mut write_errors) {
+            print_stats(&outcome, lang);
+        }
+    }
+    let mut failed = false;
+    // the reference prints no word on entity order, nor on the entities it ignores: those
+    // warnings are for check, compile and the editor
+    let ours = |d: &&Diagnostic| {
+        !matches!(
+            d.msg,
+            Msg::OrderDecides
+                | Msg::OrderDecidesText
+                | Msg::OrderDecidesNoPin
+                | Msg::IgnoredEntity
+                | Msg::TextTakenFirst
+        )
+    };
+    for d in session
+        .diags
+        .list
+        .iter()
+        .chain(write_errors.list.iter())
+        .filter(ours)
+    {
+        eprintln!("{}", d.reference_line(lang));
+        failed |= d.severity == Severity::Error;
+    }
+    u8::from(failed)
+}

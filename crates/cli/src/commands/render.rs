@@ -1,0 +1,96 @@
+//! `millpath render`: a path's toolpath as an HTML page, an SVG or a PNG.
+
+use crate::args::{settings_for, MachineArgs};
+use crate::commands::check::check_file;
+use crate::output::{emit, print_human};
+use crate::{png, report, write};
+use millpath_core::complete_input;
+use millpath_core::diag::{Diagnostic, Msg, Origin, Severity};
+use std::path::{Path, PathBuf};
+
+pub fn run(
+    file: &Path,
+    path: Option<&str>,
+    html: Option<PathBuf>,
+    svg: Option<PathBuf>,
+    png: Option<PathBuf>,
+) -> u8 {
+    let file = complete_input(&file.to_string_lossy());
+    let abs = std::fs::canonicalize(&file).unwrap_or_else(|_| file.clone());
+    let ws = millpath_ide::Workspace::default();
+    // like `compile`: no drawing with placeholder machine settings
+    let missing = ws.settings_for(&abs).missing_machine();
+    if !missing.is_empty() {
+        eprintln!(
+            "error: missing machine settings: {} (give them in millpath.toml)",
+            missing.join(", ")
+        );
+        return 2;
+    }
+    let data = match millpath_ide::toolpath(&ws, &abs, path) {
+        Ok(d) => d,
+        Err(e) => {
+            let lang = ws.settings_for(&abs).settings.lang;
+            // say why: a missing or unreadable file, a file that is not a drawing, syntax
+            // errors — not only that no path was found
+            if let Err(err) = std::fs::read(&file) {
+                let d = Diagnostic::error(
+                    Msg::CannotRead,
+                    Origin::File(millpath_core::diag::FileRef::new(file.clone())),
+                    millpath_core::args![file.display(), err],
+                );
+                eprintln!("{}", report::human(&d, lang));
+                return 1;
+            }
+            let errors: Vec<Diagnostic> = settings_for(&MachineArgs::default(), Some(&file), false)
+                .ok()
+                .and_then(|mut s| {
+                    s.check = true;
+                    check_file(&s, &file).ok()
+                })
+                .map(|c| report::tidy(c.diags))
+                .unwrap_or_default()
+                .into_iter()
+                .filter(|d| d.severity == Severity::Error)
+                .collect();
+            if errors.is_empty() {
+                eprintln!(
+                    "{}: {}: {e}",
+                    report::severity_word(Severity::Error, lang),
+                    file.display()
+                );
+            } else {
+                print_human(&errors, lang);
+            }
+            return 1;
+        }
+    };
+    let lang = ws.settings_for(&abs).settings.lang;
+    let html = html.or_else(|| {
+        (svg.is_none() && png.is_none()).then(|| {
+            PathBuf::from(format!(
+                "{}_toolpath.html",
+                file.with_extension("").display()
+            ))
+        })
+    });
+    let mut status = 0;
+    if let Some(out) = html {
+        eprintln!("---- Writing {}", out.display());
+        status |= emit(Some(&out), &millpath_ide::toolpath_html(&data), lang);
+    }
+    if let Some(out) = svg {
+        eprintln!("---- Writing {}", out.display());
+        status |= emit(Some(&out), &millpath_ide::toolpath_svg(&data), lang);
+    }
+    if let Some(out) = png {
+        eprintln!("---- Writing {}", out.display());
+        let written = png::svg_to_png(&millpath_ide::toolpath_svg(&data))
+            .and_then(|bytes| write::write_atomic_bytes(&out, &bytes).map_err(|e| e.to_string()));
+        if let Err(e) = written {
+            eprintln!("error: {}: {e}", out.display());
+            status |= 1;
+        }
+    }
+    status
+}
