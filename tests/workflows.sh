@@ -14,6 +14,7 @@ export SHARED="${SHARED:-$root/../shared}"
 export PY="${PY:-python3}"
 export ROOT="$root"
 [ -x "$MILLPATH" ] || cargo build --release --quiet
+shopt -s nullglob
 names=("$@")
 if [ ${#names[@]} -eq 0 ]; then
   for f in tests/workflows/*.sh; do names+=("$(basename "$f" .sh)"); done
