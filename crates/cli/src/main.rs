@@ -106,14 +106,24 @@ enum Command {
         #[command(flatten)]
         names: NameArgs,
     },
-    /// Write MillPath text as a DXF drawing
+    /// Write MillPath text as a DXF drawing, or into an existing drawing with --into
+    ///
+    /// An existing DXF that holds anything text2dxf does not write back (other layers,
+    /// dimensions, blocks) is not overwritten: use --into to keep it, or --force.
     Text2dxf {
         file: PathBuf,
-        /// The DXF file to write (default: FILE with .dxf; `-`: standard output)
+        /// The DXF file to write (default: FILE with .dxf, or the --into drawing; `-`: standard output)
         #[arg(short, long)]
         output: Option<PathBuf>,
+        /// Write the paths into this existing drawing: the path layers' elements and texts are
+        /// replaced, every other layer, entity, block and setting is kept
+        #[arg(long, value_name = "DRAWING.dxf")]
+        into: Option<PathBuf>,
+        /// Overwrite an existing DXF even if drawing content would be lost
+        #[arg(long, conflicts_with = "into")]
+        force: bool,
         #[command(flatten)]
-        names: NameArgs,
+        names: commands::text2dxf::Text2dxfArgs,
     },
     /// Format MillPath files in place (directories: all *.mpath below)
     Fmt {
@@ -229,8 +239,16 @@ fn main() -> ExitCode {
         Command::Text2dxf {
             file,
             output,
+            into,
+            force,
             names,
-        } => commands::text2dxf::run(&file, output.as_deref(), &names.machine()),
+        } => commands::text2dxf::run(
+            &file,
+            output.as_deref(),
+            into.as_deref(),
+            force,
+            &names.machine(),
+        ),
         Command::Fmt { check, paths } => commands::fmt::run(check, &paths),
         Command::Render {
             file,

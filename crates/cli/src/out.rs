@@ -12,8 +12,13 @@ pub const BROKEN_PIPE_STATUS: i32 = 141;
 
 /// Writes `s` to standard output; never returns when the output is gone.
 pub fn write(s: &str) {
+    write_bytes(s.as_bytes());
+}
+
+/// [`write`] for bytes (a DXF file in its own code page).
+pub fn write_bytes(b: &[u8]) {
     let mut out = std::io::stdout().lock();
-    if let Err(e) = out.write_all(s.as_bytes()).and_then(|()| out.flush()) {
+    if let Err(e) = out.write_all(b).and_then(|()| out.flush()) {
         gone(&e);
     }
 }

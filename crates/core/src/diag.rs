@@ -315,6 +315,9 @@ messages! {
     FileTooLarge = "File {0} is larger than {1} MiB, the most a drawing may have", "Datei {0} ist größer als {1} MiB, das Höchstmaß für eine Zeichnung";
     // entity order in the assignment of texts (reference-input.md §2.4)
     TextTakenFirst = "The drawing's entity order decides which element text '{0}' belongs to: it overlaps best the element that text '{1}' took, which comes first in the file, so a CAD re-save can change the G-code; move the texts so that each is nearest to its own element", "Die Reihenfolge der Elemente in der Zeichnung entscheidet, zu welchem Element der Text '{0}' gehört: er überlappt am besten das Element, das der Text '{1}' bekam, der in der Datei zuerst kommt; ein erneutes Speichern im CAD kann also den G-Code ändern; die Texte so verschieben, dass jeder seinem eigenen Element am nächsten liegt";
+    // text2dxf never destroys a drawing (issue 20)
+    WouldLoseDrawing = "{0} holds drawing content that text2dxf does not write back: {1}. Nothing was written: use --into {0} to write the paths into the drawing and keep the rest, or --force to overwrite it", "{0} enthält Zeichnungsinhalt, den text2dxf nicht zurückschreibt: {1}. Es wurde nichts geschrieben: mit --into {0} die Pfade in die Zeichnung schreiben und den Rest behalten, oder mit --force überschreiben";
+    NotOursToOverwrite = "{0} exists and cannot be read as a DXF drawing ({1}). Nothing was written: write elsewhere with -o, or overwrite it with --force", "{0} existiert und kann nicht als DXF-Zeichnung gelesen werden ({1}). Es wurde nichts geschrieben: mit -o anderswohin schreiben oder mit --force überschreiben";
 }
 
 impl Msg {

@@ -12,6 +12,7 @@ pub mod explode;
 mod extra;
 mod lines;
 mod reader;
+pub mod splice;
 mod tokens;
 pub mod units;
 pub mod writer;

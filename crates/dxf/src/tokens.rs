@@ -108,6 +108,11 @@ impl<'a> Tokens<'a> {
         self.line.saturating_sub(1)
     }
 
+    /// Where the next pair starts (a byte offset into the file).
+    pub(crate) fn pos(&self) -> usize {
+        self.pos
+    }
+
     pub(crate) fn new(bytes: &'a [u8]) -> Self {
         Tokens {
             ends: LineEnds::new(bytes),

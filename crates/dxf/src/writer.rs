@@ -425,7 +425,7 @@ impl DxfWriter {
 const MODEL_SPACE_RECORD: u32 = 0x17;
 
 /// Descriptions and dash patterns (drawing units) of the line types path drawings use.
-fn linetype_pattern(lt: &str) -> (&'static str, Vec<f64>) {
+pub(crate) fn linetype_pattern(lt: &str) -> (&'static str, Vec<f64>) {
     match lt.to_ascii_uppercase().as_str() {
         "DASHED" => ("Dashed __ __ __", vec![0.5, -0.25]),
         "HIDDEN" => ("Hidden _ _ _", vec![0.25, -0.125]),

@@ -1,26 +1,146 @@
-//! `millpath text2dxf`: MillPath text as a DXF drawing.
+//! `millpath text2dxf`: MillPath text as a DXF drawing, or written into an existing drawing
+//! (`--into`). It never destroys a drawing: an existing DXF that holds anything it would not
+//! write back is overwritten only with `--force`.
 
-use crate::args::MachineArgs;
+use crate::args::{LangArg, MachineArgs};
 use crate::inputs::conversion_input;
-use crate::output::{emit, print_human};
-use std::path::Path;
+use crate::output::print_human;
+use crate::{report, write};
+use millpath_core::diag::FileRef;
+use millpath_core::{args, Diagnostic, InputMode, Lang, Msg, Origin};
+use std::path::{Path, PathBuf};
 
-pub fn run(file: &Path, output: Option<&Path>, m: &MachineArgs) -> u8 {
+/// The options of `text2dxf` (the name patterns decide which layers hold paths).
+#[derive(clap::Args, Default, Clone)]
+pub struct Text2dxfArgs {
+    /// Path-name pattern: which layers are path layers (their elements are written or replaced)
+    #[arg(long)]
+    pub path_pattern: Option<String>,
+    /// File-name pattern
+    #[arg(long)]
+    pub file_pattern: Option<String>,
+    /// Message language
+    #[arg(long, value_enum)]
+    pub lang: Option<LangArg>,
+    /// Settings file (default: nearest millpath.toml above the input)
+    #[arg(long)]
+    pub config: Option<PathBuf>,
+    /// The text came from `dxf2text --extended`: polylines and block references on the path
+    /// layers were turned into elements, so --into (and the check before overwriting)
+    /// replaces them too
+    #[arg(long)]
+    pub extended: bool,
+}
+
+impl Text2dxfArgs {
+    pub fn machine(&self) -> MachineArgs {
+        MachineArgs {
+            path_pattern: self.path_pattern.clone(),
+            file_pattern: self.file_pattern.clone(),
+            lang: self.lang,
+            config: self.config.clone(),
+            extended: self.extended,
+            ..MachineArgs::default()
+        }
+    }
+}
+
+pub fn run(
+    file: &Path,
+    output: Option<&Path>,
+    into: Option<&Path>,
+    force: bool,
+    m: &MachineArgs,
+) -> u8 {
     let (patterns, lang, bytes) = match conversion_input(file, m) {
         Ok(x) => x,
         Err(code) => return code,
     };
+    let input = if m.extended {
+        InputMode::Extended
+    } else {
+        InputMode::Reference
+    };
     let src = String::from_utf8_lossy(&bytes);
-    let fref = millpath_core::diag::FileRef::new(file.to_path_buf());
-    match millpath_core::convert::text_to_dxf(&src, &fref, &patterns) {
-        Ok(dxf) => match output {
-            Some(o) if o.as_os_str() == "-" => emit(None, &dxf, lang),
-            Some(o) => emit(Some(o), &dxf, lang),
-            None => emit(Some(&file.with_extension("dxf")), &dxf, lang),
+    let fref = FileRef::new(file.to_path_buf());
+    // `-o -`: standard output; else the file to write
+    let dest: Option<PathBuf> = match (output, into) {
+        (Some(o), _) if o.as_os_str() == "-" => None,
+        (Some(o), _) => Some(o.to_path_buf()),
+        (None, Some(d)) => Some(d.to_path_buf()),
+        (None, None) => Some(file.with_extension("dxf")),
+    };
+    let result = match into {
+        Some(drawing) => {
+            let target = match std::fs::read(drawing) {
+                Ok(t) => t,
+                Err(e) => return fail(Msg::CannotRead, drawing, args![drawing.display(), e], lang),
+            };
+            let tref = FileRef::new(drawing.to_path_buf());
+            millpath_core::convert::text_into_dxf(&src, &fref, &patterns, &target, &tref, input)
+        }
+        None => {
+            if let (Some(d), false) = (&dest, force) {
+                if let Some(code) = refuse_to_destroy(d, &src, &fref, &patterns, input, lang) {
+                    return code;
+                }
+            }
+            millpath_core::convert::text_to_dxf(&src, &fref, &patterns).map(String::into_bytes)
+        }
+    };
+    match result {
+        Ok(dxf) => match dest {
+            None => {
+                crate::out::write_bytes(&dxf);
+                0
+            }
+            Some(d) => match write::write_atomic_bytes(&d, &dxf) {
+                Ok(()) => 0,
+                Err(e) => fail(Msg::CannotWrite, &d, args![d.display(), e], lang),
+            },
         },
         Err(diags) => {
             print_human(&diags, lang);
             1
         }
+    }
+}
+
+fn fail(msg: Msg, path: &Path, a: Vec<String>, lang: Lang) -> u8 {
+    let d = Diagnostic::error(msg, Origin::File(FileRef::new(path.to_path_buf())), a);
+    eprintln!("{}", report::human(&d, lang));
+    1
+}
+
+/// `Some(1)` with the message printed when writing `dest` would destroy drawing content:
+/// it exists and holds what the text does not write back, or is no DXF we can read.
+fn refuse_to_destroy(
+    dest: &Path,
+    src: &str,
+    file: &std::sync::Arc<FileRef>,
+    patterns: &millpath_core::load::names::Patterns,
+    input: InputMode,
+    lang: Lang,
+) -> Option<u8> {
+    // a missing file loses nothing; one we cannot read we do not overwrite either
+    let existing = match std::fs::read(dest) {
+        Ok(b) => b,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return None,
+        Err(e) => return Some(fail(Msg::CannotRead, dest, args![dest.display(), e], lang)),
+    };
+    match millpath_core::convert::overwrite_losses(&existing, src, file, patterns, input) {
+        Ok(l) if l.is_empty() => None,
+        Ok(l) => Some(fail(
+            Msg::WouldLoseDrawing,
+            dest,
+            args![dest.display(), l.describe(lang)],
+            lang,
+        )),
+        Err(e) => Some(fail(
+            Msg::NotOursToOverwrite,
+            dest,
+            args![dest.display(), e],
+            lang,
+        )),
     }
 }

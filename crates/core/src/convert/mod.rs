@@ -1,6 +1,10 @@
 //! Conversion both ways between drawn objects and the text language: `dxf2text` writes the
 //! canonical text, `text2dxf` writes an AutoCAD 2000 DXF whose texts the reference's
-//! assignment rule gives back to their own elements.
+//! assignment rule gives back to their own elements; `text2dxf --into` writes the paths into
+//! an existing drawing and keeps the rest of it (`into.rs`).
+
+mod into;
+pub use into::{overwrite_losses, text_into_dxf, Losses};
 
 use crate::build::traverse::walk;
 use crate::diag::{Diags, FileRef};
@@ -10,6 +14,7 @@ use crate::front::extended::InputMode;
 use crate::geom::{near, Geom};
 use crate::load::names::Patterns;
 use crate::params::parse_number;
+use millpath_dxf::splice::{NewEntity, NewShape};
 use millpath_dxf::writer::DxfWriter;
 use millpath_syntax::ast::{Element, Geometry, Kind, Point, Spanned, Style};
 use millpath_syntax::format;
@@ -271,26 +276,38 @@ fn mtext_escape(s: &str) -> String {
 
 const TEXT_HEIGHT: f64 = 0.35;
 
-fn write_dxf(objects: &[DrawnObject], suffixes: &[Option<String>]) -> String {
-    let mut w = DxfWriter::new();
+/// What a text's objects become in a drawing: the path layers (line type CONTINUOUS) and
+/// the entities in the order they are written. Texts come after the elements: circles'
+/// first, then arcs', then lines', so that circles win as the assignment rule wants.
+fn plan(objects: &[DrawnObject], suffixes: &[Option<String>]) -> (Vec<String>, Vec<NewEntity>) {
     let mut paths: Vec<&str> = objects.iter().map(|o| o.path.as_str()).collect();
     paths.sort();
     paths.dedup();
-    for p in paths {
-        w.layer(&layer_name(p, None), "CONTINUOUS");
-    }
+    let layers = paths.iter().map(|p| layer_name(p, None)).collect();
+    let mut entities = Vec::new();
     for (o, suf) in objects.iter().zip(suffixes) {
-        let layer = layer_name(&o.path, suf.as_deref());
-        let lt = Some(o.linetype.as_str());
-        match &o.shape {
-            Shape::Circle { c, r } => w.circle(&layer, lt, (c.x, c.y), *r),
-            Shape::Path(Geom::Line { a, b }) => w.line(&layer, lt, (a.x, a.y), (b.x, b.y)),
-            Shape::Path(Geom::Arc { c, r, a0, a1, .. }) => {
-                w.arc(&layer, lt, (c.x, c.y), *r, *a0, *a1)
-            }
+        let shape = match &o.shape {
+            Shape::Circle { c, r } => NewShape::Circle {
+                c: (c.x, c.y),
+                r: *r,
+            },
+            Shape::Path(Geom::Line { a, b }) => NewShape::Line {
+                a: (a.x, a.y),
+                b: (b.x, b.y),
+            },
+            Shape::Path(Geom::Arc { c, r, a0, a1, .. }) => NewShape::Arc {
+                c: (c.x, c.y),
+                r: *r,
+                a0: *a0,
+                a1: *a1,
+            },
         };
+        entities.push(NewEntity {
+            layer: layer_name(&o.path, suf.as_deref()),
+            linetype: Some(o.linetype.clone()),
+            shape,
+        });
     }
-    // texts: circles first, then arcs, then lines, so that circles win as the rule wants
     for pass in 0..3 {
         for (o, suf) in objects.iter().zip(suffixes) {
             let Some(t) = o.text.as_ref().filter(|t| !t.tokens.is_empty()) else {
@@ -304,14 +321,37 @@ fn write_dxf(objects: &[DrawnObject], suffixes: &[Option<String>]) -> String {
             if rank != pass {
                 continue;
             }
-            let text = mtext_escape(&t.tokens.join(" "));
-            w.mtext(
-                &layer_name(&o.path, suf.as_deref()),
-                (at.x, at.y),
-                TEXT_HEIGHT,
-                &[&text],
-            );
+            entities.push(NewEntity {
+                layer: layer_name(&o.path, suf.as_deref()),
+                linetype: None,
+                shape: NewShape::Text {
+                    at: (at.x, at.y),
+                    height: TEXT_HEIGHT,
+                    value: t.tokens.join(" "),
+                },
+            });
         }
+    }
+    (layers, entities)
+}
+
+/// A new drawing of the objects (AutoCAD 2000, [`DxfWriter`]).
+fn write_dxf(objects: &[DrawnObject], suffixes: &[Option<String>]) -> String {
+    let (layers, entities) = plan(objects, suffixes);
+    let mut w = DxfWriter::new();
+    for l in &layers {
+        w.layer(l, "CONTINUOUS");
+    }
+    for e in &entities {
+        let (layer, lt) = (e.layer.as_str(), e.linetype.as_deref());
+        match &e.shape {
+            NewShape::Circle { c, r } => w.circle(layer, lt, *c, *r),
+            NewShape::Line { a, b } => w.line(layer, lt, *a, *b),
+            NewShape::Arc { c, r, a0, a1 } => w.arc(layer, lt, *c, *r, *a0, *a1),
+            NewShape::Text { at, height, value } => {
+                w.mtext(layer, *at, *height, &[&mtext_escape(value)])
+            }
+        };
     }
     w.finish()
 }
@@ -326,19 +366,29 @@ fn texts_match(a: &Option<crate::params::ParamText>, b: &Option<crate::params::P
 /// Writes objects as a DXF file. Elements whose text would be assigned to another element
 /// are moved to their own parameter-text layer (`PATH~A`, …), checked by reading back.
 pub fn objects_to_dxf(objects: &[DrawnObject], patterns: &Patterns) -> String {
+    settle(objects, patterns, &|suffixes| write_dxf(objects, suffixes))
+}
+
+/// The drawing `render` makes of the objects, with parameter-text layers for the elements
+/// whose text the read-back assigns elsewhere (at most eight rounds).
+fn settle<T: AsRef<[u8]>>(
+    objects: &[DrawnObject],
+    patterns: &Patterns,
+    render: &dyn Fn(&[Option<String>]) -> T,
+) -> T {
     let mut suffixes: Vec<Option<String>> = vec![None; objects.len()];
     let mut next = 0usize;
     let file = FileRef::new("check.dxf".into());
     for _ in 0..8 {
-        let text = write_dxf(objects, &suffixes);
-        let Ok(d) = millpath_dxf::read_dxf(text.as_bytes()) else {
-            return text;
+        let out = render(&suffixes);
+        let Ok(d) = millpath_dxf::read_dxf(out.as_ref()) else {
+            return out;
         };
         // our own writing has lines and arcs only
         let opts = front_options(patterns, InputMode::Reference);
         let mut diags = Diags::default();
         let Ok((back, _)) = dxf_objects(&d, &file, &opts, &mut diags) else {
-            return text;
+            return out;
         };
         let mut changed = false;
         for (i, o) in objects.iter().enumerate() {
@@ -350,10 +400,10 @@ pub fn objects_to_dxf(objects: &[DrawnObject], patterns: &Patterns) -> String {
             }
         }
         if !changed {
-            return text;
+            return out;
         }
     }
-    write_dxf(objects, &suffixes)
+    render(&suffixes)
 }
 
 /// Path building for conversions (errors are the compiler's business, not the converter's).
@@ -399,6 +449,14 @@ pub fn text_to_dxf(
     file: &Arc<FileRef>,
     patterns: &Patterns,
 ) -> Result<String, Vec<crate::Diagnostic>> {
+    Ok(objects_to_dxf(&text_objects(src, file)?, patterns))
+}
+
+/// The drawn objects of a text; syntax errors refuse it.
+fn text_objects(
+    src: &str,
+    file: &Arc<FileRef>,
+) -> Result<Vec<DrawnObject>, Vec<crate::Diagnostic>> {
     let mut diags = Diags::default();
     let objects = crate::front::text::text_objects(src, file, &mut diags)
         .map_err(|d| vec![d])?
@@ -406,7 +464,7 @@ pub fn text_to_dxf(
     if diags.has_errors() {
         return Err(diags.list);
     }
-    Ok(objects_to_dxf(&objects, patterns))
+    Ok(objects)
 }
 
 /// `fmt`: the canonical form of a text file; `Err` with the syntax errors when it does not parse.
