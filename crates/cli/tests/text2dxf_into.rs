@@ -1,0 +1,242 @@
+//! `text2dxf` never destroys a drawing: it refuses to overwrite a DXF holding what it does
+//! not write back (unless `--force`), and `--into` writes the paths into the drawing,
+//! keeping the rest. On the examples, an R12 drawing, broken drawings and every shared
+//! drawing (skipped without ../shared).
+
+mod common;
+
+use common::{millpath, MACHINE};
+use std::path::{Path, PathBuf};
+
+fn example(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/text")
+        .join(name)
+}
+
+fn ok(o: &std::process::Output) -> String {
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// A LINE on a dimension layer, put into the ENTITIES section of a drawing we wrote.
+const DIMENSION: &str =
+    "  0\nLINE\n  5\nFFF0\n330\n17\n100\nAcDbEntity\n  8\nMASSE\n100\nAcDbLine\n 10\n0.0\n 20\n-9.0\n 30\n0.0\n 11\n50.0\n 21\n-9.0\n 31\n0.0\n";
+
+fn add_dimension(dxf: &Path) {
+    let s = std::fs::read_to_string(dxf).unwrap();
+    let at = s.find("  0\nENDSEC\n  0\nSECTION\n  2\nOBJECTS").unwrap();
+    std::fs::write(dxf, format!("{}{DIMENSION}{}", &s[..at], &s[at..])).unwrap();
+}
+
+#[test]
+fn overwriting_is_refused_when_content_would_be_lost() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::copy(example("2001.mpath"), d.join("2001.mpath")).unwrap();
+    // our own file: nothing to lose, overwritten without --force
+    ok(&millpath(d, &["text2dxf", "2001.mpath"]));
+    ok(&millpath(d, &["text2dxf", "2001.mpath"]));
+    // a dimension drawn in CAD: refused, named, nothing written
+    add_dimension(&d.join("2001.dxf"));
+    let before = std::fs::read(d.join("2001.dxf")).unwrap();
+    let o = millpath(d, &["text2dxf", "2001.mpath"]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains(millpath_core::Msg::WouldLoseDrawing.code().as_str())
+            && err.contains("layer MASSE (1 LINE)")
+            && err.contains("--into 2001.dxf")
+            && err.contains("--force"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read(d.join("2001.dxf")).unwrap(), before);
+    let o = millpath(d, &["text2dxf", "2001.mpath", "--lang", "de"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("Layer MASSE (1 LINE)") && err.contains("überschreiben"),
+        "{err}"
+    );
+    // --force overwrites
+    ok(&millpath(d, &["text2dxf", "2001.mpath", "--force"]));
+    assert!(!std::fs::read_to_string(d.join("2001.dxf"))
+        .unwrap()
+        .contains("MASSE"));
+    // something that is no DXF at all is not overwritten either
+    std::fs::write(d.join("notes.dxf"), "my notes\n").unwrap();
+    let o = millpath(d, &["text2dxf", "2001.mpath", "-o", "notes.dxf"]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains(millpath_core::Msg::NotOursToOverwrite.code().as_str()),
+        "{err}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(d.join("notes.dxf")).unwrap(),
+        "my notes\n"
+    );
+}
+
+#[test]
+fn into_keeps_the_rest_of_the_drawing_and_writes_the_edited_paths() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::copy(example("2001.mpath"), d.join("2001.mpath")).unwrap();
+    ok(&millpath(d, &["text2dxf", "2001.mpath"]));
+    add_dimension(&d.join("2001.dxf"));
+    // the text edited: another depth
+    let text = std::fs::read_to_string(d.join("2001.mpath")).unwrap();
+    let edited = text.replacen("T3", "T4", 1);
+    assert_ne!(text, edited);
+    std::fs::write(d.join("2001.mpath"), &edited).unwrap();
+    ok(&millpath(
+        d,
+        &["text2dxf", "2001.mpath", "--into", "2001.dxf"],
+    ));
+    let back = std::fs::read_to_string(d.join("2001.dxf")).unwrap();
+    assert!(
+        back.contains(DIMENSION),
+        "the dimension is kept byte for byte"
+    );
+    // the drawing reads back as the edited text, and compiles as it
+    let from_drawing = ok(&millpath(d, &["dxf2text", "2001.dxf"]));
+    ok(&millpath(d, &["text2dxf", "2001.mpath", "-o", "fresh.dxf"]));
+    assert_eq!(from_drawing, ok(&millpath(d, &["dxf2text", "fresh.dxf"])));
+    assert!(from_drawing.contains("T4"));
+    // -o writes elsewhere and leaves the drawing as it is
+    let before = std::fs::read(d.join("2001.dxf")).unwrap();
+    ok(&millpath(
+        d,
+        &[
+            "text2dxf",
+            "2001.mpath",
+            "--into",
+            "2001.dxf",
+            "-o",
+            "copy.dxf",
+        ],
+    ));
+    assert_eq!(std::fs::read(d.join("2001.dxf")).unwrap(), before);
+    assert_eq!(ok(&millpath(d, &["dxf2text", "copy.dxf"])), from_drawing);
+}
+
+/// An R12 drawing without handles, with CR LF line ends and a dimension layer.
+const R12: &str = "  0\r\nSECTION\r\n  2\r\nHEADER\r\n  9\r\n$ACADVER\r\n  1\r\nAC1009\r\n  0\r\nENDSEC\r\n  0\r\nSECTION\r\n  2\r\nTABLES\r\n  0\r\nTABLE\r\n  2\r\nLAYER\r\n 70\r\n1\r\n  0\r\nLAYER\r\n  2\r\nMASSE\r\n 70\r\n0\r\n 62\r\n1\r\n  6\r\nCONTINUOUS\r\n  0\r\nENDTAB\r\n  0\r\nENDSEC\r\n  0\r\nSECTION\r\n  2\r\nENTITIES\r\n  0\r\nLINE\r\n  8\r\nMASSE\r\n 10\r\n0.0\r\n 20\r\n-9.0\r\n 30\r\n0.0\r\n 11\r\n50.0\r\n 21\r\n-9.0\r\n 31\r\n0.0\r\n  0\r\nENDSEC\r\n  0\r\nEOF\r\n";
+
+#[test]
+fn into_an_r12_drawing() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::copy(example("2010.mpath"), d.join("2010.mpath")).unwrap();
+    std::fs::write(d.join("r12.dxf"), R12).unwrap();
+    // a plain text2dxf would lose the dimension
+    assert_eq!(
+        millpath(d, &["text2dxf", "2010.mpath", "-o", "r12.dxf"])
+            .status
+            .code(),
+        Some(1)
+    );
+    ok(&millpath(
+        d,
+        &["text2dxf", "2010.mpath", "--into", "r12.dxf"],
+    ));
+    let back = std::fs::read_to_string(d.join("r12.dxf")).unwrap();
+    assert!(back.starts_with(&R12[..R12.find("  0\r\nTABLE").unwrap()]));
+    // the layer table got the path layer, and its count
+    assert!(back.contains("  2\r\nLAYER\r\n 70\r\n2\r\n  0\r\nLAYER\r\n  2\r\nMASSE\r\n"));
+    assert!(back.contains("  0\r\nLAYER\r\n  2\r\n2010_1P\r\n"));
+    assert!(!back.replace("\r\n", "").contains('\n'), "CR LF kept");
+    assert!(!back.contains("\r\n100\r\n") && !back.contains("\r\nMTEXT\r\n"));
+    assert!(back.contains("  0\r\nLINE\r\n  8\r\nMASSE\r\n 10\r\n0.0\r\n 20\r\n-9.0\r\n"));
+    ok(&millpath(d, &["text2dxf", "2010.mpath", "-o", "fresh.dxf"]));
+    assert_eq!(
+        ok(&millpath(d, &["dxf2text", "r12.dxf"])),
+        ok(&millpath(d, &["dxf2text", "fresh.dxf"]))
+    );
+}
+
+#[test]
+fn a_broken_drawing_is_a_located_error_and_stays_as_it_was() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::copy(example("2001.mpath"), d.join("2001.mpath")).unwrap();
+    let cut = &R12[..R12.find(" 21\r\n-9.0").unwrap() + 5];
+    std::fs::write(d.join("cut.dxf"), cut).unwrap();
+    let o = millpath(d, &["text2dxf", "2001.mpath", "--into", "cut.dxf"]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("cut.dxf") && err.contains("line "), "{err}");
+    assert_eq!(std::fs::read_to_string(d.join("cut.dxf")).unwrap(), cut);
+    let names: Vec<String> = std::fs::read_dir(d)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names.len(), 2, "{names:?}");
+    // a missing drawing
+    let o = millpath(d, &["text2dxf", "2001.mpath", "--into", "none.dxf"]);
+    assert_eq!(o.status.code(), Some(1));
+}
+
+/// Every shared drawing: dxf2text, then --into a copy of itself: the copy reads back as the
+/// same text, keeps every non-path entity, and compiles to the same G-code.
+#[test]
+fn into_every_shared_drawing_changes_nothing_it_should_not() {
+    let shared = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/conformance/fixtures");
+    let Ok(rd) = std::fs::read_dir(&shared) else {
+        eprintln!("skipped: {} is absent", shared.display());
+        return;
+    };
+    let mut files: Vec<PathBuf> = rd
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "dxf"))
+        .collect();
+    files.sort();
+    let mut done = 0;
+    for f in files {
+        let dir = tempfile::tempdir().unwrap();
+        let (a, b) = (dir.path().join("a"), dir.path().join("b"));
+        std::fs::create_dir(&a).unwrap();
+        std::fs::create_dir(&b).unwrap();
+        let name = f.file_name().unwrap().to_str().unwrap();
+        std::fs::copy(&f, a.join(name)).unwrap();
+        std::fs::copy(&f, b.join(name)).unwrap();
+        let text = ok(&millpath(&b, &["dxf2text", name]));
+        std::fs::write(b.join("t.mpath"), &text).unwrap();
+        ok(&millpath(&b, &["text2dxf", "t.mpath", "--into", name]));
+        assert_eq!(ok(&millpath(&b, &["dxf2text", name])), text, "{name}");
+        let orig = std::fs::read(&f).unwrap();
+        let back = std::fs::read(b.join(name)).unwrap();
+        let kept = |bytes: &[u8]| -> Vec<(String, String, String)> {
+            let t = millpath_dxf::splice::scan(bytes).unwrap();
+            t.entities()
+                .iter()
+                .filter(|r| {
+                    // a parameter-text layer `PATH~A` belongs to its path
+                    let base = r.layer.split('~').next().unwrap_or_default();
+                    !text.contains(&format!("path {} ", base.replace('_', ".")))
+                })
+                .map(|r| (r.layer.clone(), r.kind.clone(), r.handle.clone()))
+                .collect()
+        };
+        assert_eq!(kept(&orig), kept(&back), "{name}: non-path entities");
+        let mut args = vec!["compile"];
+        args.extend(MACHINE);
+        args.push(name);
+        let (ca, cb) = (millpath(&a, &args), millpath(&b, &args));
+        assert_eq!(ca.status.code(), cb.status.code(), "{name}");
+        for e in std::fs::read_dir(&a).unwrap() {
+            let p = e.unwrap().path();
+            if p.extension().is_some_and(|e| e == "gcode" || e == "txt") {
+                let other = b.join(p.file_name().unwrap());
+                assert_eq!(
+                    std::fs::read(&p).unwrap(),
+                    std::fs::read(&other).unwrap(),
+                    "{name}: {}",
+                    p.display()
+                );
+            }
+        }
+        done += 1;
+    }
+    assert!(done > 0);
+}
