@@ -269,7 +269,7 @@ fn a_file_without_entities_section_gets_one() {
 #[test]
 fn broken_files_are_refused_with_their_line_and_never_panic() {
     let good = r2000();
-    let err = scan(good[..good.len() / 2].as_bytes()).err().unwrap();
+    let err = scan(&good.as_bytes()[..good.len() / 2]).err().unwrap();
     assert!(err.line > 0, "{err}");
     let bad = good.replacen(" 40\n0.5\n", " 40\nzero\n", 1);
     let err = scan(bad.as_bytes()).err().unwrap();
