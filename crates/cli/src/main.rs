@@ -111,6 +111,7 @@ enum Command {
     /// An existing DXF that holds anything text2dxf does not write back (other layers,
     /// dimensions, blocks) is not overwritten: use --into to keep it, or --force.
     Text2dxf {
+        /// The MillPath text to convert (.mpath)
         file: PathBuf,
         /// The DXF file to write (default: FILE with .dxf, or the --into drawing; `-`: standard output)
         #[arg(short, long)]

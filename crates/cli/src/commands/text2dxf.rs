@@ -16,7 +16,7 @@ pub struct Text2dxfArgs {
     /// Path-name pattern: which layers are path layers (their elements are written or replaced)
     #[arg(long)]
     pub path_pattern: Option<String>,
-    /// File-name pattern
+    /// File-name pattern (as for compile; text2dxf reads no other files, so it changes nothing)
     #[arg(long)]
     pub file_pattern: Option<String>,
     /// Message language
