@@ -362,6 +362,37 @@ pub fn fill(template: &str, args: &[String]) -> String {
     out
 }
 
+/// An operating-system error's text (`No such file or directory (os error 2)`, as Rust's
+/// `io::Error` shows it) in the message language; other texts stay as they are.
+pub fn os_error_text(text: &str, lang: Lang) -> String {
+    const DE: &[(&str, &str)] = &[
+        (
+            "No such file or directory",
+            "Datei oder Verzeichnis nicht gefunden",
+        ),
+        ("Permission denied", "Zugriff verweigert"),
+        ("Is a directory", "ist ein Verzeichnis"),
+        ("Not a directory", "ist kein Verzeichnis"),
+        ("Read-only file system", "Dateisystem nur lesbar"),
+        ("No space left on device", "kein Platz mehr auf dem Gerät"),
+        ("File exists", "Datei existiert schon"),
+        ("Directory not empty", "Verzeichnis nicht leer"),
+        ("Operation not permitted", "Vorgang nicht erlaubt"),
+        (
+            "stream did not contain valid UTF-8",
+            "Datei ist kein gültiges UTF-8",
+        ),
+        ("os error", "OS-Fehler"),
+    ];
+    let mut out = text.to_string();
+    if lang == Lang::De {
+        for (en, de) in DE {
+            out = out.replace(en, de);
+        }
+    }
+    out
+}
+
 #[derive(Debug, Clone, PartialEq)]
 pub struct Related {
     pub origin: Origin,
@@ -405,6 +436,11 @@ impl Diagnostic {
     }
     /// The message for people (editor, human and JSON reports).
     pub fn message(&self, lang: Lang) -> String {
+        if lang == Lang::De {
+            // operating-system errors among the arguments are English texts of the OS
+            let args: Vec<String> = self.args.iter().map(|a| os_error_text(a, lang)).collect();
+            return fill(self.msg.human_template(lang), &args);
+        }
         fill(self.msg.human_template(lang), &self.args)
     }
     /// The message exactly as the reference prints it in its `****` lines.
