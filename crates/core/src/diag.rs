@@ -315,6 +315,8 @@ messages! {
     FileTooLarge = "File {0} is larger than {1} MiB, the most a drawing may have", "Datei {0} ist größer als {1} MiB, das Höchstmaß für eine Zeichnung";
     // entity order in the assignment of texts (reference-input.md §2.4)
     TextTakenFirst = "The drawing's entity order decides which element text '{0}' belongs to: it overlaps best the element that text '{1}' took, which comes first in the file, so a CAD re-save can change the G-code; move the texts so that each is nearest to its own element", "Die Reihenfolge der Elemente in der Zeichnung entscheidet, zu welchem Element der Text '{0}' gehört: er überlappt am besten das Element, das der Text '{1}' bekam, der in der Datei zuerst kommt; ein erneutes Speichern im CAD kann also den G-Code ändern; die Texte so verschieben, dass jeder seinem eigenen Element am nächsten liegt";
+    // entity order at one piece of a polyline or block (extended input): its text is the whole entity's
+    OrderDecidesPiece = "The drawing's entity order decides here: {0} elements are equally good next steps and the first one in the file is taken, so a CAD re-save can change the G-code; this element is one piece of a polyline or block (line {1}), and a parameter text there holds for all its pieces: explode it into lines and arcs in the CAD program, then pin the choice with {2} at this piece", "Hier entscheidet die Reihenfolge der Elemente in der Zeichnung: {0} Elemente kommen gleichermaßen als nächster Schritt in Frage und das erste in der Datei wird genommen, ein erneutes Speichern im CAD kann also den G-Code ändern; dieses Element ist ein Stück einer Polylinie oder eines Blocks (Zeile {1}), und ein Parametertext dort gilt für alle Stücke: sie im CAD-Programm in Linien und Bögen auflösen und dann die Wahl mit {2} an diesem Stück festlegen";
 }
 
 impl Msg {
@@ -436,12 +438,28 @@ impl Diagnostic {
     }
     /// The message for people (editor, human and JSON reports).
     pub fn message(&self, lang: Lang) -> String {
+        let template = self.human_text(lang);
         if lang == Lang::De {
             // operating-system errors among the arguments are English texts of the OS
             let args: Vec<String> = self.args.iter().map(|a| os_error_text(a, lang)).collect();
-            return fill(self.msg.human_template(lang), &args);
+            return fill(template, &args);
         }
-        fill(self.msg.human_template(lang), &self.args)
+        fill(template, &self.args)
+    }
+
+    /// The template for people, where the arguments call for another wording than the
+    /// reference's: "Could not find path X in file(s) …" for a path that was found but has
+    /// errors of its own says so ({2}: its file, {4} = `known`); with no file it says where
+    /// it looked ({2}: the folders searched, {3}: the file-name pattern).
+    fn human_text(&self, lang: Lang) -> &'static str {
+        let no_file = self.args.get(1).is_some_and(String::is_empty);
+        match (self.msg, no_file, self.args.get(4).map(String::as_str), lang) {
+            (Msg::CouldNotFind, _, Some("known"), Lang::En) => "Path {0} (in {2}) cannot be embedded: it has errors of its own",
+            (Msg::CouldNotFind, _, Some("known"), Lang::De) => "Pfad {0} (in {2}) kann nicht eingebettet werden: er hat eigene Fehler",
+            (Msg::CouldNotFind, true, Some(_), Lang::En) => "Could not find path {0}: no drawing in {2} has a file name that covers it (file-name pattern /{3}/)",
+            (Msg::CouldNotFind, true, Some(_), Lang::De) => "Pfad {0} nicht gefunden: keine Zeichnung in {2} hat einen Dateinamen, der ihn abdeckt (Dateinamen-Muster /{3}/)",
+            _ => self.msg.human_template(lang),
+        }
     }
     /// The message exactly as the reference prints it in its `****` lines.
     pub fn reference_message(&self, lang: Lang) -> String {
