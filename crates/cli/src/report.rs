@@ -406,7 +406,7 @@ pub fn sarif(diags: &[Diagnostic], lang: Lang) -> serde_json::Value {
                 "rules": rules.iter().map(|d| json!({
                     "id": d.msg.code(),
                     "name": d.msg.name(),
-                    "shortDescription": { "text": template_text(d.msg.template(Lang::En)) },
+                    "shortDescription": { "text": template_text(d.msg.template(lang)) },
                 })).collect::<Vec<_>>(),
             }},
             "originalUriBaseIds": { "%SRCROOT%": { "uri": root } },

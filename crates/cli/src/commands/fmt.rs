@@ -3,7 +3,7 @@
 use crate::inputs::collect_files;
 use crate::output::print_human;
 use crate::{report, write};
-use millpath_core::diag::Severity;
+use millpath_core::diag::{os_error_text, Severity};
 use millpath_core::Lang;
 use std::path::PathBuf;
 
@@ -20,7 +20,11 @@ pub fn run(check: bool, paths: &[PathBuf], lang: Lang) -> u8 {
         let src = match std::fs::read_to_string(&f) {
             Ok(s) => s,
             Err(e) => {
-                eprintln!("{error}: {}: {e}", f.display());
+                eprintln!(
+                    "{error}: {}: {}",
+                    f.display(),
+                    os_error_text(&e.to_string(), lang)
+                );
                 status = 1;
                 continue;
             }
@@ -33,7 +37,11 @@ pub fn run(check: bool, paths: &[PathBuf], lang: Lang) -> u8 {
                     outln!("{}: {not_formatted}", f.display());
                     status = 1;
                 } else if let Err(e) = write::write_atomic(&f, &formatted) {
-                    eprintln!("{error}: {}: {e}", f.display());
+                    eprintln!(
+                        "{error}: {}: {}",
+                        f.display(),
+                        os_error_text(&e.to_string(), lang)
+                    );
                     status = 1;
                 }
             }
