@@ -148,12 +148,14 @@ pub fn settings_for(
 ) -> Result<Settings, String> {
     let mut s = Settings::default();
     let mut have = config::Have::default();
+    let lang = lang_of(m, first_input);
+    let de = lang == Lang::De;
     let cfg_path = m
         .config
         .clone()
         .or_else(|| first_input.and_then(config::find));
     if let Some(p) = cfg_path {
-        config::load(&p)?.apply(&mut s, &mut have);
+        config::load_in(&p, lang)?.apply(&mut s, &mut have);
     }
     if let Some(v) = m.feed {
         s.feed = v;
@@ -178,9 +180,13 @@ pub fn settings_for(
         s.file_pattern = p.clone();
     }
     for r in &m.restrictions {
-        let (a, b) = r
-            .split_once(':')
-            .ok_or_else(|| format!("--restrict {r}: expected PARENT:CHILD"))?;
+        let (a, b) = r.split_once(':').ok_or_else(|| {
+            if de {
+                format!("--restrict {r}: Form PARENT:CHILD erwartet")
+            } else {
+                format!("--restrict {r}: expected PARENT:CHILD")
+            }
+        })?;
         s.restrictions.push((a.to_string(), b.to_string()));
     }
     s.debug_pattern = m.debug_texts.clone();
@@ -226,19 +232,37 @@ pub fn settings_for(
         }
         for (name, v) in [
             ("feed", s.feed),
-            ("sweep speed", s.sweep_speed),
-            ("sweep height", s.sweep_height),
+            ("sweep_speed", s.sweep_speed),
+            ("sweep_height", s.sweep_height),
         ] {
             if v.is_nan() || v <= 0.0 {
-                return Err(format!("{name} must be > 0 (is {v})"));
+                return Err(if de {
+                    format!("{name} muss > 0 sein (ist {v})")
+                } else {
+                    format!("{name} must be > 0 (is {v})")
+                });
             }
         }
     }
     Ok(s)
 }
 
-pub fn lang_of(m: &MachineArgs) -> Lang {
-    m.lang.map_or(Lang::En, to_lang)
+/// The message language, known before the first message: `--lang`, else `lang` of the
+/// settings file the command reads (`--config`, or the nearest millpath.toml of the first
+/// input) even when that file has other errors, else English.
+pub fn lang_for(flag: Option<LangArg>, config: Option<&Path>, first_input: Option<&Path>) -> Lang {
+    if let Some(l) = flag {
+        return to_lang(l);
+    }
+    config
+        .map(Path::to_path_buf)
+        .or_else(|| first_input.and_then(config::find_for))
+        .and_then(|p| config::lang_in(&p))
+        .unwrap_or_default()
+}
+
+pub fn lang_of(m: &MachineArgs, first_input: Option<&Path>) -> Lang {
+    lang_for(m.lang, m.config.as_deref(), first_input)
 }
 
 pub fn patterns_for(
@@ -247,6 +271,9 @@ pub fn patterns_for(
 ) -> Result<(std::sync::Arc<millpath_core::load::names::Patterns>, Lang), String> {
     let s = settings_for(m, Some(input), false)?;
     let p = millpath_core::load::names::Patterns::shared(&s.path_pattern, &s.file_pattern)
-        .map_err(|(c, p, e)| format!("invalid /{c} pattern '{p}': {e}"))?;
+        .map_err(|(c, p, e)| match s.lang {
+            Lang::En => format!("invalid /{c} pattern '{p}': {e}"),
+            Lang::De => format!("ungültiges /{c}-Muster '{p}': {e}"),
+        })?;
     Ok((p, s.lang))
 }

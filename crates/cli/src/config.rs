@@ -19,11 +19,66 @@ pub fn find(input: &Path) -> Option<PathBuf> {
     None
 }
 
+/// The nearest `millpath.toml` for an input: above a file, or in and above a folder.
+pub fn find_for(input: &Path) -> Option<PathBuf> {
+    if input.is_dir() {
+        find(&input.join(FILE_NAME))
+    } else {
+        find(input)
+    }
+}
+
+/// `lang` of a settings file, read on its own: the language of the messages must be known
+/// before the first one, also the messages about the file's other keys.
+pub fn lang_in(path: &Path) -> Option<millpath_core::Lang> {
+    let text = std::fs::read_to_string(path).ok()?;
+    let table: toml::Table = text.parse().ok()?;
+    table
+        .get("lang")
+        .and_then(toml::Value::as_str)
+        .map(millpath_core::Lang::from_name)
+}
+
 /// Reads and parses a settings file; the error text names the file and the line.
 pub fn load(path: &Path) -> Result<FileConfig, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
     millpath_core::load::config::parse(&text, path.parent().unwrap_or(Path::new(".")))
         .map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// [`load`] with the error in the message language: the file's place and the usual words
+/// of the TOML reader's errors in German (the keys and values stay as written).
+pub fn load_in(path: &Path, lang: millpath_core::Lang) -> Result<FileConfig, String> {
+    load(path).map_err(|e| match lang {
+        millpath_core::Lang::En => e,
+        millpath_core::Lang::De => toml_error_de(&e),
+    })
+}
+
+fn toml_error_de(e: &str) -> String {
+    const WORDS: &[(&str, &str)] = &[
+        ("TOML parse error at line ", "TOML-Fehler in Zeile "),
+        (", column ", ", Spalte "),
+        ("unknown field", "unbekannter Schlüssel"),
+        ("expected one of", "erlaubt ist einer von"),
+        ("invalid type:", "falscher Typ:"),
+        ("invalid value:", "falscher Wert:"),
+        ("unknown variant", "unbekannter Wert"),
+        ("missing field", "fehlender Schlüssel"),
+        ("duplicate key", "doppelter Schlüssel"),
+        ("expected", "erwartet"),
+        ("string", "Text"),
+        ("integer", "ganze Zahl"),
+        ("floating point", "Zahl"),
+        ("a sequence", "eine Liste"),
+        ("sequence", "Liste"),
+        ("invalid", "ungültig"),
+    ];
+    let mut out = e.to_string();
+    for (en, de) in WORDS {
+        out = out.replace(en, de);
+    }
+    out
 }
 
 #[cfg(test)]
@@ -46,6 +101,16 @@ mod tests {
         cfg.apply(&mut s, &mut have);
         assert!(have.feed && have.sweep_speed && have.sweep_height);
         assert_eq!(s.restrictions, vec![("L$".to_string(), "L$".to_string())]);
+    }
+
+    #[test]
+    fn lang_is_read_even_beside_a_bad_key() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join(FILE_NAME);
+        std::fs::write(&p, "lang = \"de\"\nfeeed = 3\n").unwrap();
+        assert!(load(&p).is_err());
+        assert_eq!(lang_in(&p), Some(millpath_core::Lang::De));
+        assert_eq!(find_for(dir.path()), Some(p));
     }
 
     #[test]

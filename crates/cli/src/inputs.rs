@@ -62,7 +62,11 @@ pub fn conversion_input(
     u8,
 > {
     let (patterns, lang) = patterns_for(m, file).map_err(|e| {
-        eprintln!("error: {e}");
+        let lang = crate::args::lang_of(m, Some(file));
+        eprintln!(
+            "{}: {e}",
+            report::severity_word(millpath_core::diag::Severity::Error, lang)
+        );
         2
     })?;
     let bytes = std::fs::read(file).map_err(|e| {

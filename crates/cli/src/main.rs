@@ -3,6 +3,7 @@
 #[macro_use]
 mod out;
 mod args;
+mod clap_de;
 mod commands;
 mod compat;
 mod config;
@@ -17,12 +18,12 @@ mod write;
 static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 use args::{
-    stdout_dash, to_lang, DialectArg, Format, LangArg, MachineArgs, NameArgs, VerifyFormat,
+    lang_for, stdout_dash, DialectArg, Format, LangArg, MachineArgs, NameArgs, VerifyFormat,
 };
 use clap::{Parser, Subcommand};
 use commands::verify;
 use millpath_core::Lang;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 #[derive(Parser)]
@@ -131,6 +132,9 @@ enum Command {
         /// Only check: exit 1 and list the files that are not formatted
         #[arg(long)]
         check: bool,
+        /// Message language
+        #[arg(long, value_enum)]
+        lang: Option<LangArg>,
         #[arg(required = true)]
         paths: Vec<PathBuf>,
     },
@@ -194,7 +198,8 @@ fn main() -> ExitCode {
         Some("pathgcodeadjustz") => return leave(commands::pathgcodeadjustz::run(&raw[2..])),
         _ => {}
     }
-    let cli = Cli::parse();
+    // clap's own messages (option errors, help headings) in the language of the run
+    let cli: Cli = clap_de::parse(&raw);
     let code = match cli.command {
         Command::Compile { machine, files } => commands::compile::run(&machine, &files),
         Command::Check {
@@ -220,15 +225,15 @@ fn main() -> ExitCode {
             top,
             tool,
             bottom,
-            lang: match lang {
-                Some(LangArg::De) => millpath_verify::Lang::De,
-                _ => millpath_verify::Lang::En,
+            lang: match lang_for(lang, None, files.first().map(PathBuf::as_path)) {
+                Lang::De => millpath_verify::Lang::De,
+                Lang::En => millpath_verify::Lang::En,
             },
             json: format == VerifyFormat::Json,
             files,
         }),
         Command::AdjustZ { max, lang, files } => {
-            let lang = lang.map_or(Lang::En, to_lang);
+            let lang = lang_for(lang, None, files.first().map(Path::new));
             commands::adjust_z::run(max, None, lang, &files, false)
         }
         Command::Dxf2text {
@@ -250,7 +255,10 @@ fn main() -> ExitCode {
             force,
             &names.machine(),
         ),
-        Command::Fmt { check, paths } => commands::fmt::run(check, &paths),
+        Command::Fmt { check, lang, paths } => {
+            let lang = lang_for(lang, None, paths.first().map(PathBuf::as_path));
+            commands::fmt::run(check, &paths, lang)
+        }
         Command::Render {
             file,
             path,

@@ -22,7 +22,7 @@ pub fn human(d: &Diagnostic, lang: Lang) -> String {
         d.msg.code(),
         d.message(lang)
     );
-    s.push_str(&format!("\n  --> {}", location(&d.origin, lang)));
+    s.push_str(&format!("\n  --> {}", location(&shown_origin(d), lang)));
     if let Origin::Entity(e) = &d.origin {
         let word = if lang == Lang::De { "Pfad" } else { "path" };
         s.push_str(&format!("\n   = {word} {}", e.path));
@@ -140,12 +140,65 @@ fn strip_ansi(s: &str) -> String {
 }
 
 /// A location a person can find, in the message language: `file:line (LINE on layer L,
-/// handle H, at [x y])`.
+/// handle H, at [x y])`; a path as a whole: `file:line:col (path NAME)` at its `path NAME`
+/// line in a text file, `file (path NAME)` in a DXF.
 pub fn location(o: &Origin, lang: Lang) -> String {
     match (o, lang) {
         (Origin::Options, Lang::De) => "Optionen".into(),
         (Origin::Input, Lang::De) => "Eingabe".into(),
+        (Origin::Path { name, file }, _) => {
+            let word = if lang == Lang::De { "Pfad" } else { "path" };
+            match path_header(&file.path, name) {
+                Some((line, col)) => {
+                    format!("{}:{line}:{col} ({word} {name})", file.path.display())
+                }
+                None => format!("{} ({word} {name})", file.path.display()),
+            }
+        }
         _ => o.location_in(lang).unwrap_or_else(|| o.context()),
+    }
+}
+
+/// Line and column (1-based) of the `path NAME` line of a text file.
+fn path_header(file: &std::path::Path, name: &str) -> Option<(usize, usize)> {
+    if !millpath_core::load::fs::is_text_file(file) {
+        return None;
+    }
+    let text = std::fs::read_to_string(file).ok()?;
+    text.lines().enumerate().find_map(|(i, l)| {
+        let rest = l.trim_start().strip_prefix("path")?;
+        let word = rest
+            .trim_start()
+            .split(|c: char| c.is_whitespace() || c == '{')
+            .next()?;
+        (rest.starts_with(char::is_whitespace) && word.trim_matches('"') == name)
+            .then(|| (i + 1, l.len() - l.trim_start().len() + 1))
+    })
+}
+
+/// The messages about a file as a whole whose first argument is that file.
+fn names_its_file(msg: millpath_core::Msg) -> bool {
+    use millpath_core::Msg;
+    matches!(
+        msg,
+        Msg::CannotRead
+            | Msg::CannotLoadDxf
+            | Msg::FileTooLarge
+            | Msg::CannotWrite
+            | Msg::StaleMillingRemoved
+            | Msg::CannotRemove
+    )
+}
+
+/// Where a report locates a diagnostic: a file that cannot be read, written or removed at
+/// that file, not at "Options"/"Input" (the reference's `****` lines keep those).
+pub fn shown_origin(d: &Diagnostic) -> std::borrow::Cow<'_, Origin> {
+    use std::borrow::Cow;
+    match (&d.origin, d.args.first()) {
+        (Origin::Options | Origin::Input, Some(f)) if names_its_file(d.msg) => {
+            Cow::Owned(Origin::File(millpath_core::diag::FileRef::new(f.into())))
+        }
+        _ => Cow::Borrowed(&d.origin),
     }
 }
 
@@ -220,7 +273,7 @@ pub fn json_value(d: &Diagnostic, lang: Lang) -> serde_json::Value {
         "name": d.msg.name(),
         "message": d.message(lang),
         "context": d.origin.context(),
-        "location": location_fields(&d.origin),
+        "location": location_fields(&shown_origin(d)),
         "related": d.related.iter().map(|r| json!({ "note": r.note, "location": location_fields(&r.origin) })).collect::<Vec<_>>(),
     })
 }
@@ -272,7 +325,11 @@ fn sarif_location(o: &Origin) -> Option<serde_json::Value> {
             file, line, col, ..
         } => (file.path.display().to_string(), *line, *col),
         Origin::FileLine { file, line } => (file.clone(), *line, 1),
-        Origin::Path { file, .. } | Origin::File(file) => (file.path.display().to_string(), 1, 1),
+        Origin::Path { file, name } => {
+            let (line, col) = path_header(&file.path, name).unwrap_or((1, 1));
+            (file.path.display().to_string(), line, col)
+        }
+        Origin::File(file) => (file.path.display().to_string(), 1, 1),
         Origin::Options | Origin::Input => return None,
     };
     Some(json!({
@@ -320,7 +377,7 @@ pub fn sarif(diags: &[Diagnostic], lang: Lang) -> serde_json::Value {
                 "ruleId": d.msg.code(),
                 "level": if d.severity == Severity::Error { "error" } else { "warning" },
                 "message": { "text": d.message(lang) },
-                "locations": sarif_location(&d.origin).into_iter().collect::<Vec<_>>(),
+                "locations": sarif_location(&shown_origin(d)).into_iter().collect::<Vec<_>>(),
                 "relatedLocations": d.related.iter().filter_map(|r| {
                     let mut l = sarif_location(&r.origin)?;
                     l["message"] = json!({ "text": r.note });
@@ -349,7 +406,7 @@ pub fn sarif(diags: &[Diagnostic], lang: Lang) -> serde_json::Value {
                 "rules": rules.iter().map(|d| json!({
                     "id": d.msg.code(),
                     "name": d.msg.name(),
-                    "shortDescription": { "text": template_text(d.msg.template(Lang::En)) },
+                    "shortDescription": { "text": template_text(d.msg.template(lang)) },
                 })).collect::<Vec<_>>(),
             }},
             "originalUriBaseIds": { "%SRCROOT%": { "uri": root } },
@@ -366,7 +423,8 @@ pub fn github(d: &Diagnostic, lang: Lang) -> String {
         "warning"
     };
     let mut props = Vec::new();
-    if let Some(f) = d.origin.file() {
+    let origin = shown_origin(d);
+    if let Some(f) = origin.file() {
         props.push(format!(
             "file={}",
             escape_prop(&f.path.display().to_string())
@@ -378,6 +436,11 @@ pub fn github(d: &Diagnostic, lang: Lang) -> String {
         Origin::Entity(e) => props.push(format!("line={}", e.line)),
         Origin::Span { line, col, .. } => props.push(format!("line={line},col={col}")),
         Origin::FileLine { line, .. } => props.push(format!("line={line}")),
+        Origin::Path { file, name } => {
+            if let Some((line, col)) = path_header(&file.path, name) {
+                props.push(format!("line={line},col={col}"));
+            }
+        }
         _ => {}
     }
     props.push(format!(
@@ -385,8 +448,23 @@ pub fn github(d: &Diagnostic, lang: Lang) -> String {
         escape_prop(&format!("millpath {}", d.msg.code()))
     ));
     let mut msg = d.message(lang);
-    if let Origin::Entity(e) = &d.origin {
-        msg = format!("{msg} ({} on layer {} at {})", e.code_name, e.layer, e.pos);
+    match &d.origin {
+        Origin::Entity(e) if lang == Lang::De => {
+            msg = format!(
+                "{msg} ({} auf Layer {} bei {})",
+                e.code_name, e.layer, e.pos
+            );
+        }
+        Origin::Entity(e) => {
+            msg = format!("{msg} ({} on layer {} at {})", e.code_name, e.layer, e.pos);
+        }
+        Origin::Path { name, .. } => {
+            msg = format!(
+                "{msg} ({} {name})",
+                if lang == Lang::De { "Pfad" } else { "path" }
+            );
+        }
+        _ => {}
     }
     format!("::{kind} {}::{}", props.join(","), escape_data(&msg))
 }

@@ -318,6 +318,8 @@ messages! {
     // text2dxf never destroys a drawing (issue 20)
     WouldLoseDrawing = "{0} holds drawing content that text2dxf does not write back: {1}. Nothing was written: use --into {0} to write the paths into the drawing and keep the rest, or --force to overwrite it", "{0} enthält Zeichnungsinhalt, den text2dxf nicht zurückschreibt: {1}. Es wurde nichts geschrieben: mit --into {0} die Pfade in die Zeichnung schreiben und den Rest behalten, oder mit --force überschreiben";
     NotOursToOverwrite = "{0} exists and cannot be read as a DXF drawing ({1}). Nothing was written: write elsewhere with -o, or overwrite it with --force", "{0} existiert und kann nicht als DXF-Zeichnung gelesen werden ({1}). Es wurde nichts geschrieben: mit -o anderswohin schreiben oder mit --force überschreiben";
+    // entity order at one piece of a polyline or block (extended input): its text is the whole entity's
+    OrderDecidesPiece = "The drawing's entity order decides here: {0} elements are equally good next steps and the first one in the file is taken, so a CAD re-save can change the G-code; this element is one piece of a polyline or block (line {1}), and a parameter text there holds for all its pieces: explode it into lines and arcs in the CAD program, then pin the choice with {2} at this piece", "Hier entscheidet die Reihenfolge der Elemente in der Zeichnung: {0} Elemente kommen gleichermaßen als nächster Schritt in Frage und das erste in der Datei wird genommen, ein erneutes Speichern im CAD kann also den G-Code ändern; dieses Element ist ein Stück einer Polylinie oder eines Blocks (Zeile {1}), und ein Parametertext dort gilt für alle Stücke: sie im CAD-Programm in Linien und Bögen auflösen und dann die Wahl mit {2} an diesem Stück festlegen";
 }
 
 impl Msg {
@@ -365,6 +367,37 @@ pub fn fill(template: &str, args: &[String]) -> String {
     out
 }
 
+/// An operating-system error's text (`No such file or directory (os error 2)`, as Rust's
+/// `io::Error` shows it) in the message language; other texts stay as they are.
+pub fn os_error_text(text: &str, lang: Lang) -> String {
+    const DE: &[(&str, &str)] = &[
+        (
+            "No such file or directory",
+            "Datei oder Verzeichnis nicht gefunden",
+        ),
+        ("Permission denied", "Zugriff verweigert"),
+        ("Is a directory", "ist ein Verzeichnis"),
+        ("Not a directory", "ist kein Verzeichnis"),
+        ("Read-only file system", "Dateisystem nur lesbar"),
+        ("No space left on device", "kein Platz mehr auf dem Gerät"),
+        ("File exists", "Datei existiert schon"),
+        ("Directory not empty", "Verzeichnis nicht leer"),
+        ("Operation not permitted", "Vorgang nicht erlaubt"),
+        (
+            "stream did not contain valid UTF-8",
+            "Datei ist kein gültiges UTF-8",
+        ),
+        ("os error", "OS-Fehler"),
+    ];
+    let mut out = text.to_string();
+    if lang == Lang::De {
+        for (en, de) in DE {
+            out = out.replace(en, de);
+        }
+    }
+    out
+}
+
 #[derive(Debug, Clone, PartialEq)]
 pub struct Related {
     pub origin: Origin,
@@ -408,7 +441,28 @@ impl Diagnostic {
     }
     /// The message for people (editor, human and JSON reports).
     pub fn message(&self, lang: Lang) -> String {
-        fill(self.msg.human_template(lang), &self.args)
+        let template = self.human_text(lang);
+        if lang == Lang::De {
+            // operating-system errors among the arguments are English texts of the OS
+            let args: Vec<String> = self.args.iter().map(|a| os_error_text(a, lang)).collect();
+            return fill(template, &args);
+        }
+        fill(template, &self.args)
+    }
+
+    /// The template for people, where the arguments call for another wording than the
+    /// reference's: "Could not find path X in file(s) …" for a path that was found but has
+    /// errors of its own says so ({2}: its file, {4} = `known`); with no file it says where
+    /// it looked ({2}: the folders searched, {3}: the file-name pattern).
+    fn human_text(&self, lang: Lang) -> &'static str {
+        let no_file = self.args.get(1).is_some_and(String::is_empty);
+        match (self.msg, no_file, self.args.get(4).map(String::as_str), lang) {
+            (Msg::CouldNotFind, _, Some("known"), Lang::En) => "Path {0} (in {2}) cannot be embedded: it has errors of its own",
+            (Msg::CouldNotFind, _, Some("known"), Lang::De) => "Pfad {0} (in {2}) kann nicht eingebettet werden: er hat eigene Fehler",
+            (Msg::CouldNotFind, true, Some(_), Lang::En) => "Could not find path {0}: no drawing in {2} has a file name that covers it (file-name pattern /{3}/)",
+            (Msg::CouldNotFind, true, Some(_), Lang::De) => "Pfad {0} nicht gefunden: keine Zeichnung in {2} hat einen Dateinamen, der ihn abdeckt (Dateinamen-Muster /{3}/)",
+            _ => self.msg.human_template(lang),
+        }
     }
     /// The message exactly as the reference prints it in its `****` lines.
     pub fn reference_message(&self, lang: Lang) -> String {

@@ -124,10 +124,21 @@ pub enum SettingSource {
 
 impl SettingSource {
     pub fn describe(&self) -> String {
+        self.describe_in(millpath_core::Lang::En)
+    }
+
+    /// [`SettingSource::describe`] in the message language.
+    pub fn describe_in(&self, lang: millpath_core::Lang) -> String {
+        let de = lang == millpath_core::Lang::De;
         match self {
-            SettingSource::Default => "default".into(),
+            SettingSource::Default => if de { "Standard" } else { "default" }.into(),
             SettingSource::File(p) => format!("{} ({})", config::FILE_NAME, p.display()),
-            SettingSource::Editor => "editor settings".into(),
+            SettingSource::Editor => if de {
+                "Editor-Einstellungen"
+            } else {
+                "editor settings"
+            }
+            .into(),
         }
     }
 }

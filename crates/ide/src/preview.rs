@@ -50,7 +50,10 @@ pub(crate) fn top_model(
     let names = session.load_file(path);
     let name = match name {
         Some(n) => n.to_string(),
-        None => names.first().cloned().ok_or("no path in this file")?,
+        None => names.first().cloned().ok_or(match lang {
+            Lang::En => "no path in this file",
+            Lang::De => "kein Pfad in dieser Datei",
+        })?,
     };
     match session.build_top(&name) {
         Ok(Some(model)) => Ok(TopModel {
@@ -64,10 +67,16 @@ pub(crate) fn top_model(
                 .chain(messages(&session, lang))
                 .collect(),
         }),
-        Ok(None) => Err(format!(
-            "path {name} cannot be built: {}",
-            messages(&session, lang).join("; ")
-        )),
+        Ok(None) => Err(match lang {
+            Lang::En => format!(
+                "path {name} cannot be built: {}",
+                messages(&session, lang).join("; ")
+            ),
+            Lang::De => format!(
+                "Pfad {name} kann nicht gebaut werden: {}",
+                messages(&session, lang).join("; ")
+            ),
+        }),
         Err(abort) => Err(abort.message(lang)),
     }
 }

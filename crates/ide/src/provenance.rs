@@ -14,9 +14,17 @@ pub(crate) struct Row {
     pub source: String,
 }
 
-pub(crate) fn line_of(t: &ParamText) -> String {
+/// Where a parameter text is: its line in a text file, its entity's line and layer in a DXF.
+pub(crate) fn line_of(t: &ParamText, german: bool) -> String {
+    let word = if german { "Zeile" } else { "line" };
     match &t.origin {
-        Origin::Span { line, .. } => format!("line {line}"),
+        Origin::Span { line, .. } => format!("{word} {line}"),
+        Origin::Entity(e) => format!(
+            "{word} {}, {} {}",
+            e.line,
+            if german { "Layer" } else { "layer" },
+            e.layer
+        ),
         o => o.context(),
     }
 }
@@ -29,6 +37,7 @@ pub(crate) fn provenance(
     seg: Option<&RawSegment>,
 ) -> Vec<Row> {
     let german = de(a);
+    let lang = a.settings.settings.lang;
     let own = seg.and_then(|s| s.text.as_ref()).or_else(|| {
         // markers and probes: their own text from the element line
         object_index(a, el).and_then(|i| a.objects[i].text.as_ref())
@@ -37,8 +46,8 @@ pub(crate) fn provenance(
     let start_src = |t: &ParamText| {
         let base = if german { "Pfadanfang" } else { "path start" };
         match &path.at_ref {
-            Some(r) => format!("{base} (@{r}, {})", line_of(t)),
-            None => format!("{base} ({})", line_of(t)),
+            Some(r) => format!("{base} (@{r}, {})", line_of(t, german)),
+            None => format!("{base} ({})", line_of(t, german)),
         }
     };
     let own_src = if german { "eigener Text" } else { "own text" }.to_string();
@@ -77,7 +86,11 @@ pub(crate) fn provenance(
                             v,
                             format!(
                                 "{src} ({})",
-                                first.text.as_ref().map(line_of).unwrap_or_default()
+                                first
+                                    .text
+                                    .as_ref()
+                                    .map(|t| line_of(t, german))
+                                    .unwrap_or_default()
                             ),
                         );
                         continue;
@@ -107,19 +120,27 @@ pub(crate) fn provenance(
         let o = start.and_then(|t| t.raw('O')).and_then(parse_number);
         let t_ = start.and_then(|t| t.raw('T')).and_then(parse_number);
         match k {
-            'F' => push(k, fmt_num(settings.settings.feed), settings.feed.describe()),
+            'F' => push(
+                k,
+                fmt_num(settings.settings.feed),
+                settings.feed.describe_in(lang),
+            ),
             'S' => {
                 // top level: the machine's sweep height; embedded or checked: T+O
                 let sub = match (t_, o) {
+                    (Some(t), Some(o)) if german => {
+                        format!("; T+O = {} eingebettet oder geprüft", fmt_num(t + o))
+                    }
                     (Some(t), Some(o)) => {
                         format!("; T+O = {} when embedded or checked", fmt_num(t + o))
                     }
                     _ => String::new(),
                 };
+                let top = if german { "Hauptpfad" } else { "top level" };
                 push(
                     k,
                     fmt_num(settings.settings.sweep_height),
-                    format!("{} (top level{sub})", settings.sweep_height.describe()),
+                    format!("{} ({top}{sub})", settings.sweep_height.describe_in(lang)),
                 );
             }
             'A' => {
@@ -130,7 +151,7 @@ pub(crate) fn provenance(
             'Z' => push(
                 k,
                 fmt_num(settings.settings.probe_feed()),
-                settings.probe_feed.describe(),
+                settings.probe_feed.describe_in(lang),
             ),
             _ => {}
         }

@@ -79,7 +79,10 @@ pub fn run(m: &MachineArgs, format: Format, quiet: bool, paths: &[PathBuf]) -> u
         Err(e) => {
             eprintln!(
                 "{}: {e}",
-                report::severity_word(Severity::Error, lang_of(m))
+                report::severity_word(
+                    Severity::Error,
+                    lang_of(m, inputs.first().or(paths.first()).map(PathBuf::as_path))
+                )
             );
             return 2;
         }
@@ -91,7 +94,7 @@ pub fn run(m: &MachineArgs, format: Format, quiet: bool, paths: &[PathBuf]) -> u
         let shown: Vec<String> = paths.iter().map(|p| p.display().to_string()).collect();
         eprintln!(
             "{}",
-            match lang {
+            match lang_of(m, paths.first().map(PathBuf::as_path)) {
                 Lang::En => format!(
                     "error: no drawings (*.dxf, *.mpath) found in {}",
                     shown.join(", ")

@@ -9,12 +9,14 @@ use millpath_core::{compile_file, Lang, OsFileSystem, Session};
 use std::path::PathBuf;
 
 pub fn run(m: &MachineArgs, files: &[String]) -> u8 {
+    // the language of every message, also of those before the settings are read
+    let early = lang_of(m, files.first().map(std::path::Path::new));
     let inputs = match compile_inputs(files) {
         Ok(i) => i,
         Err(dir) => {
             eprintln!(
                 "{}",
-                match lang_of(m) {
+                match early {
                     Lang::En => format!("error: no drawings (*.dxf, *.mpath) found in {dir}"),
                     Lang::De =>
                         format!("Fehler: keine Zeichnungen (*.dxf, *.mpath) in {dir} gefunden"),
@@ -26,10 +28,7 @@ pub fn run(m: &MachineArgs, files: &[String]) -> u8 {
     let settings = match settings_for(m, inputs.first().map(PathBuf::as_path), true) {
         Ok(s) => s,
         Err(e) => {
-            eprintln!(
-                "{}: {e}",
-                report::severity_word(Severity::Error, lang_of(m))
-            );
+            eprintln!("{}: {e}", report::severity_word(Severity::Error, early));
             return 2;
         }
     };

@@ -13,7 +13,7 @@ pub fn run(file: &Path, output: Option<PathBuf>, textconv: bool, m: &MachineArgs
         Ok(x) => x,
         Err(code) if textconv => {
             // git shows this line as the file's text instead of giving up on the diff
-            let what = if lang_of(m) == Lang::De {
+            let what = if lang_of(m, Some(file)) == Lang::De {
                 "nicht lesbar"
             } else {
                 "unreadable"
@@ -21,7 +21,7 @@ pub fn run(file: &Path, output: Option<PathBuf>, textconv: bool, m: &MachineArgs
             return emit(
                 output,
                 &format!("# millpath: {} {what}\n", file.display()),
-                lang_of(m),
+                lang_of(m, Some(file)),
             )
             .max(u8::from(code == 2));
         }

@@ -2,11 +2,17 @@
 
 use crate::inputs::collect_files;
 use crate::output::print_human;
-use crate::write;
+use crate::{report, write};
+use millpath_core::diag::{os_error_text, Severity};
 use millpath_core::Lang;
 use std::path::PathBuf;
 
-pub fn run(check: bool, paths: &[PathBuf]) -> u8 {
+pub fn run(check: bool, paths: &[PathBuf], lang: Lang) -> u8 {
+    let error = report::severity_word(Severity::Error, lang);
+    let not_formatted = match lang {
+        Lang::En => "not formatted",
+        Lang::De => "nicht formatiert",
+    };
     let mut files = Vec::new();
     collect_files(paths, millpath_core::load::fs::is_text_file, &mut files);
     let mut status = 0;
@@ -14,7 +20,11 @@ pub fn run(check: bool, paths: &[PathBuf]) -> u8 {
         let src = match std::fs::read_to_string(&f) {
             Ok(s) => s,
             Err(e) => {
-                eprintln!("error: {}: {e}", f.display());
+                eprintln!(
+                    "{error}: {}: {}",
+                    f.display(),
+                    os_error_text(&e.to_string(), lang)
+                );
                 status = 1;
                 continue;
             }
@@ -24,15 +34,19 @@ pub fn run(check: bool, paths: &[PathBuf]) -> u8 {
             Ok(formatted) if formatted == src => {}
             Ok(formatted) => {
                 if check {
-                    outln!("{}: not formatted", f.display());
+                    outln!("{}: {not_formatted}", f.display());
                     status = 1;
                 } else if let Err(e) = write::write_atomic(&f, &formatted) {
-                    eprintln!("error: {}: {e}", f.display());
+                    eprintln!(
+                        "{error}: {}: {}",
+                        f.display(),
+                        os_error_text(&e.to_string(), lang)
+                    );
                     status = 1;
                 }
             }
             Err(diags) => {
-                print_human(&diags, Lang::En);
+                print_human(&diags, lang);
                 status = 1;
             }
         }

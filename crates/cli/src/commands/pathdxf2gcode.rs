@@ -59,6 +59,7 @@ pub fn run(args: &[String]) -> u8 {
             Msg::OrderDecides
                 | Msg::OrderDecidesText
                 | Msg::OrderDecidesNoPin
+                | Msg::OrderDecidesPiece
                 | Msg::IgnoredEntity
                 | Msg::TextTakenFirst
         )

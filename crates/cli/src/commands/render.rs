@@ -6,6 +6,7 @@ use crate::output::{emit, print_human};
 use crate::{png, report, write};
 use millpath_core::complete_input;
 use millpath_core::diag::{Diagnostic, Msg, Origin, Severity};
+use millpath_core::Lang;
 use std::path::{Path, PathBuf};
 
 pub fn run(
@@ -19,18 +20,25 @@ pub fn run(
     let abs = std::fs::canonicalize(&file).unwrap_or_else(|_| file.clone());
     let ws = millpath_ide::Workspace::default();
     // like `compile`: no drawing with placeholder machine settings
+    // the language of millpath.toml, for every message
+    let lang = ws.settings_for(&abs).settings.lang;
     let missing = ws.settings_for(&abs).missing_machine();
     if !missing.is_empty() {
-        eprintln!(
-            "error: missing machine settings: {} (give them in millpath.toml)",
-            missing.join(", ")
-        );
+        match lang {
+            Lang::En => eprintln!(
+                "error: missing machine settings: {} (give them in millpath.toml)",
+                missing.join(", ")
+            ),
+            Lang::De => eprintln!(
+                "Fehler: Maschinenwerte fehlen: {} (in millpath.toml angeben)",
+                missing.join(", ")
+            ),
+        }
         return 2;
     }
     let data = match millpath_ide::toolpath(&ws, &abs, path) {
         Ok(d) => d,
         Err(e) => {
-            let lang = ws.settings_for(&abs).settings.lang;
             // say why: a missing or unreadable file, a file that is not a drawing, syntax
             // errors — not only that no path was found
             if let Err(err) = std::fs::read(&file) {
@@ -65,7 +73,10 @@ pub fn run(
             return 1;
         }
     };
-    let lang = ws.settings_for(&abs).settings.lang;
+    let writing = match lang {
+        Lang::En => "Writing",
+        Lang::De => "Schreiben von",
+    };
     let html = html.or_else(|| {
         (svg.is_none() && png.is_none()).then(|| {
             PathBuf::from(format!(
@@ -76,19 +87,24 @@ pub fn run(
     });
     let mut status = 0;
     if let Some(out) = html {
-        eprintln!("---- Writing {}", out.display());
+        eprintln!("---- {writing} {}", out.display());
         status |= emit(Some(&out), &millpath_ide::toolpath_html(&data), lang);
     }
     if let Some(out) = svg {
-        eprintln!("---- Writing {}", out.display());
+        eprintln!("---- {writing} {}", out.display());
         status |= emit(Some(&out), &millpath_ide::toolpath_svg(&data), lang);
     }
     if let Some(out) = png {
-        eprintln!("---- Writing {}", out.display());
+        eprintln!("---- {writing} {}", out.display());
         let written = png::svg_to_png(&millpath_ide::toolpath_svg(&data))
             .and_then(|bytes| write::write_atomic_bytes(&out, &bytes).map_err(|e| e.to_string()));
         if let Err(e) = written {
-            eprintln!("error: {}: {e}", out.display());
+            eprintln!(
+                "{}: {}: {}",
+                report::severity_word(Severity::Error, lang),
+                out.display(),
+                millpath_core::diag::os_error_text(&e, lang)
+            );
             status |= 1;
         }
     }

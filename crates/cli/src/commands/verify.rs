@@ -4,6 +4,15 @@ use millpath_verify::{verify, Dialect, Lang, Options, Report, Severity};
 use serde_json::json;
 use std::path::PathBuf;
 
+/// An operating-system error in the message language.
+fn os_text(e: &std::io::Error, lang: Lang) -> String {
+    let lang = match lang {
+        Lang::En => millpath_core::Lang::En,
+        Lang::De => millpath_core::Lang::De,
+    };
+    millpath_core::diag::os_error_text(&e.to_string(), lang)
+}
+
 /// Larger files are refused unread.
 const MAX_FILE_BYTES: u64 = 256 << 20;
 
@@ -19,7 +28,8 @@ pub struct Args {
 
 fn read(path: &PathBuf, lang: Lang) -> Result<String, String> {
     let de = lang == Lang::De;
-    let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
+    let os = |e: std::io::Error| os_text(&e, lang);
+    let meta = std::fs::metadata(path).map_err(os)?;
     if meta.len() > MAX_FILE_BYTES {
         return Err(if de {
             format!("größer als {} MiB", MAX_FILE_BYTES >> 20)
@@ -27,7 +37,7 @@ fn read(path: &PathBuf, lang: Lang) -> Result<String, String> {
             format!("larger than {} MiB", MAX_FILE_BYTES >> 20)
         });
     }
-    let bytes = std::fs::read(path).map_err(|e| e.to_string())?;
+    let bytes = std::fs::read(path).map_err(os)?;
     Ok(String::from_utf8_lossy(&bytes).into_owned())
 }
 
@@ -71,13 +81,19 @@ pub fn run(a: &Args) -> u8 {
     for (name, v) in [("--top", a.top), ("--tool", a.tool), ("--bottom", a.bottom)] {
         if let Some(v) = v {
             if !v.is_finite() || v.abs() > millpath_verify::MAX_MAGNITUDE {
-                eprintln!("error: {name} {v}: not a usable number");
+                match a.lang {
+                    Lang::En => eprintln!("error: {name} {v}: not a usable number"),
+                    Lang::De => eprintln!("Fehler: {name} {v}: keine brauchbare Zahl"),
+                }
                 return 2;
             }
         }
     }
     if a.tool.is_some_and(|o| o <= 0.0) {
-        eprintln!("error: --tool must be > 0");
+        match a.lang {
+            Lang::En => eprintln!("error: --tool must be > 0"),
+            Lang::De => eprintln!("Fehler: --tool muss > 0 sein"),
+        }
         return 2;
     }
     let mut failed = false;

@@ -106,10 +106,39 @@ impl Session<'_> {
         )?;
         let Some(target) = target else {
             let list: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
+            // {2}, {3} for people only (the reference line names the files, maybe none):
+            // the file that defines the path, or the folders searched and the file pattern
+            let (known, place) = match self.raw.get(&target_name) {
+                Some(r) => ("known", r.file.path.display().to_string()),
+                None => {
+                    let mut dirs = vec![raw
+                        .file
+                        .path
+                        .parent()
+                        .map_or_else(|| ".".into(), |d| d.display().to_string())];
+                    dirs.extend(
+                        self.settings
+                            .search_dirs
+                            .iter()
+                            .map(|d| d.display().to_string()),
+                    );
+                    let dirs: Vec<String> = dirs
+                        .into_iter()
+                        .map(|d| if d.is_empty() { ".".into() } else { d })
+                        .collect();
+                    ("searched", dirs.join(", "))
+                }
+            };
             self.diags.error(
                 Msg::CouldNotFind,
                 end_origin,
-                args![target_name, list.join(", ")],
+                args![
+                    target_name,
+                    list.join(", "),
+                    place,
+                    self.settings.file_pattern,
+                    known
+                ],
             );
             return Ok(None);
         };

@@ -115,6 +115,10 @@ impl Session<'_> {
         vars: &Vars,
         cx: &BuildCtx,
     ) -> Result<Option<Arc<Model>>, Abort> {
+        // its syntax errors are reported; what follows from them would only mislead
+        if raw.broken {
+            return Ok(None);
+        }
         let errors_before = self.diags.errors_reported();
         // 1. markers
         let (Some(start), Some(end)) = (raw.start.clone(), raw.end.clone()) else {

@@ -104,6 +104,10 @@ pub(crate) fn warn(raw: &RawPath, ties: &[Tie], diags: &mut Diags) {
             Some(v) if matches!(seg.origin, Origin::Span { .. }) => {
                 (Msg::OrderDecidesText, args![count, format!("N{v}")])
             }
+            Some(v) if piece_of_one_entity(raw, seg).is_some() => {
+                let line = piece_of_one_entity(raw, seg).unwrap_or_default();
+                (Msg::OrderDecidesPiece, args![count, line, format!("N{v}")])
+            }
             Some(v) => (Msg::OrderDecides, args![count, format!("N{v}")]),
         };
         let mut d = Diagnostic::warning(msg, with_pos(&seg.origin, tie.at), args);
@@ -114,6 +118,21 @@ pub(crate) fn warn(raw: &RawPath, ties: &[Tie], diags: &mut Diags) {
         }
         diags.push(d);
     }
+}
+
+/// The DXF line of the entity `seg` is a piece of, when other segments come from it too (a
+/// polyline or block resolved in the extended mode): one text there sets N on every piece.
+fn piece_of_one_entity(raw: &RawPath, seg: &RawSegment) -> Option<usize> {
+    let Origin::Entity(e) = &seg.origin else {
+        return None;
+    };
+    raw.segments
+        .iter()
+        .any(|s| {
+            !std::ptr::eq(s, seg)
+                && matches!(&s.origin, Origin::Entity(o) if o.line == e.line && o.file == e.file)
+        })
+        .then_some(e.line)
 }
 
 /// Segment kinds whose N takes part in the traversal (HIDDEN sweeps are always 9998).

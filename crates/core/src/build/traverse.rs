@@ -115,7 +115,8 @@ pub fn walk(raw: &RawPath, start: P2, end: P2, diags: &mut Diags) -> (Vec<Step>,
                 diags.error(Msg::NotReached, o, args![count]);
             } else {
                 let o = out.last().map_or_else(
-                    || raw.origin(),
+                    // nothing walked: the walk ends where it starts
+                    || raw.start_origin(),
                     |s| {
                         let sh = &segs[s.index].shape;
                         with_pos(

@@ -165,6 +165,9 @@ pub struct RawPath {
     pub at_ref: Option<String>,
     pub probes: Vec<ProbeDef>,
     pub segments: Vec<RawSegment>,
+    /// Lines of the path's text did not parse: a marker or segment "missing" may be in them,
+    /// so only the syntax errors are reported for it (no cascade of structure messages).
+    pub broken: bool,
 }
 
 impl RawPath {
@@ -179,6 +182,7 @@ impl RawPath {
             at_ref: None,
             probes: Vec::new(),
             segments: Vec::new(),
+            broken: false,
         }
     }
     pub fn origin(&self) -> Origin {

@@ -223,14 +223,32 @@ impl<'a> Session<'a> {
         file: &Arc<FileRef>,
         diags: &mut Diags,
     ) -> Result<(crate::front::text::TextDrawing, Vec<RawPath>), Diagnostic> {
+        // the path blocks holding a line that did not parse
+        let broken: Vec<&str> = ast
+            .paths()
+            .filter(|b| {
+                errors
+                    .iter()
+                    .any(|e| b.span.start <= e.span.start && e.span.start < b.span.end)
+            })
+            .map(|b| b.name.value.as_str())
+            .collect();
         let text = crate::front::text::objects_of(ast, errors, src, file, diags)?;
-        let paths = crate::front::drawing::build_paths(
+        let mut paths = crate::front::drawing::build_paths(
             &text.objects,
             file,
             &self.patterns.path_cs,
             &self.settings.path_pattern,
             diags,
         )?;
+        for p in &mut paths {
+            p.broken = broken.contains(&p.name.as_str());
+        }
+        // a start line that did not parse is no missing parameters text
+        diags.list.retain(|d| {
+            !(d.msg == Msg::ParametersTextMissing
+                && matches!(&d.origin, Origin::Path { name, .. } if broken.contains(&name.as_str())))
+        });
         text.check_declared_kinds(&paths, diags);
         for p in &paths {
             if !self.patterns.path_full.is_match(&p.name) {
