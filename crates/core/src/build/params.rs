@@ -27,7 +27,7 @@ impl Session<'_> {
         };
         let s = ev
             .num(t_, 'S')
-            .unwrap_or(if cx.top && !self.settings.check {
+            .unwrap_or(if cx.top && (!self.settings.check || self.settings.check_sweep_height) {
                 self.settings.sweep_height
             } else {
                 t + o

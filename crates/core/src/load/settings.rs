@@ -21,6 +21,12 @@ pub struct Settings {
     pub probe_feed: Option<f64>,
     /// `/c`: check every path, write nothing.
     pub check: bool,
+    /// The reference's `/c` (`pathdxf2gcode`): every path generated even after errors, no
+    /// file-level errors, S = T+O. Otherwise check mode reports what `compile` would.
+    pub reference_check: bool,
+    /// Check mode knows the sweep height `compile` would use (options or millpath.toml):
+    /// the top-level default S is then `/s`, as in `compile`, not T+O.
+    pub check_sweep_height: bool,
     /// `/d`: further search directories, in order.
     pub search_dirs: Vec<PathBuf>,
     pub path_pattern: String,
@@ -60,6 +66,8 @@ impl Default for Settings {
             sweep_height: 15.0,
             probe_feed: None,
             check: false,
+            reference_check: false,
+            check_sweep_height: false,
             search_dirs: Vec::new(),
             path_pattern: crate::load::names::DEFAULT_PATH_PATTERN.into(),
             file_pattern: crate::load::names::DEFAULT_FILE_PATTERN.into(),
