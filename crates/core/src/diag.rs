@@ -315,6 +315,11 @@ messages! {
     FileTooLarge = "File {0} is larger than {1} MiB, the most a drawing may have", "Datei {0} ist größer als {1} MiB, das Höchstmaß für eine Zeichnung";
     // entity order in the assignment of texts (reference-input.md §2.4)
     TextTakenFirst = "The drawing's entity order decides which element text '{0}' belongs to: it overlaps best the element that text '{1}' took, which comes first in the file, so a CAD re-save can change the G-code; move the texts so that each is nearest to its own element", "Die Reihenfolge der Elemente in der Zeichnung entscheidet, zu welchem Element der Text '{0}' gehört: er überlappt am besten das Element, das der Text '{1}' bekam, der in der Datei zuerst kommt; ein erneutes Speichern im CAD kann also den G-Code ändern; die Texte so verschieben, dass jeder seinem eigenen Element am nächsten liegt";
+    // check ≡ compile, path names and feeds (issue 20)
+    VariablesNotGiven = "Path {0} defines variables ({1}) and gets no values when compiled on its own: embed it in a path that assigns them (millpath check checks it with its check values)", "Pfad {0} definiert Variablen ({1}) und bekommt beim Übersetzen allein keine Werte: ihn in einen Pfad einbetten, der sie zuweist (millpath check prüft ihn mit seinen Prüfwerten)";
+    PathNameCase = "Path name {0} matches the name pattern {1} only when case is ignored; path names are case-sensitive ({0} and {2} would be two paths): did you mean {2}?", "Pfadname {0} passt nur ohne Beachtung der Groß-/Kleinschreibung zum Namensmuster {1}; Pfadnamen unterscheiden Groß- und Kleinschreibung ({0} und {2} wären zwei Pfade): war {2} gemeint?";
+    SubpathNotFoundCase = "Could not find path {0} in file(s) {1}; did you mean {2}? (path names are case-sensitive)", "Pfad {0} nicht in Datei(en) {1} gefunden; war {2} gemeint? (Pfadnamen unterscheiden Groß- und Kleinschreibung)";
+    FeedTooSmall = "{0} {1} mm/min is below {2} mm/min: no machine moves that slowly (the program would show F{3}); give the feed in mm/min", "{0} {1} mm/min ist kleiner als {2} mm/min: so langsam fährt keine Maschine (das Programm zeigte F{3}); den Vorschub in mm/min angeben";
 }
 
 impl Msg {

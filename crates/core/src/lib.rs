@@ -103,6 +103,9 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
             };
             session.info.push(format!("---- {verb} {name}"));
         }
+        if !check && !session.settings.reference_check {
+            warn_variables_not_given(session, name);
+        }
         let before = session.diags.errors_reported();
         match session.build_top(name) {
             Err(abort) => {
@@ -213,6 +216,23 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
         .stats
         .push((model.name().to_string(), generated.stats));
     outcome
+}
+
+/// A path that defines variables gets no values as a top-level compile (reference-input.md
+/// §6.2): what follows (a `>` name with `=X` in it, values that are no numbers) is explained.
+fn warn_variables_not_given(session: &mut Session, name: &str) {
+    let Some(raw) = session.raw_path(name) else {
+        return;
+    };
+    let Some(text) = raw.start_text.as_ref().filter(|t| !t.vars.is_empty()) else {
+        return;
+    };
+    let vars: String = text.vars.iter().map(|(n, _)| *n).collect();
+    session.diags.push(Diagnostic::warning(
+        Msg::VariablesNotGiven,
+        raw.start_origin(),
+        args![name, vars],
+    ));
 }
 
 /// Generates the program of a model and has the independent checker review it; its

@@ -106,11 +106,20 @@ impl Session<'_> {
         )?;
         let Some(target) = target else {
             let list: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
-            self.diags.error(
-                Msg::CouldNotFind,
-                end_origin,
-                args![target_name, list.join(", ")],
-            );
+            let mut a = args![target_name, list.join(", ")];
+            // a known name that differs only in case (`>2100.1p` for 2100.1P): say so, except
+            // on the reference's command line, whose messages stay the reference's
+            let other_case = self
+                .case_twin(&target_name)
+                .filter(|_| !self.settings.reference_check);
+            let msg = match other_case {
+                Some(name) => {
+                    a.push(name);
+                    Msg::SubpathNotFoundCase
+                }
+                None => Msg::CouldNotFind,
+            };
+            self.diags.error(msg, end_origin, a);
             return Ok(None);
         };
         // material, bit and thickness must agree
