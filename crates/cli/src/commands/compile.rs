@@ -7,7 +7,7 @@ use crate::output::{flush_info, print_human, print_stats, write_outputs};
 use crate::report;
 use millpath_core::diag::{Diags, Severity};
 use millpath_core::{compile_file, Lang, OsFileSystem, Session, Settings};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 pub fn run(m: &MachineArgs, files: &[String]) -> u8 {
     let inputs = match compile_inputs(files) {
@@ -24,25 +24,30 @@ pub fn run(m: &MachineArgs, files: &[String]) -> u8 {
             return 3;
         }
     };
-    let settings = match settings_for(m, inputs.first().map(PathBuf::as_path), true) {
-        Ok(s) => s,
-        Err(e) => {
-            eprintln!(
-                "{}: {e}",
-                report::severity_word(Severity::Error, lang_of(m))
-            );
+    // each drawing's settings: the millpath.toml nearest to it, then the options; any that
+    // cannot be had (or holds invalid patterns or numbers) stops the run before a drawing
+    let mut each = Vec::with_capacity(inputs.len());
+    for input in &inputs {
+        let settings = match settings_for(m, Some(input), true) {
+            Ok(s) => s,
+            Err(e) => {
+                eprintln!(
+                    "{}: {e}",
+                    report::severity_word(Severity::Error, lang_of(m))
+                );
+                return 2;
+            }
+        };
+        if let Err(errs) = Session::new(settings.clone(), &OsFileSystem) {
+            print_human(&errs, settings.lang);
             return 2;
         }
-    };
-    let lang = settings.lang;
-    // option errors (patterns, numbers) before any drawing
-    if let Err(errs) = Session::new(settings.clone(), &OsFileSystem) {
-        print_human(&errs, lang);
-        return 2;
+        each.push(settings);
     }
+    let lang = each.first().map_or(lang_of(m), |s| s.lang);
     let mut not_written = Vec::new();
-    for input in &inputs {
-        if !compile_one(&settings, input) {
+    for (input, settings) in inputs.iter().zip(&each) {
+        if !compile_one(settings, input) {
             not_written.push(input.as_path());
         }
     }
