@@ -116,7 +116,7 @@ fn mutations(file: &Path, content: &str) -> Vec<(String, String)> {
         m.push(("F0,0001".into(), content.replacen(" O2", " O2 F0,0001", 1)));
         if let Some(p) = content.find('>') {
             let mut s = content.to_string();
-            s.insert_str(p + 1, "9");
+            s.insert(p + 1, '9');
             m.push(("missing subpath".into(), s));
         }
     } else {
@@ -140,7 +140,7 @@ fn mutations(file: &Path, content: &str) -> Vec<(String, String)> {
         if let Some(p) = content.find("\\P>").or_else(|| content.find('>')) {
             let mut s = content.to_string();
             let at = s[p..].find('>').map_or(p, |q| p + q) + 1;
-            s.insert_str(at, "9");
+            s.insert(at, '9');
             m.push(("missing subpath".into(), s));
         }
     }

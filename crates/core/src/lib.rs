@@ -148,7 +148,8 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
     if check {
         for (model, clean) in built {
             // compile generates nothing after an error: neither does its check
-            if !reference_check && !(clean && !load_failed) {
+            let generates = reference_check || (clean && !load_failed);
+            if !generates {
                 continue;
             }
             if session.stopped() {
