@@ -68,56 +68,63 @@ fn output_prefix(input: &Path, suffix: &str) -> PathBuf {
 }
 
 /// Compiles one command-line file (reference-input.md §7.5). Errors go to `session.diags`.
+///
+/// Check mode (`settings.check`) is the same code without writing: it reports what `compile`
+/// would, except that a file with several paths is a library whose every path is checked
+/// (compile refuses it, MP061). The reference's `/c` (`settings.reference_check`) keeps its
+/// own rules: every built path is generated even after errors, no file-level errors.
 pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOutcome {
-    let names = session.load_file(input);
+    let mut names = session.load_file(input);
+    // as compile's rule: any error so far (the session of a check or an editor analysis
+    // holds this file only; the editor has already reported its buffer's syntax)
+    let load_failed = session.diags.errors_reported() > 0;
     let file_name = input
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
+    let check = session.settings.check;
+    let reference_check = check && session.settings.reference_check;
     let mut outcome = FileOutcome::default();
-    if session.settings.check {
-        let mut sorted = names.clone();
-        sorted.sort();
-        for name in sorted {
-            if session.stopped() {
-                return outcome;
-            }
+    if check {
+        names.sort();
+    }
+    // the built models, each with whether errors came while building it
+    let mut built = Vec::new();
+    let mut aborted = false;
+    for name in &names {
+        if session.stopped() {
+            return outcome;
+        }
+        if check {
             let verb = if session.lang() == Lang::De {
                 "Prüfen von"
             } else {
                 "Checking"
             };
             session.info.push(format!("---- {verb} {name}"));
-            match session.build_top(&name) {
-                Err(abort) => session.diags.push(abort),
-                Ok(None) => {}
-                Ok(Some(model)) => match emit::check_until(
-                    &model,
-                    session.settings.sweep_speed,
-                    &Controller::of(&session.settings),
-                    session.stop,
-                ) {
-                    Ok(stats) => outcome.stats.push((name.clone(), stats)),
-                    Err(errs) => errs.into_iter().for_each(|e| session.diags.push(e)),
-                },
-            }
         }
-        return outcome;
-    }
-    let mut built = Vec::new();
-    for name in &names {
+        if !check && !session.settings.reference_check {
+            warn_variables_not_given(session, name);
+        }
+        let before = session.diags.errors_reported();
         match session.build_top(name) {
             Err(abort) => {
                 session.diags.push(abort);
-                return outcome;
+                aborted = true;
+                if !check {
+                    return outcome;
+                }
             }
-            Ok(Some(m)) => built.push(m),
+            Ok(Some(m)) => {
+                let clean = session.diags.errors_reported() == before && !m.has_errors;
+                built.push((m, clean));
+            }
             Ok(None) => {}
         }
     }
     let file_origin = Origin::File(diag::FileRef::new(input.to_path_buf()));
-    if built.len() > 1 {
-        let mut list: Vec<&str> = built.iter().map(|m| m.name()).collect();
+    if !check && built.len() > 1 {
+        let mut list: Vec<&str> = built.iter().map(|(m, _)| m.name()).collect();
         list.sort();
         session.diags.error(
             Msg::MoreThanOnePath,
@@ -126,7 +133,7 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
         );
         return outcome;
     }
-    let Some(model) = built.pop() else {
+    if built.is_empty() && !aborted && !reference_check {
         // "DXF file" only for a DXF file
         let msg = if crate::load::fs::is_text_file(input) {
             Msg::NoErrorFreePathInFile
@@ -137,35 +144,45 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
             .diags
             .error(msg, file_origin, args![input.display()]);
         return outcome;
+    }
+    if check {
+        for (model, clean) in built {
+            // compile generates nothing after an error: neither does its check
+            let generates = reference_check || (clean && !load_failed);
+            if !generates {
+                continue;
+            }
+            if session.stopped() {
+                return outcome;
+            }
+            if reference_check {
+                match emit::check_until(
+                    &model,
+                    session.settings.sweep_speed,
+                    &Controller::of(&session.settings),
+                    session.stop,
+                ) {
+                    Ok(stats) => outcome.stats.push((model.name().to_string(), stats)),
+                    Err(errs) => errs.into_iter().for_each(|e| session.diags.push(e)),
+                }
+            } else if let Some(g) = generate_and_review(session, &model, &file_name, banner) {
+                outcome.stats.push((model.name().to_string(), g.0.stats));
+            }
+        }
+        return outcome;
+    }
+    let Some((model, _)) = built.pop() else {
+        return outcome;
     };
     if session.diags.has_errors() {
         return outcome;
     }
-    let generated = match generate_for(
-        &model,
-        &file_name,
-        banner,
-        session.settings.sweep_speed,
-        session.lang(),
-        &Controller::of(&session.settings),
-    ) {
-        Ok(g) => g,
-        Err(errs) => {
-            errs.into_iter().for_each(|e| session.diags.push(e));
-            return outcome;
-        }
+    let Some((generated, removed_volume)) =
+        generate_and_review(session, &model, &file_name, banner)
+    else {
+        return outcome;
     };
-    let program = match &generated.output {
-        Output::Milling(g) => g,
-        Output::Probing { clean, .. } => clean,
-    };
-    let lang = session.lang();
-    let dialect = session.settings.dialect;
-    let review = second_opinion::review(program, &model, &generated.line_sources, lang, dialect);
-    for d in review.diagnostics {
-        session.diags.push(d);
-    }
-    outcome.removed_volume = review.removed_volume;
+    outcome.removed_volume = removed_volume;
     if session.diags.has_errors() {
         // a controller dialect whose checker objects: nothing is written
         return outcome;
@@ -200,6 +217,62 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
         .stats
         .push((model.name().to_string(), generated.stats));
     outcome
+}
+
+/// A path that defines variables gets no values as a top-level compile (reference-input.md
+/// §6.2): what follows (a `>` name with `=X` in it, values that are no numbers) is explained.
+fn warn_variables_not_given(session: &mut Session, name: &str) {
+    let Some(raw) = session.raw_path(name) else {
+        return;
+    };
+    let Some(text) = raw.start_text.as_ref().filter(|t| !t.vars.is_empty()) else {
+        return;
+    };
+    let vars: String = text.vars.iter().map(|(n, _)| *n).collect();
+    session.diags.push(Diagnostic::warning(
+        Msg::VariablesNotGiven,
+        raw.start_origin(),
+        args![name, vars],
+    ));
+}
+
+/// Generates the program of a model and has the independent checker review it; its
+/// findings go to the session. `None` when generation failed.
+fn generate_and_review(
+    session: &mut Session,
+    model: &model::Model,
+    file_name: &str,
+    banner: &str,
+) -> Option<(emit::Generated, Option<f64>)> {
+    let generated = match generate_for(
+        model,
+        file_name,
+        banner,
+        session.settings.sweep_speed,
+        session.lang(),
+        &Controller::of(&session.settings),
+    ) {
+        Ok(g) => g,
+        Err(errs) => {
+            errs.into_iter().for_each(|e| session.diags.push(e));
+            return None;
+        }
+    };
+    let program = match &generated.output {
+        Output::Milling(g) => g,
+        Output::Probing { clean, .. } => clean,
+    };
+    let review = second_opinion::review(
+        program,
+        model,
+        &generated.line_sources,
+        session.lang(),
+        session.settings.dialect,
+    );
+    for d in review.diagnostics {
+        session.diags.push(d);
+    }
+    Some((generated, review.removed_volume))
 }
 
 #[cfg(test)]

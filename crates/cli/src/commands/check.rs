@@ -88,6 +88,9 @@ pub fn run(m: &MachineArgs, format: Format, quiet: bool, paths: &[PathBuf]) -> u
         }
     };
     settings.check = true;
+    // with the machine settings compile needs, the top-level S is compile's, not T+O
+    settings.check_sweep_height =
+        settings_for(m, inputs.first().map(PathBuf::as_path), true).is_ok();
     let lang = settings.lang;
     if inputs.is_empty() {
         // like the reference's "no files" (exit 3)

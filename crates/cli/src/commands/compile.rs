@@ -1,12 +1,13 @@
-//! `millpath compile`: drawings to G-code files beside them.
+//! `millpath compile`: drawings to G-code files beside them. Each drawing stands alone (a
+//! session of its own): a bad one stops only itself, and a summary names those not written.
 
 use crate::args::{lang_of, settings_for, MachineArgs};
 use crate::inputs::compile_inputs;
 use crate::output::{flush_info, print_human, print_stats, write_outputs};
 use crate::report;
-use millpath_core::diag::{Diagnostic, Diags, Severity};
-use millpath_core::{compile_file, Lang, OsFileSystem, Session};
-use std::path::PathBuf;
+use millpath_core::diag::{Diags, Severity};
+use millpath_core::{compile_file, Lang, OsFileSystem, Session, Settings};
+use std::path::Path;
 
 pub fn run(m: &MachineArgs, files: &[String]) -> u8 {
     // the language of every message, also of those before the settings are read
@@ -25,47 +26,111 @@ pub fn run(m: &MachineArgs, files: &[String]) -> u8 {
             return 3;
         }
     };
-    let settings = match settings_for(m, inputs.first().map(PathBuf::as_path), true) {
-        Ok(s) => s,
-        Err(e) => {
-            eprintln!("{}: {e}", report::severity_word(Severity::Error, early));
+    // each drawing's settings: the millpath.toml nearest to it, then the options; any that
+    // cannot be had (or holds invalid patterns or numbers) stops the run before a drawing
+    let mut each = Vec::with_capacity(inputs.len());
+    for input in &inputs {
+        let settings = match settings_for(m, Some(input), true) {
+            Ok(s) => s,
+            Err(e) => {
+                eprintln!(
+                    "{}: {e}",
+                    report::severity_word(Severity::Error, early)
+                );
+                return 2;
+            }
+        };
+        if let Err(errs) = Session::new(settings.clone(), &OsFileSystem) {
+            print_human(&errs, settings.lang);
             return 2;
         }
-    };
+        each.push(settings);
+    }
+    let lang = each.first().map_or(early, |s| s.lang);
+    let mut not_written = Vec::new();
+    for (input, settings) in inputs.iter().zip(&each) {
+        if !compile_one(settings, input) {
+            not_written.push(input.as_path());
+        }
+    }
+    if inputs.len() > 1 {
+        eprintln!("{}", summary(inputs.len(), &not_written, lang));
+    }
+    u8::from(!not_written.is_empty())
+}
+
+/// Compiles one drawing in a session of its own and writes its outputs; prints its progress,
+/// statistics and diagnostics. Whether its outputs were written.
+fn compile_one(settings: &Settings, input: &Path) -> bool {
     let lang = settings.lang;
     let fs = OsFileSystem;
-    let mut session = match Session::new(settings, &fs) {
+    let mut session = match Session::new(settings.clone(), &fs) {
         Ok(s) => s,
         Err(errs) => {
             print_human(&errs, lang);
-            return 2;
+            return false;
         }
     };
+    let outcome = compile_file(&mut session, input, &millpath_core::banner());
+    flush_info(&mut session);
     let mut write_errors = Diags::default();
-    for input in inputs {
-        let outcome = compile_file(&mut session, &input, &millpath_core::banner());
-        flush_info(&mut session);
-        if write_outputs(&outcome.outputs, lang, &mut write_errors) {
-            print_stats(&outcome, lang);
-            if let (Some(v), false) = (outcome.removed_volume, outcome.outputs.is_empty()) {
-                // not in pathdxf2gcode's output, which stays the reference's
-                let label = if lang == Lang::De {
-                    "Abgetragenes Volumen"
-                } else {
-                    "Removed volume"
-                };
-                eprintln!("  {label}: {v:.0} mm³");
-            }
+    let written = !session.diags.has_errors()
+        && !outcome.outputs.is_empty()
+        && write_outputs(&outcome.outputs, lang, &mut write_errors);
+    if written {
+        print_stats(&outcome, lang);
+        if let Some(v) = outcome.removed_volume {
+            // not in pathdxf2gcode's output, which stays the reference's
+            let label = if lang == Lang::De {
+                "Abgetragenes Volumen"
+            } else {
+                "Removed volume"
+            };
+            eprintln!("  {label}: {v:.0} mm³");
         }
     }
-    let all: Vec<Diagnostic> = session
-        .diags
-        .list
-        .iter()
-        .chain(write_errors.list.iter())
-        .cloned()
-        .collect();
-    let all = report::tidy(all);
+    let all = session.diags.list.into_iter().chain(write_errors.list);
+    let all = report::tidy(all.collect());
     print_human(&all, lang);
-    u8::from(all.iter().any(|d| d.severity == Severity::Error))
+    written
+}
+
+/// The last line of a compile of several drawings: how many were written, which were not.
+fn summary(total: usize, not_written: &[&Path], lang: Lang) -> String {
+    let done = total - not_written.len();
+    let names: Vec<String> = not_written
+        .iter()
+        .map(|p| p.display().to_string())
+        .collect();
+    match (lang, names.is_empty()) {
+        (Lang::En, true) => format!("compiled {done} of {total} drawings"),
+        (Lang::En, false) => format!(
+            "compiled {done} of {total} drawings; not written: {}",
+            names.join(", ")
+        ),
+        (Lang::De, true) => format!("{done} von {total} Zeichnungen übersetzt"),
+        (Lang::De, false) => format!(
+            "{done} von {total} Zeichnungen übersetzt; nicht geschrieben: {}",
+            names.join(", ")
+        ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn summary_names_the_drawings_not_written() {
+        let bad = [Path::new("a/1.dxf"), Path::new("b.mpath")];
+        assert_eq!(
+            summary(5, &bad, Lang::En),
+            "compiled 3 of 5 drawings; not written: a/1.dxf, b.mpath"
+        );
+        assert_eq!(
+            summary(5, &bad, Lang::De),
+            "3 von 5 Zeichnungen übersetzt; nicht geschrieben: a/1.dxf, b.mpath"
+        );
+        assert_eq!(summary(2, &[], Lang::En), "compiled 2 of 2 drawings");
+    }
 }

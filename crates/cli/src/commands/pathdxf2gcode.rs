@@ -30,7 +30,10 @@ pub fn run(args: &[String]) -> u8 {
         return 3;
     }
     let fs = OsFileSystem;
-    let mut session = match Session::new(parsed.settings, &fs) {
+    let mut settings = parsed.settings;
+    // `/c` as the reference checks; one session for every file (its "no error so far" rule)
+    settings.reference_check = true;
+    let mut session = match Session::new(settings, &fs) {
         Ok(s) => s,
         Err(errs) => {
             for e in errs {

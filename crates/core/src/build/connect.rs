@@ -106,6 +106,19 @@ impl Session<'_> {
         )?;
         let Some(target) = target else {
             let list: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
+            // a known name that differs only in case (`>2100.1p` for 2100.1P): say so, except
+            // on the reference's command line, whose messages stay the reference's
+            if let Some(name) = self
+                .case_twin(&target_name)
+                .filter(|_| !self.settings.reference_check)
+            {
+                self.diags.error(
+                    Msg::SubpathNotFoundCase,
+                    end_origin,
+                    args![target_name, list.join(", "), name],
+                );
+                return Ok(None);
+            }
             // {2}, {3} for people only (the reference line names the files, maybe none):
             // the file that defines the path, or the folders searched and the file pattern
             let (known, place) = match self.raw.get(&target_name) {

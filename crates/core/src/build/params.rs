@@ -25,13 +25,13 @@ impl Session<'_> {
             Some(v) => v,
             None => missing("O", &mut self.diags),
         };
-        let s = ev
-            .num(t_, 'S')
-            .unwrap_or(if cx.top && !self.settings.check {
+        let s = ev.num(t_, 'S').unwrap_or(
+            if cx.top && (!self.settings.check || self.settings.check_sweep_height) {
                 self.settings.sweep_height
             } else {
                 t + o
-            });
+            },
+        );
         PathParams {
             f: ev.num(t_, 'F').unwrap_or(self.settings.feed),
             t,

@@ -17,6 +17,8 @@ pub struct Patterns {
     pub path_full: NameRegex,
     /// `N`, case-sensitive, unanchored: `@` references.
     pub path_cs: NameRegex,
+    /// `^(?:N)$`, case-sensitive: names that match only when case is ignored get a warning.
+    pub path_exact: NameRegex,
     /// `(?i)N`, unanchored: subpath targets in `>` values.
     pub path_ci: NameRegex,
     /// `^(?i:F)$`.
@@ -56,6 +58,7 @@ impl Patterns {
         }
         let path_full = NameRegex::new(&format!("^(?i:{path})$")).map_err(bad('n', path))?;
         let path_cs = NameRegex::new(path).map_err(bad('n', path))?;
+        let path_exact = NameRegex::new(&format!("^(?:{path})$")).map_err(bad('n', path))?;
         let path_ci = NameRegex::new(&format!("(?i){path}")).map_err(bad('n', path))?;
         let file_full = NameRegex::new(&format!("^(?i:{file})$")).map_err(bad('p', file))?;
         let file_any = NameRegex::new(&format!("(?i){file}")).map_err(bad('p', file))?;
@@ -66,6 +69,7 @@ impl Patterns {
             path_text: path.to_string(),
             path_full,
             path_cs,
+            path_exact,
             path_ci,
             file_full,
             file_any,
@@ -106,6 +110,17 @@ impl Patterns {
             }
         }
         Some(if gp >= gf { 0 } else { gf - gp })
+    }
+
+    /// The spelling a path name that matches the pattern only when case is ignored (a layer
+    /// `1000_1a`) was likely meant to have: its upper-case form, if that matches exactly.
+    /// `None` for names that match as they are (reference-input.md §1.3 takes both).
+    pub fn meant_case(&self, name: &str) -> Option<String> {
+        if self.path_exact.is_match(name) || !self.path_full.is_match(name) {
+            return None;
+        }
+        let upper = name.to_uppercase();
+        self.path_exact.is_match(&upper).then_some(upper)
     }
 
     /// Whether a file (name without directory and extension) may contain the path.
@@ -174,6 +189,17 @@ mod tests {
         assert!(p.file_contains("1234-1236", "1235.99B"));
         assert!(p.file_contains("1234.5-1234.10", "1234.8A"));
         assert!(!p.file_contains("1234.5-1234.10", "1234.40A"));
+    }
+
+    #[test]
+    fn names_in_the_wrong_case_get_their_meant_spelling() {
+        let p = Patterns::new(DEFAULT_PATH_PATTERN, DEFAULT_FILE_PATTERN).unwrap();
+        assert_eq!(p.meant_case("1000.1a").as_deref(), Some("1000.1A"));
+        assert_eq!(p.meant_case("1000.1A"), None);
+        assert_eq!(p.meant_case("1000-1A"), None);
+        // a pattern that takes lower case: nothing to say
+        let lower = Patterns::new("([0-9]{4})[.]([0-9]+)([a-z])", DEFAULT_FILE_PATTERN).unwrap();
+        assert_eq!(lower.meant_case("1000.1a"), None);
     }
 
     #[test]

@@ -153,6 +153,16 @@ impl<'a> Session<'a> {
         let mut names = Vec::new();
         for p in paths {
             names.push(p.name.clone());
+            // the reference takes `1000_1a` silently (§1.3); the manual's names end in a capital
+            if let Some(meant) = self.patterns.meant_case(&p.name) {
+                if !self.settings.reference_check {
+                    self.diags.push(Diagnostic::warning(
+                        Msg::PathNameCase,
+                        p.start_origin(),
+                        args![p.name, self.settings.path_pattern, meant],
+                    ));
+                }
+            }
             match self.raw.get(&p.name) {
                 Some(existing) if existing.file.path != p.file.path => {
                     let d = Diagnostic::error(
@@ -307,6 +317,21 @@ impl<'a> Session<'a> {
         let drawing = dxf_to_drawing(&dxf, file, &opts, diags)?;
         info.extend(drawing.debug.iter().cloned());
         Ok(drawing)
+    }
+
+    /// A known path whose name differs from `name` only in case (the hint of a subpath not
+    /// found); the first in name order.
+    pub(crate) fn case_twin(&self, name: &str) -> Option<String> {
+        if self.raw.contains_key(name) {
+            return None;
+        }
+        let mut twins: Vec<&String> = self
+            .raw
+            .keys()
+            .filter(|k| k.eq_ignore_ascii_case(name))
+            .collect();
+        twins.sort();
+        twins.first().map(|s| s.to_string())
     }
 
     pub fn raw_path(&self, name: &str) -> Option<Arc<RawPath>> {

@@ -21,6 +21,13 @@ pub struct Settings {
     pub probe_feed: Option<f64>,
     /// `/c`: check every path, write nothing.
     pub check: bool,
+    /// The reference's command line (`pathdxf2gcode`): its messages, and its `/c` (every
+    /// path generated even after errors, no file-level errors, S = T+O). Otherwise check
+    /// mode reports what `compile` would.
+    pub reference_check: bool,
+    /// Check mode knows the sweep height `compile` would use (options or millpath.toml):
+    /// the top-level default S is then `/s`, as in `compile`, not T+O.
+    pub check_sweep_height: bool,
     /// `/d`: further search directories, in order.
     pub search_dirs: Vec<PathBuf>,
     pub path_pattern: String,
@@ -60,6 +67,8 @@ impl Default for Settings {
             sweep_height: 15.0,
             probe_feed: None,
             check: false,
+            reference_check: false,
+            check_sweep_height: false,
             search_dirs: Vec::new(),
             path_pattern: crate::load::names::DEFAULT_PATH_PATTERN.into(),
             file_pattern: crate::load::names::DEFAULT_FILE_PATTERN.into(),
@@ -126,6 +135,13 @@ impl Settings {
                 ));
             }
         }
+        // feeds and speeds that round to nothing in the program or the estimate
+        let mut feeds = vec![("feed", self.feed), ("sweep_speed", self.sweep_speed)];
+        feeds.extend(self.probe_feed.map(|z| ("probe_feed", z)));
+        feeds.extend(self.plunge_feed.map(|v| ("plunge_feed", v)));
+        errors.extend(feeds.into_iter().filter_map(|(name, v)| {
+            crate::build::validate::feed_too_small(name, v, &Origin::Options)
+        }));
         if finite(self.spindle_dwell) && self.spindle_dwell < 0.0 {
             errors.push(Diagnostic::error(
                 Msg::OptionNegative,
