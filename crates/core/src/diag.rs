@@ -315,6 +315,10 @@ messages! {
     FileTooLarge = "File {0} is larger than {1} MiB, the most a drawing may have", "Datei {0} ist größer als {1} MiB, das Höchstmaß für eine Zeichnung";
     // entity order in the assignment of texts (reference-input.md §2.4)
     TextTakenFirst = "The drawing's entity order decides which element text '{0}' belongs to: it overlaps best the element that text '{1}' took, which comes first in the file, so a CAD re-save can change the G-code; move the texts so that each is nearest to its own element", "Die Reihenfolge der Elemente in der Zeichnung entscheidet, zu welchem Element der Text '{0}' gehört: er überlappt am besten das Element, das der Text '{1}' bekam, der in der Datei zuerst kommt; ein erneutes Speichern im CAD kann also den G-Code ändern; die Texte so verschieben, dass jeder seinem eigenen Element am nächsten liegt";
+    // text in G-code comments made safe for the controller (emit/comment.rs)
+    CommentTextChanged = "'{0}' is written as '{1}' in the G-code comments (dialect {2}): a controller would misread it there (a nested parenthesis, an active comment word, a real-time command character or a line too long); rename the file or change the text to keep it as it is", "'{0}' wird in den G-Code-Kommentaren als '{1}' geschrieben (Dialekt {2}): eine Steuerung würde es dort falsch lesen (eine verschachtelte Klammer, ein aktives Kommentarwort, ein Echtzeit-Befehlszeichen oder eine zu lange Zeile); die Datei umbenennen oder den Text ändern, um ihn unverändert zu behalten";
+    // `check` on folders without drawings (a report in every format)
+    NoDrawingsFound = "no drawings (*.dxf, *.mpath) found in {0}", "keine Zeichnungen (*.dxf, *.mpath) in {0} gefunden";
 }
 
 impl Msg {

@@ -91,15 +91,21 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
             match session.build_top(&name) {
                 Err(abort) => session.diags.push(abort),
                 Ok(None) => {}
-                Ok(Some(model)) => match emit::check_until(
-                    &model,
-                    session.settings.sweep_speed,
-                    &Controller::of(&session.settings),
-                    session.stop,
-                ) {
-                    Ok(stats) => outcome.stats.push((name.clone(), stats)),
-                    Err(errs) => errs.into_iter().for_each(|e| session.diags.push(e)),
-                },
+                Ok(Some(model)) => {
+                    let dialect = session.settings.dialect;
+                    for d in emit::comment::comment_changes(&model, &file_name, dialect) {
+                        session.diags.push(d);
+                    }
+                    match emit::check_until(
+                        &model,
+                        session.settings.sweep_speed,
+                        &Controller::of(&session.settings),
+                        session.stop,
+                    ) {
+                        Ok(stats) => outcome.stats.push((name.clone(), stats)),
+                        Err(errs) => errs.into_iter().for_each(|e| session.diags.push(e)),
+                    }
+                }
             }
         }
         return outcome;
@@ -140,6 +146,9 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
     };
     if session.diags.has_errors() {
         return outcome;
+    }
+    for d in emit::comment::comment_changes(&model, &file_name, session.settings.dialect) {
+        session.diags.push(d);
     }
     let generated = match generate_for(
         &model,

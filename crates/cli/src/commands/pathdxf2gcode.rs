@@ -61,6 +61,7 @@ pub fn run(args: &[String]) -> u8 {
                 | Msg::OrderDecidesNoPin
                 | Msg::IgnoredEntity
                 | Msg::TextTakenFirst
+                | Msg::CommentTextChanged
         )
     };
     for d in session
