@@ -52,9 +52,11 @@ enum Command {
     Check {
         #[command(flatten)]
         machine: MachineArgs,
+        /// Report format: human text, json, github (workflow annotations, paths relative to the
+        /// repository) or sarif (code scanning)
         #[arg(long, value_enum, default_value = "human")]
         format: Format,
-        /// No progress bar (it is shown only on a terminal, for many files)
+        /// Print only the report: no progress lines, no progress bar
         #[arg(long, short = 'q')]
         quiet: bool,
         /// Drawings (.dxf or .mpath) or folders
@@ -76,10 +78,13 @@ enum Command {
         /// Deepest drawn depth, mm: cuts below it are errors
         #[arg(long, allow_hyphen_values = true)]
         bottom: Option<f64>,
+        /// Message language (default: English)
         #[arg(long, value_enum)]
         lang: Option<LangArg>,
+        /// Report format: human text or json
         #[arg(long, value_enum, default_value = "human")]
         format: VerifyFormat,
+        /// G-code programs to check
         #[arg(required = true)]
         files: Vec<PathBuf>,
     },
@@ -88,13 +93,16 @@ enum Command {
         /// Largest allowed difference between measured and nominal height, mm
         #[arg(long, short = 'm')]
         max: f64,
+        /// Message language (default: English)
         #[arg(long, value_enum)]
         lang: Option<LangArg>,
+        /// The probed programs: NAME_Clean.gcode (or NAME; NAME_Z.txt is read beside it)
         #[arg(required = true)]
         files: Vec<String>,
     },
     /// Print a DXF drawing as MillPath text (usable as a git textconv driver)
     Dxf2text {
+        /// The DXF drawing to print
         file: PathBuf,
         /// Write to this file instead of standard output (`-`: standard output)
         #[arg(short, long)]
@@ -108,6 +116,7 @@ enum Command {
     },
     /// Write MillPath text as a DXF drawing
     Text2dxf {
+        /// The MillPath text (.mpath) to convert
         file: PathBuf,
         /// The DXF file to write (default: FILE with .dxf; `-`: standard output)
         #[arg(short, long)]
@@ -120,16 +129,21 @@ enum Command {
         /// Only check: exit 1 and list the files that are not formatted
         #[arg(long)]
         check: bool,
+        /// MillPath files (.mpath) or folders
         #[arg(required = true)]
         paths: Vec<PathBuf>,
     },
     /// Draw the toolpath of a path: a standalone HTML page (3-D viewer), an SVG or a PNG top view
     Render {
+        #[command(flatten)]
+        machine: MachineArgs,
+        /// The drawing (.dxf or .mpath; a name without extension gets .dxf)
         file: PathBuf,
         /// The path to draw (default: the first path of the file)
         #[arg(long)]
         path: Option<String>,
-        /// Write the HTML page here (default when no --svg: FILE_toolpath.html)
+        /// Write the HTML page here (default when neither --svg nor --png is given:
+        /// FILE_toolpath.html)
         #[arg(long)]
         html: Option<PathBuf>,
         /// Write an SVG drawing here
@@ -233,12 +247,13 @@ fn main() -> ExitCode {
         } => commands::text2dxf::run(&file, output.as_deref(), &names.machine()),
         Command::Fmt { check, paths } => commands::fmt::run(check, &paths),
         Command::Render {
+            machine,
             file,
             path,
             html,
             svg,
             png,
-        } => commands::render::run(&file, path.as_deref(), html, svg, png),
+        } => commands::render::run(&machine, &file, path.as_deref(), html, svg, png),
         Command::Lsp { .. } => millpath_lsp::run_stdio(),
         Command::Pathdxf2gcode { args } => commands::pathdxf2gcode::run(&args),
         Command::Pathgcodeadjustz { args } => commands::pathgcodeadjustz::run(&args),

@@ -1,6 +1,6 @@
 //! `millpath render`: a path's toolpath as an HTML page, an SVG or a PNG.
 
-use crate::args::{settings_for, MachineArgs};
+use crate::args::{lang_of, settings_for, MachineArgs};
 use crate::commands::check::check_file;
 use crate::output::{emit, print_human};
 use crate::{png, report, write};
@@ -9,6 +9,7 @@ use millpath_core::diag::{Diagnostic, Msg, Origin, Severity};
 use std::path::{Path, PathBuf};
 
 pub fn run(
+    m: &MachineArgs,
     file: &Path,
     path: Option<&str>,
     html: Option<PathBuf>,
@@ -17,20 +18,26 @@ pub fn run(
 ) -> u8 {
     let file = complete_input(&file.to_string_lossy());
     let abs = std::fs::canonicalize(&file).unwrap_or_else(|_| file.clone());
-    let ws = millpath_ide::Workspace::default();
-    // like `compile`: no drawing with placeholder machine settings
-    let missing = ws.settings_for(&abs).missing_machine();
-    if !missing.is_empty() {
-        eprintln!(
-            "error: missing machine settings: {} (give them in millpath.toml)",
-            missing.join(", ")
-        );
-        return 2;
-    }
+    // like `compile`: options over millpath.toml (or --config), no drawing with placeholder
+    // machine settings
+    let settings = match settings_for(m, Some(&file), true) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!(
+                "{}: {e}",
+                report::severity_word(Severity::Error, lang_of(m))
+            );
+            return 2;
+        }
+    };
+    let ws = millpath_ide::Workspace {
+        fixed: Some(settings.clone()),
+        ..Default::default()
+    };
+    let lang = settings.lang;
     let data = match millpath_ide::toolpath(&ws, &abs, path) {
         Ok(d) => d,
         Err(e) => {
-            let lang = ws.settings_for(&abs).settings.lang;
             // say why: a missing or unreadable file, a file that is not a drawing, syntax
             // errors — not only that no path was found
             if let Err(err) = std::fs::read(&file) {
@@ -42,12 +49,10 @@ pub fn run(
                 eprintln!("{}", report::human(&d, lang));
                 return 1;
             }
-            let errors: Vec<Diagnostic> = settings_for(&MachineArgs::default(), Some(&file), false)
+            let mut check = settings.clone();
+            check.check = true;
+            let errors: Vec<Diagnostic> = check_file(&check, &file)
                 .ok()
-                .and_then(|mut s| {
-                    s.check = true;
-                    check_file(&s, &file).ok()
-                })
                 .map(|c| report::tidy(c.diags))
                 .unwrap_or_default()
                 .into_iter()
@@ -65,7 +70,6 @@ pub fn run(
             return 1;
         }
     };
-    let lang = ws.settings_for(&abs).settings.lang;
     let html = html.or_else(|| {
         (svg.is_none() && png.is_none()).then(|| {
             PathBuf::from(format!(
