@@ -1,5 +1,5 @@
 //! Texts copied into G-code comments (file names, path names, `Q` texts) are safe for each
-//! dialect's comment rules, and a changed text is reported (MP133), by `check` as by `compile`.
+//! dialect's comment rules, and a changed text is reported (`Msg::CommentTextChanged`), by `check` as by `compile`.
 
 mod common;
 

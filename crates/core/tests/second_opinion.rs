@@ -21,7 +21,7 @@ fn clean_programs_get_no_remarks() {
 }
 
 /// A `Q` text with `(` once made a nested comment (LinuxCNC rejects it, the second opinion
-/// objected). It is now written safely (`(` → `[`), with warning MP133 at the element whose
+/// objected). It is now written safely (`(` → `[`), with the warning `Msg::CommentTextChanged` at the element whose
 /// text it is, and the second opinion has nothing to object to, in every dialect.
 #[test]
 fn a_q_text_with_a_parenthesis_is_written_safely_at_its_element() {
