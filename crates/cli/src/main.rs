@@ -53,9 +53,11 @@ enum Command {
     Check {
         #[command(flatten)]
         machine: MachineArgs,
+        /// Report format: human text, json, github (workflow annotations, paths relative to the
+        /// repository) or sarif (code scanning)
         #[arg(long, value_enum, default_value = "human")]
         format: Format,
-        /// No progress bar (it is shown only on a terminal, for many files)
+        /// Print only the report: no progress lines, no progress bar
         #[arg(long, short = 'q')]
         quiet: bool,
         /// Drawings (.dxf or .mpath) or folders
@@ -77,10 +79,13 @@ enum Command {
         /// Deepest drawn depth, mm: cuts below it are errors
         #[arg(long, allow_hyphen_values = true)]
         bottom: Option<f64>,
+        /// Message language (default: English)
         #[arg(long, value_enum)]
         lang: Option<LangArg>,
+        /// Report format: human text or json
         #[arg(long, value_enum, default_value = "human")]
         format: VerifyFormat,
+        /// G-code programs to check
         #[arg(required = true)]
         files: Vec<PathBuf>,
     },
@@ -89,13 +94,16 @@ enum Command {
         /// Largest allowed difference between measured and nominal height, mm
         #[arg(long, short = 'm')]
         max: f64,
+        /// Message language (default: English)
         #[arg(long, value_enum)]
         lang: Option<LangArg>,
+        /// The probed programs: NAME_Clean.gcode (or NAME; NAME_Z.txt is read beside it)
         #[arg(required = true)]
         files: Vec<String>,
     },
     /// Print a DXF drawing as MillPath text (usable as a git textconv driver)
     Dxf2text {
+        /// The DXF drawing to print
         file: PathBuf,
         /// Write to this file instead of standard output (`-`: standard output)
         #[arg(short, long)]
@@ -132,6 +140,7 @@ enum Command {
         /// Only check: exit 1 and list the files that are not formatted
         #[arg(long)]
         check: bool,
+        /// MillPath files (.mpath) or folders
         /// Message language
         #[arg(long, value_enum)]
         lang: Option<LangArg>,
@@ -140,11 +149,15 @@ enum Command {
     },
     /// Draw the toolpath of a path: a standalone HTML page (3-D viewer), an SVG or a PNG top view
     Render {
+        #[command(flatten)]
+        machine: MachineArgs,
+        /// The drawing (.dxf or .mpath; a name without extension gets .dxf)
         file: PathBuf,
         /// The path to draw (default: the first path of the file)
         #[arg(long)]
         path: Option<String>,
-        /// Write the HTML page here (default when no --svg: FILE_toolpath.html)
+        /// Write the HTML page here (default when neither --svg nor --png is given:
+        /// FILE_toolpath.html)
         #[arg(long)]
         html: Option<PathBuf>,
         /// Write an SVG drawing here
@@ -260,12 +273,13 @@ fn main() -> ExitCode {
             commands::fmt::run(check, &paths, lang)
         }
         Command::Render {
+            machine,
             file,
             path,
             html,
             svg,
             png,
-        } => commands::render::run(&file, path.as_deref(), html, svg, png),
+        } => commands::render::run(&machine, &file, path.as_deref(), html, svg, png),
         Command::Lsp { .. } => millpath_lsp::run_stdio(),
         Command::Pathdxf2gcode { args } => commands::pathdxf2gcode::run(&args),
         Command::Pathgcodeadjustz { args } => commands::pathgcodeadjustz::run(&args),

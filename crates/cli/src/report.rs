@@ -4,6 +4,7 @@
 use millpath_core::diag::{Diagnostic, Origin, Severity};
 use millpath_core::Lang;
 use serde_json::json;
+use std::path::{Path, PathBuf};
 
 pub fn severity_word(s: Severity, lang: Lang) -> &'static str {
     match (s, lang) {
@@ -303,19 +304,14 @@ pub fn file_uri(p: &std::path::Path) -> String {
     format!("file://{}", percent_encode_path(&s))
 }
 
-/// The SARIF artifact location of a file: relative paths relative to `%SRCROOT%` (the
-/// current directory), absolute paths as `file:///` URIs.
+/// The SARIF artifact location of a file: relative to `%SRCROOT%` (the workspace or
+/// repository, as for GitHub annotations), files outside it as `file:///` URIs.
 fn artifact_location(file: &str) -> serde_json::Value {
-    let p = std::path::Path::new(file);
-    if p.is_absolute() {
-        return json!({ "uri": file_uri(p) });
+    let rel = repo_path(Path::new(file));
+    if rel.starts_with('/') {
+        return json!({ "uri": file_uri(Path::new(&rel)) });
     }
-    let parts: Vec<String> = p
-        .components()
-        .filter(|c| !matches!(c, std::path::Component::CurDir))
-        .map(|c| c.as_os_str().to_string_lossy().into_owned())
-        .collect();
-    json!({ "uri": percent_encode_path(&parts.join("/")), "uriBaseId": "%SRCROOT%" })
+    json!({ "uri": percent_encode_path(&rel), "uriBaseId": "%SRCROOT%" })
 }
 
 fn sarif_location(o: &Origin) -> Option<serde_json::Value> {
@@ -386,16 +382,14 @@ pub fn sarif(diags: &[Diagnostic], lang: Lang) -> serde_json::Value {
             })
         })
         .collect();
-    let root = std::env::current_dir()
-        .map(|d| {
-            let u = file_uri(&d);
-            if u.ends_with('/') {
-                u
-            } else {
-                format!("{u}/")
-            }
-        })
-        .unwrap_or_else(|_| "file:///".into());
+    let root = {
+        let u = file_uri(&ci_root().1);
+        if u.ends_with('/') {
+            u
+        } else {
+            format!("{u}/")
+        }
+    };
     json!({
         "version": "2.1.0",
         "$schema": "https://json.schemastore.org/sarif-2.1.0.json",
@@ -415,6 +409,72 @@ pub fn sarif(diags: &[Diagnostic], lang: Lang) -> serde_json::Value {
     })
 }
 
+/// The folder CI paths are relative to: `GITHUB_WORKSPACE` when set, else the repository
+/// (the nearest folder up from the current one that holds `.git`), else the current folder.
+/// GitHub attaches an annotation to a pull-request line only by its repository path.
+fn ci_root() -> &'static (PathBuf, PathBuf) {
+    static ROOT: std::sync::OnceLock<(PathBuf, PathBuf)> = std::sync::OnceLock::new();
+    ROOT.get_or_init(|| {
+        let cwd = std::env::current_dir().unwrap_or_default();
+        let workspace = std::env::var_os("GITHUB_WORKSPACE")
+            .filter(|w| !w.is_empty())
+            .map(|w| {
+                let w = PathBuf::from(w);
+                std::fs::canonicalize(&w).unwrap_or(w)
+            });
+        let repo = || {
+            cwd.ancestors()
+                .take(64)
+                .find(|d| d.join(".git").exists())
+                .map(Path::to_path_buf)
+        };
+        let root = workspace.or_else(repo).unwrap_or_else(|| cwd.clone());
+        (cwd, root)
+    })
+}
+
+/// A file as CI tools want it: relative to the workspace or repository, `/` between parts,
+/// no `.` parts (`./3001.mpath` → `3001.mpath`).
+pub fn repo_path(file: &Path) -> String {
+    let (cwd, root) = ci_root();
+    ci_path(file, cwd, root)
+}
+
+/// [`repo_path`] for a given current folder and root: `..` resolved by the text of the path
+/// (a file outside the root keeps its absolute path).
+pub fn ci_path(file: &Path, cwd: &Path, root: &Path) -> String {
+    use std::path::Component;
+    let joined = if file.is_absolute() {
+        file.to_path_buf()
+    } else {
+        cwd.join(file)
+    };
+    let mut abs = PathBuf::new();
+    for c in joined.components() {
+        match c {
+            Component::CurDir => {}
+            Component::ParentDir => {
+                abs.pop();
+            }
+            c => abs.push(c.as_os_str()),
+        }
+    }
+    let shown = abs.strip_prefix(root).unwrap_or(&abs);
+    let parts: Vec<String> = shown
+        .components()
+        .filter_map(|c| match c {
+            Component::Normal(p) => Some(p.to_string_lossy().into_owned()),
+            _ => None,
+        })
+        .collect();
+    let rel = parts.join("/");
+    if shown.is_absolute() {
+        format!("/{rel}")
+    } else {
+        rel
+    }
+}
+
 /// `::error file=F,line=L,title=millpath MP012::message`
 pub fn github(d: &Diagnostic, lang: Lang) -> String {
     let kind = if d.severity == Severity::Error {
@@ -425,12 +485,12 @@ pub fn github(d: &Diagnostic, lang: Lang) -> String {
     let mut props = Vec::new();
     let origin = shown_origin(d);
     if let Some(f) = origin.file() {
+        props.push(format!("file={}", escape_prop(&repo_path(&f.path))));
+    } else if let Origin::FileLine { file, .. } = origin.as_ref() {
         props.push(format!(
             "file={}",
-            escape_prop(&f.path.display().to_string())
+            escape_prop(&repo_path(std::path::Path::new(file)))
         ));
-    } else if let Origin::FileLine { file, .. } = &d.origin {
-        props.push(format!("file={}", escape_prop(file)));
     }
     match &d.origin {
         Origin::Entity(e) => props.push(format!("line={}", e.line)),
@@ -531,8 +591,28 @@ mod tests {
         );
         let g = github(&d, Lang::En);
         assert!(
-            g.starts_with("::error file=dir/a.dxf,line=120,title=millpath MP"),
+            g.contains(" file=") && g.contains("dir/a.dxf,line=120,title=millpath MP"),
             "{g}"
         );
+    }
+
+    #[test]
+    fn ci_paths_are_repository_relative_with_slashes() {
+        let root = Path::new("/repo");
+        let cwd = Path::new("/repo/parts");
+        assert_eq!(
+            ci_path(Path::new("./3001.mpath"), cwd, root),
+            "parts/3001.mpath"
+        );
+        assert_eq!(ci_path(Path::new("3001.mpath"), root, root), "3001.mpath");
+        assert_eq!(ci_path(Path::new("./a/./b.dxf"), root, root), "a/b.dxf");
+        assert_eq!(
+            ci_path(Path::new("../other/x.dxf"), cwd, root),
+            "other/x.dxf"
+        );
+        assert_eq!(ci_path(Path::new("/repo/p/x.dxf"), cwd, root), "p/x.dxf");
+        // outside the repository: the absolute path
+        assert_eq!(ci_path(Path::new("/tmp/x.dxf"), cwd, root), "/tmp/x.dxf");
+        assert_eq!(ci_path(Path::new("../../x.dxf"), cwd, root), "/x.dxf");
     }
 }

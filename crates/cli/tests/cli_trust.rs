@@ -98,10 +98,25 @@ fn sarif_uris_are_uris() {
         let t = r["shortDescription"]["text"].as_str().unwrap();
         assert!(!t.contains("{0}") && !t.contains("{1}"), "{t}");
     }
-    // an absolute input: a file:/// URI
+    // an absolute input inside the checked folder (the root, no repository here): relative
+    // to %SRCROOT% like the others
     let abs = dir.path().join("d a/x #1 ü.dxf");
     let o = millpath(
         dir.path(),
+        &["check", "--format", "sarif", abs.to_str().unwrap()],
+    );
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let uri = v["runs"][0]["results"][0]["locations"][0]["physicalLocation"]["artifactLocation"]
+        ["uri"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    assert_eq!(uri, "d%20a/x%20%231%20%C3%BC.dxf");
+    // a file outside the root: a file:/// URI
+    let inner = dir.path().join("inner");
+    std::fs::create_dir_all(&inner).unwrap();
+    let o = millpath(
+        &inner,
         &["check", "--format", "sarif", abs.to_str().unwrap()],
     );
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();

@@ -136,7 +136,10 @@ fn files_that_cannot_be_read_or_written_are_named_as_the_location() {
     );
     // unwritable: the output file is the location, not "Options"
     write(dir.path(), "3002.mpath", NO_END);
-    let out = millpath(dir.path(), &["text2dxf", "3002.mpath", "-o", "no-dir/out.dxf"]);
+    let out = millpath(
+        dir.path(),
+        &["text2dxf", "3002.mpath", "-o", "no-dir/out.dxf"],
+    );
     let err = stderr(&out);
     assert!(
         location_line(&err, &Msg::CannotWrite.code()).contains("--> no-dir/out.dxf"),

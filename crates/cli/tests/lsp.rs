@@ -104,6 +104,44 @@ fn diagnostics_hover_preview_and_more_over_stdio() {
     assert!(c.shutdown().success());
 }
 
+/// The README's contract: a path `compile` would refuse gives a result with its reasons in
+/// `errors` and no G-code, not a JSON-RPC error.
+#[test]
+fn preview_of_a_path_with_errors_is_a_result_with_errors() {
+    let (dir, mut c) = setup();
+    let doc = uri(&dir.path().join("2001.mpath"));
+    let broken = PART.replace(" B-0,2", "");
+    c.notify("textDocument/didOpen", json!({ "textDocument": { "uri": doc, "languageId": "millpath", "version": 1, "text": broken } }));
+    c.wait_notification("textDocument/publishDiagnostics", Duration::from_secs(10))
+        .expect("diagnostics");
+    let pv = c.request(
+        "millpath/gcodePreview",
+        json!({ "textDocument": { "uri": doc }, "path": "2001.1P" }),
+    );
+    assert!(pv.get("error").is_none(), "{pv}");
+    let r = &pv["result"];
+    assert_eq!(r["gcode"], "", "{pv}");
+    assert_eq!(r["path"], "2001.1P");
+    let errors = r["errors"].as_array().unwrap();
+    assert!(
+        errors
+            .iter()
+            .any(|e| e.as_str().unwrap().contains("B value missing")),
+        "{pv}"
+    );
+    // a path the file does not have: the reason names the paths it has
+    let pv = c.request(
+        "millpath/gcodePreview",
+        json!({ "textDocument": { "uri": doc }, "path": "2001.1p" }),
+    );
+    let e = pv["result"]["errors"][0].as_str().unwrap_or_default();
+    assert!(
+        e.contains("no path 2001.1p") && e.contains("2001.1P"),
+        "{pv}"
+    );
+    assert!(c.shutdown().success());
+}
+
 #[test]
 fn the_server_survives_bad_requests() {
     let (dir, mut c) = setup();
@@ -118,7 +156,11 @@ fn the_server_survives_bad_requests() {
         "millpath/gcodePreview",
         json!({ "textDocument": { "uri": doc }, "path": "9.9Q" }),
     );
-    assert!(pv.get("error").is_some());
+    // a file that does not exist: a result whose errors say so
+    assert!(
+        pv.get("error").is_some() || !pv["result"]["errors"].as_array().unwrap().is_empty(),
+        "{pv}"
+    );
     let bad = c.request("textDocument/hover", json!({ "nonsense": true }));
     assert!(bad.get("error").is_some());
     c.notify("textDocument/didOpen", json!({ "textDocument": { "uri": doc, "languageId": "millpath", "version": 1, "text": "path {{{ ( ->\n\u{0}" } }));

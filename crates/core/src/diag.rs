@@ -325,6 +325,10 @@ messages! {
     PathNameCase = "Path name {0} matches the name pattern {1} only when case is ignored; path names are case-sensitive ({0} and {2} would be two paths): did you mean {2}?", "Pfadname {0} passt nur ohne Beachtung der Groß-/Kleinschreibung zum Namensmuster {1}; Pfadnamen unterscheiden Groß- und Kleinschreibung ({0} und {2} wären zwei Pfade): war {2} gemeint?";
     SubpathNotFoundCase = "Could not find path {0} in file(s) {1}; did you mean {2}? (path names are case-sensitive)", "Pfad {0} nicht in Datei(en) {1} gefunden; war {2} gemeint? (Pfadnamen unterscheiden Groß- und Kleinschreibung)";
     FeedTooSmall = "{0} {1} mm/min is below {2} mm/min: no machine moves that slowly (the program would show F{3}); give the feed in mm/min", "{0} {1} mm/min ist kleiner als {2} mm/min: so langsam fährt keine Maschine (das Programm zeigte F{3}); den Vorschub in mm/min angeben";
+    // text in G-code comments made safe for the controller (emit/comment.rs)
+    CommentTextChanged = "'{0}' is written as '{1}' in the G-code comments (dialect {2}): a controller would misread it there (a nested parenthesis, an active comment word, a real-time command character or a line too long); rename the file or change the text to keep it as it is", "'{0}' wird in den G-Code-Kommentaren als '{1}' geschrieben (Dialekt {2}): eine Steuerung würde es dort falsch lesen (eine verschachtelte Klammer, ein aktives Kommentarwort, ein Echtzeit-Befehlszeichen oder eine zu lange Zeile); die Datei umbenennen oder den Text ändern, um ihn unverändert zu behalten";
+    // `check` on folders without drawings (a report in every format)
+    NoDrawingsFound = "no drawings (*.dxf, *.mpath) found in {0}", "keine Zeichnungen (*.dxf, *.mpath) in {0} gefunden";
 }
 
 impl Msg {

@@ -155,6 +155,13 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
             if session.stopped() {
                 return outcome;
             }
+            if !reference_check {
+                for d in
+                    emit::comment::comment_changes(&model, &file_name, session.settings.dialect)
+                {
+                    session.diags.push(d);
+                }
+            }
             if reference_check {
                 match emit::check_until(
                     &model,
@@ -176,6 +183,9 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
     };
     if session.diags.has_errors() {
         return outcome;
+    }
+    for d in emit::comment::comment_changes(&model, &file_name, session.settings.dialect) {
+        session.diags.push(d);
     }
     let Some((generated, removed_volume)) =
         generate_and_review(session, &model, &file_name, banner)

@@ -20,69 +20,47 @@ fn clean_programs_get_no_remarks() {
     assert!(!run.outputs.is_empty());
 }
 
+/// A `Q` text with `(` once made a nested comment (LinuxCNC rejects it, the second opinion
+/// objected). It is now written safely (`(` → `[`), with the warning `Msg::CommentTextChanged` at the element whose
+/// text it is, and the second opinion has nothing to object to, in every dialect.
 #[test]
-fn a_nested_comment_is_reported_at_the_element_that_wrote_it() {
-    // the Q text is copied into a comment; its `(` nests comments, which LinuxCNC rejects
-    let mut d = Drawing::new();
-    d.start(L, (0.0, 0.0), "O2 T2 I1,2 B-0,3")
-        .end(L, (20.0, 0.0))
-        .line(L, "CONTINUOUS", (0.0, 0.0), (20.0, 0.0), "Qslot(outer");
-    let run = compile_one(&d);
-    let remark = run
-        .diags
-        .iter()
-        .find(|d| d.msg == Msg::SecondOpinion)
-        .unwrap_or_else(|| panic!("no second opinion: {:?}", run.messages()));
-    assert_eq!(remark.severity, Severity::Warning);
-    let text = remark.message(Default::default());
-    assert!(text.contains("Q:slot(outer"), "{text}");
-    assert!(
-        matches!(&remark.origin, Origin::Entity(e) if e.code_name == "LINE"),
-        "{:?}",
-        remark.origin
-    );
-    // a warning only: the reference dialect's program is still written, byte for byte
-    assert!(!run.outputs.is_empty());
-}
-
-#[test]
-fn for_a_real_controller_an_objection_stops_the_write() {
+fn a_q_text_with_a_parenthesis_is_written_safely_at_its_element() {
     use millpath_core::emit::dialect::Dialect;
-    let mut d = Drawing::new();
-    d.start(L, (0.0, 0.0), "O2 T2 I1,2 B-0,3")
-        .end(L, (20.0, 0.0))
-        .line(L, "CONTINUOUS", (0.0, 0.0), (20.0, 0.0), "Qslot(outer");
-    let run = compile_with(
-        &[("1000.1P.dxf", d.dxf())],
-        "1000.1P.dxf",
-        millpath_core::Settings {
-            dialect: Dialect::LinuxCnc,
-            ..settings()
-        },
-    );
-    let remark = run
-        .diags
-        .iter()
-        .find(|d| d.msg == Msg::SecondOpinion)
-        .unwrap_or_else(|| panic!("no second opinion: {:?}", run.messages()));
-    assert_eq!(remark.severity, Severity::Error);
-    assert!(
-        run.outputs.is_empty(),
-        "a program LinuxCNC rejects was written"
-    );
-    // without the nested comment the same drawing is written
-    let mut d = Drawing::new();
-    d.start(L, (0.0, 0.0), "O2 T2 I1,2 B-0,3")
-        .end(L, (20.0, 0.0))
-        .line(L, "CONTINUOUS", (0.0, 0.0), (20.0, 0.0), "Qslot-outer");
-    let run = compile_with(
-        &[("1000.1P.dxf", d.dxf())],
-        "1000.1P.dxf",
-        millpath_core::Settings {
-            dialect: Dialect::LinuxCnc,
-            ..settings()
-        },
-    );
-    assert!(run.diags.is_empty(), "{:?}", run.messages());
-    assert!(!run.outputs.is_empty());
+    for dialect in [Dialect::Reference, Dialect::LinuxCnc, Dialect::Grbl] {
+        let mut d = Drawing::new();
+        d.start(L, (0.0, 0.0), "O2 T2 I1,2 B-0,3")
+            .end(L, (20.0, 0.0))
+            .line(L, "CONTINUOUS", (0.0, 0.0), (20.0, 0.0), "Qslot(outer");
+        let run = compile_with(
+            &[("1000.1P.dxf", d.dxf())],
+            "1000.1P.dxf",
+            millpath_core::Settings {
+                dialect,
+                ..settings()
+            },
+        );
+        assert!(
+            !run.diags.iter().any(|d| d.msg == Msg::SecondOpinion),
+            "{dialect}: {:?}",
+            run.messages()
+        );
+        let warning = run
+            .diags
+            .iter()
+            .find(|d| d.msg == Msg::CommentTextChanged)
+            .unwrap_or_else(|| panic!("{dialect}: no warning: {:?}", run.messages()));
+        assert_eq!(warning.severity, Severity::Warning);
+        assert!(
+            warning.message(Default::default()).contains("'slot[outer'"),
+            "{:?}",
+            run.messages()
+        );
+        assert!(
+            matches!(&warning.origin, Origin::Entity(e) if e.code_name == "LINE"),
+            "{:?}",
+            warning.origin
+        );
+        let program = run.output("_Milling.gcode");
+        assert!(program.contains("(Q:slot[outer)"), "{program}");
+    }
 }

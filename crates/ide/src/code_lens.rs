@@ -25,6 +25,7 @@ pub fn code_lenses(a: &Analysis, ws: &Workspace) -> Vec<Lens> {
         .paths()
         .map(|p| {
             let title = match preview_of(a, ws, Some(&p.name.value)) {
+                Ok(pv) if pv.gcode.is_empty() && !pv.errors.is_empty() => pv.errors.join("; "),
                 Ok(pv) => pv
                     .stats
                     .iter()

@@ -69,6 +69,9 @@ pub struct Workspace {
     pub roots: Vec<PathBuf>,
     /// Columns count UTF-8 bytes (negotiated `positionEncoding`), else UTF-16 code units.
     pub utf8: bool,
+    /// Settings fixed by the caller for every file (`millpath render`: its options over
+    /// `millpath.toml`, read as every command reads them); `None` in the editor.
+    pub fixed: Option<Settings>,
 }
 
 /// The file system as the editor sees it: open text buffers over the disk. A DXF drawing is
@@ -176,6 +179,16 @@ impl Workspace {
 
     /// `millpath.toml` (nearest above the file), then the editor's settings.
     pub fn settings_for(&self, path: &Path) -> DocSettings {
+        if let Some(fixed) = &self.fixed {
+            return DocSettings {
+                settings: fixed.clone(),
+                feed: SettingSource::Editor,
+                sweep_height: SettingSource::Editor,
+                sweep_speed: SettingSource::Editor,
+                probe_feed: SettingSource::Editor,
+                config_error: None,
+            };
+        }
         let mut s = Settings::default();
         let mut have = Have::default();
         let mut ds = DocSettings {

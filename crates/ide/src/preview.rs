@@ -67,48 +67,83 @@ pub(crate) fn top_model(
                 .chain(messages(&session, lang))
                 .collect(),
         }),
-        Ok(None) => Err(match lang {
-            Lang::En => format!(
-                "path {name} cannot be built: {}",
-                messages(&session, lang).join("; ")
-            ),
-            Lang::De => format!(
-                "Pfad {name} kann nicht gebaut werden: {}",
-                messages(&session, lang).join("; ")
-            ),
-        }),
+        Ok(None) => Err(not_built(&session, &names, &name, lang)),
         Err(abort) => Err(abort.message(lang)),
     }
 }
 
-/// Preview of `name` (default: the first path of the document).
+/// Why `name` gave no model: its errors, or that the file has no such path (naming the
+/// paths it has, and the one that differs only in case).
+fn not_built(session: &Session, names: &[String], name: &str, lang: Lang) -> String {
+    let why = messages(session, lang);
+    if !why.is_empty() {
+        return match lang {
+            Lang::En => format!("path {name} cannot be built: {}", why.join("; ")),
+            Lang::De => format!("Pfad {name} kann nicht erzeugt werden: {}", why.join("; ")),
+        };
+    }
+    let list = if names.is_empty() {
+        "-".to_string()
+    } else {
+        names.join(", ")
+    };
+    let case = names.iter().find(|n| n.eq_ignore_ascii_case(name));
+    match (lang, case) {
+        (Lang::En, Some(c)) => {
+            format!("no path {name} in this file; did you mean {c}? (names are case-sensitive)")
+        }
+        (Lang::De, Some(c)) => format!(
+            "kein Pfad {name} in dieser Datei; war {c} gemeint? (Groß- und Kleinschreibung zählt)"
+        ),
+        (Lang::En, None) => format!("no path {name} in this file; its paths: {list}"),
+        (Lang::De, None) => format!("kein Pfad {name} in dieser Datei; ihre Pfade: {list}"),
+    }
+}
+
+/// Preview of `name` (default: the first path of the document). A path that `millpath
+/// compile` would refuse gives no G-code and its reasons in `errors` (the editors show them
+/// instead); `Err` is kept for the signature's callers and never returned.
 pub fn preview(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<Preview, String> {
+    let refused = |errors: Vec<String>| Preview {
+        path: name.unwrap_or_default().to_string(),
+        gcode: String::new(),
+        probing: None,
+        z_txt: None,
+        stats: Vec::new(),
+        errors,
+    };
     let TopModel {
         model,
         lang,
         sweep_speed,
         controller,
         errors,
-    } = top_model(ws, path, name)?;
+    } = match top_model(ws, path, name) {
+        Ok(t) => t,
+        Err(e) => return Ok(refused(vec![e])),
+    };
     let name = model.name().to_string();
     let file_name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let g = generate_for(
+    let g = match generate_for(
         &model,
         &file_name,
         &millpath_core::banner(),
         sweep_speed,
         lang,
         &controller,
-    )
-    .map_err(|e| {
-        e.iter()
-            .map(|d| d.message(lang))
-            .collect::<Vec<_>>()
-            .join("; ")
-    })?;
+    ) {
+        Ok(g) => g,
+        Err(e) => {
+            let mut all = errors;
+            all.extend(e.iter().map(|d| d.message(lang)));
+            let mut r = refused(all);
+            r.path = name;
+            return Ok(r);
+        }
+    };
     let stats = g.stats.lines(lang).to_vec();
     Ok(match g.output {
         Output::Milling(gcode) => Preview {

@@ -388,8 +388,8 @@ impl SyntaxError {
                 "Kommentar nicht geschlossen: `(` ohne `)`".into(),
             ),
             SyntaxError::NestedComment => pick(
-                "`(` inside a comment: LinuxCNC rejects nested comments".into(),
-                "`(` in einem Kommentar: LinuxCNC lehnt verschachtelte Kommentare ab".into(),
+                "`(` inside a comment: LinuxCNC rejects nested comments; write `[` instead".into(),
+                "`(` in einem Kommentar: LinuxCNC lehnt verschachtelte Kommentare ab; stattdessen `[` schreiben".into(),
             ),
             SyntaxError::UnexpectedChar(c) => pick(
                 format!("unexpected character {c:?}; the line is not executed"),

@@ -6,7 +6,7 @@ import * as path from 'node:path';
 import { execFile } from 'node:child_process';
 import { LanguageClient, LanguageClientOptions, ServerOptions } from 'vscode-languageclient/node';
 import {
-  initializationOptions, findServer, ServerLookup, previewUri, parsePreviewUri, pathAtLine, statusText, isSourceRef, PREVIEW_SCHEME, MachineSettings,
+  initializationOptions, findServer, ServerLookup, previewUri, parsePreviewUri, pathAtLine, statusText, previewText, PreviewResult, isSourceRef, PREVIEW_SCHEME, MachineSettings,
 } from './logic';
 
 let client: LanguageClient | undefined;
@@ -82,7 +82,7 @@ function guarded(name: string, f: (...args: any[]) => unknown): (...args: any[])
   };
 }
 
-interface Preview { path: string; gcode: string; stats: string[]; errors: string[] }
+type Preview = PreviewResult;
 
 class PreviewProvider implements vscode.TextDocumentContentProvider {
   readonly changed = new vscode.EventEmitter<vscode.Uri>();
@@ -92,7 +92,7 @@ class PreviewProvider implements vscode.TextDocumentContentProvider {
     if (!p || !client) return '(no preview)';
     try {
       const r = await client.sendRequest<Preview>('millpath/gcodePreview', { textDocument: { uri: p.source }, path: p.path });
-      return r.gcode;
+      return previewText(r);
     } catch (e) {
       return `(millpath: ${(e as Error).message})`;
     }
@@ -130,8 +130,13 @@ export async function activate(ctx: vscode.ExtensionContext): Promise<void> {
     } else {
       try {
         const r = await client.sendRequest<Preview>('millpath/gcodePreview', { textDocument: { uri: editor.document.uri.toString() }, path: name });
-        status.text = `$(tools) ${statusText(r.path, r.stats)}`;
-        status.tooltip = r.stats.join('\n');
+        if (!r.gcode && r.errors.length > 0) {
+          status.text = `$(error) ${r.path || name || 'millpath'}: no G-code`;
+          status.tooltip = r.errors.join('\n');
+        } else {
+          status.text = `$(tools) ${statusText(r.path, r.stats)}`;
+          status.tooltip = r.stats.join('\n');
+        }
       } catch {
         status.text = `$(tools) ${name ?? 'millpath'}: no G-code`;
         status.tooltip = undefined;

@@ -117,6 +117,25 @@ export function statusText(path: string, stats: string[]): string {
   return parts.join(' · ');
 }
 
+/** What `millpath/gcodePreview` answers (README, editors section). */
+export interface PreviewResult {
+  path: string;
+  gcode: string;
+  stats: string[];
+  errors: string[];
+}
+
+/**
+ * The preview document's text: the G-code, or — for a path `millpath compile` would refuse —
+ * its errors as G-code comments instead (each error its own line). Errors beside G-code
+ * (placeholder machine settings) come first, so they are not missed.
+ */
+export function previewText(r: PreviewResult): string {
+  const errors = (r.errors ?? []).map((e) => `(millpath: ${e.replace(/[()]/g, (c) => (c === '(' ? '[' : ']')).replace(/\r?\n/g, ' ')})`);
+  if (errors.length === 0) return r.gcode;
+  return errors.join('\n') + '\n' + (r.gcode ?? '');
+}
+
 /** A source location sent by the toolpath page, as editor coordinates. */
 export interface SourceRef {
   file: string;

@@ -55,6 +55,14 @@ test('status text from statistics lines (English and German)', () => {
   assert.equal(logic.statusText('8999.1P', de), '8999.1P · 185 mm · ≈2 min · 8 commands');
 });
 
+test('preview text: the G-code, or the errors instead of it', () => {
+  assert.equal(logic.previewText({ path: 'a', gcode: '%\nM30\n%\n', stats: [], errors: [] }), '%\nM30\n%\n');
+  const refused = logic.previewText({ path: '2001.1P', gcode: '', stats: [], errors: ['B value missing', 'path 2001.1P cannot be built: (x)'] });
+  assert.equal(refused, '(millpath: B value missing)\n(millpath: path 2001.1P cannot be built: [x])\n');
+  // errors beside G-code (placeholder settings) come first
+  assert.ok(logic.previewText({ path: 'a', gcode: 'G00 Z5\n', stats: [], errors: ['feed missing'] }).startsWith('(millpath: feed missing)\nG00 Z5'));
+});
+
 test('source references from the toolpath page are checked', () => {
   assert.ok(logic.isSourceRef({ file: '/a.mpath', line: 3, character: 2 }));
   assert.ok(!logic.isSourceRef({ file: '/a.mpath', line: '3' }));

@@ -52,6 +52,12 @@ test('initialize with the extension options, preview and toolpath', async () => 
   execFileSync(bin, ['compile', '-f', '300', '-v', '1000', '-s', '10', '-z', '50', '--lang', 'en', file], { stdio: 'ignore' });
   assert.equal(pv.gcode, readFileSync(join(dir, '2020_Clean.gcode'), 'utf8'));
 
+  // a path compile would refuse: a result (not an error) whose errors the preview shows
+  const refused = await conn.sendRequest('millpath/gcodePreview', { textDocument: { uri }, path: '2020.1p' });
+  assert.equal(refused.gcode, '');
+  assert.match(refused.errors[0], /no path 2020\.1p/);
+  assert.match(logic.previewText(refused), /^\(millpath: no path 2020\.1p/);
+
   const tp = await conn.sendRequest('millpath/toolpath', { textDocument: { uri }, path });
   assert.equal(tp.path, '2020.1P');
   assert.ok(tp.moves.length > 5);

@@ -4,7 +4,7 @@ use crate::args::{lang_of, settings_for, Format, MachineArgs};
 use crate::inputs::{collect_files, is_drawing};
 use crate::output::print_human;
 use crate::{out, report, workers};
-use millpath_core::diag::{Diagnostic, Severity};
+use millpath_core::diag::{Diagnostic, Msg, Origin, Severity};
 use millpath_core::{compile_file, Lang, OsFileSystem, Session, Settings};
 use std::path::{Path, PathBuf};
 
@@ -93,21 +93,22 @@ pub fn run(m: &MachineArgs, format: Format, quiet: bool, paths: &[PathBuf]) -> u
         settings_for(m, inputs.first().map(PathBuf::as_path), true).is_ok();
     let lang = settings.lang;
     if inputs.is_empty() {
-        // like the reference's "no files" (exit 3)
+        // like the reference's "no files" (exit 3); a report in the format asked for, so that
+        // a JSON or SARIF reader gets a document it can parse
         let shown: Vec<String> = paths.iter().map(|p| p.display().to_string()).collect();
-        eprintln!(
-            "{}",
-            match lang_of(m, paths.first().map(PathBuf::as_path)) {
-                Lang::En => format!(
-                    "error: no drawings (*.dxf, *.mpath) found in {}",
-                    shown.join(", ")
-                ),
-                Lang::De => format!(
-                    "Fehler: keine Zeichnungen (*.dxf, *.mpath) in {} gefunden",
-                    shown.join(", ")
-                ),
-            }
+        let d = Diagnostic::error(
+            Msg::NoDrawingsFound,
+            Origin::Input,
+            millpath_core::args![shown.join(", ")],
         );
+        match format {
+            Format::Human => eprintln!(
+                "{}: {}",
+                report::severity_word(Severity::Error, lang),
+                d.message(lang)
+            ),
+            _ => print_report(format, &[d], 0, lang),
+        }
         return 3;
     }
     let mut all = Vec::new();
@@ -117,7 +118,8 @@ pub fn run(m: &MachineArgs, format: Format, quiet: bool, paths: &[PathBuf]) -> u
     for result in check_all(&settings, &inputs, quiet) {
         match result {
             Ok(file) => {
-                if format == Format::Human {
+                // --quiet: the report only
+                if format == Format::Human && !quiet {
                     for line in file.info {
                         info.push_str(&line);
                         info.push('\n');
@@ -160,10 +162,26 @@ pub fn run(m: &MachineArgs, format: Format, quiet: bool, paths: &[PathBuf]) -> u
                 }
             );
         }
+        _ => print_report(format, &all, inputs.len(), lang),
+    }
+    u8::from(errors > 0)
+}
+
+/// The machine-readable reports (JSON, GitHub annotations, SARIF) of `files` checked files.
+fn print_report(format: Format, all: &[Diagnostic], files: usize, lang: Lang) {
+    let errors = all.iter().filter(|d| d.severity == Severity::Error).count();
+    match format {
+        Format::Human => {}
         Format::Json => {
             let v: Vec<serde_json::Value> =
                 all.iter().map(|d| report::json_value(d, lang)).collect();
-            outln!("{}", serde_json::to_string_pretty(&serde_json::json!({ "files": inputs.len(), "errors": errors, "diagnostics": v })).unwrap_or_default());
+            outln!(
+                "{}",
+                serde_json::to_string_pretty(
+                    &serde_json::json!({ "files": files, "errors": errors, "diagnostics": v })
+                )
+                .unwrap_or_default()
+            );
         }
         Format::Github => {
             let lines: String = all
@@ -175,9 +193,8 @@ pub fn run(m: &MachineArgs, format: Format, quiet: bool, paths: &[PathBuf]) -> u
         Format::Sarif => {
             outln!(
                 "{}",
-                serde_json::to_string_pretty(&report::sarif(&all, lang)).unwrap_or_default()
+                serde_json::to_string_pretty(&report::sarif(all, lang)).unwrap_or_default()
             );
         }
     }
-    u8::from(errors > 0)
 }

@@ -33,10 +33,7 @@ pub fn run(m: &MachineArgs, files: &[String]) -> u8 {
         let settings = match settings_for(m, Some(input), true) {
             Ok(s) => s,
             Err(e) => {
-                eprintln!(
-                    "{}: {e}",
-                    report::severity_word(Severity::Error, early)
-                );
+                eprintln!("{}: {e}", report::severity_word(Severity::Error, early));
                 return 2;
             }
         };

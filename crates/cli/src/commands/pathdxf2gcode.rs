@@ -65,6 +65,7 @@ pub fn run(args: &[String]) -> u8 {
                 | Msg::OrderDecidesPiece
                 | Msg::IgnoredEntity
                 | Msg::TextTakenFirst
+                | Msg::CommentTextChanged
         )
     };
     for d in session

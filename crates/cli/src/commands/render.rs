@@ -1,6 +1,6 @@
 //! `millpath render`: a path's toolpath as an HTML page, an SVG or a PNG.
 
-use crate::args::{settings_for, MachineArgs};
+use crate::args::{lang_of, settings_for, MachineArgs};
 use crate::commands::check::check_file;
 use crate::output::{emit, print_human};
 use crate::{png, report, write};
@@ -10,6 +10,7 @@ use millpath_core::Lang;
 use std::path::{Path, PathBuf};
 
 pub fn run(
+    m: &MachineArgs,
     file: &Path,
     path: Option<&str>,
     html: Option<PathBuf>,
@@ -18,24 +19,23 @@ pub fn run(
 ) -> u8 {
     let file = complete_input(&file.to_string_lossy());
     let abs = std::fs::canonicalize(&file).unwrap_or_else(|_| file.clone());
-    let ws = millpath_ide::Workspace::default();
-    // like `compile`: no drawing with placeholder machine settings
-    // the language of millpath.toml, for every message
-    let lang = ws.settings_for(&abs).settings.lang;
-    let missing = ws.settings_for(&abs).missing_machine();
-    if !missing.is_empty() {
-        match lang {
-            Lang::En => eprintln!(
-                "error: missing machine settings: {} (give them in millpath.toml)",
-                missing.join(", ")
-            ),
-            Lang::De => eprintln!(
-                "Fehler: Maschinenwerte fehlen: {} (in millpath.toml angeben)",
-                missing.join(", ")
-            ),
+    // like `compile`: options over millpath.toml (or --config), no drawing with placeholder
+    // machine settings
+    let settings = match settings_for(m, Some(&file), true) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!(
+                "{}: {e}",
+                report::severity_word(Severity::Error, lang_of(m, Some(&file)))
+            );
+            return 2;
         }
-        return 2;
-    }
+    };
+    let ws = millpath_ide::Workspace {
+        fixed: Some(settings.clone()),
+        ..Default::default()
+    };
+    let lang = settings.lang;
     let data = match millpath_ide::toolpath(&ws, &abs, path) {
         Ok(d) => d,
         Err(e) => {
@@ -50,12 +50,10 @@ pub fn run(
                 eprintln!("{}", report::human(&d, lang));
                 return 1;
             }
-            let errors: Vec<Diagnostic> = settings_for(&MachineArgs::default(), Some(&file), false)
+            let mut check = settings.clone();
+            check.check = true;
+            let errors: Vec<Diagnostic> = check_file(&check, &file)
                 .ok()
-                .and_then(|mut s| {
-                    s.check = true;
-                    check_file(&s, &file).ok()
-                })
                 .map(|c| report::tidy(c.diags))
                 .unwrap_or_default()
                 .into_iter()

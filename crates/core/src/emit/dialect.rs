@@ -5,7 +5,7 @@
 //! optional spindle start and stop, a stock comment for verifiers, and — for GRBL, which has
 //! no `%` program delimiters — no `%` lines.
 
-use crate::emit::as_comment;
+use crate::emit::comment::comment_line;
 use crate::emit::timing::Machine;
 use crate::front::drawing::Style;
 use crate::geom::{f3, P3};
@@ -127,8 +127,8 @@ impl Controller {
         if self.percent() {
             v.push("%".into());
         }
-        v.push(as_comment(0, banner));
-        v.push(as_comment(0, file_name));
+        v.push(comment_line(self.dialect, 0, banner));
+        v.push(comment_line(self.dialect, 0, file_name));
         if self.dialect == Dialect::Reference {
             v.push("F150".into());
             v.push("G17 G21 G40 G49 G54 G80 G90 G94".into());
@@ -150,7 +150,7 @@ impl Controller {
             y: 0.0,
             z: start,
         };
-        v.push(as_comment(0, &format!("SweepSafelyTo {p}")));
+        v.push(comment_line(self.dialect, 0, &format!("SweepSafelyTo {p}")));
         v.push(format!("G00 Z{}", f3(start)));
         v.push("G00 X0.000 Y0.000".into());
         v

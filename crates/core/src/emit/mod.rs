@@ -15,6 +15,7 @@ use crate::probe::tour::{collect_probes, probe_tour, PlacedProbe};
 pub mod bars;
 pub mod chain;
 pub mod chain_order;
+pub mod comment;
 pub mod dialect;
 pub mod elements;
 pub mod helix;
@@ -193,13 +194,10 @@ pub(crate) struct Emitter<'a> {
 /// Elements or passes between two questions to [`Emitter::stop`].
 const STOP_EVERY: usize = 256;
 
-/// Trace comment text: trimmed, `)` → `]`, `\` → `/`.
+/// Trace comment text as the reference dialect writes it: trimmed, `)` → `]`, `\` → `/`
+/// (and `(` → `[`, see `comment.rs`).
 pub fn as_comment(indent: usize, text: &str) -> String {
-    format!(
-        "{}({})",
-        " ".repeat(indent),
-        text.trim().replace(')', "]").replace('\\', "/")
-    )
+    comment::comment_line(Dialect::Reference, indent, text)
 }
 
 pub(crate) fn bt(b: bool) -> &'static str {
@@ -221,7 +219,7 @@ impl<'a> Emitter<'a> {
         let text = if self.dry {
             String::new()
         } else {
-            as_comment(indent, &text())
+            comment::comment_line(self.ctl.dialect, indent, &text())
         };
         let source = self.source;
         self.items.push(Item {

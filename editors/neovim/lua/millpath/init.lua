@@ -111,12 +111,27 @@ local function current(name)
   return src, client, name or path_at_cursor(src)
 end
 
+--- The preview's text: the G-code, or for a path `millpath compile` would refuse its errors
+--- (the result's `errors`) as comment lines instead; errors beside G-code come first.
+local function preview_text(result)
+  local lines = {}
+  for _, e in ipairs(result.errors or {}) do
+    local safe = tostring(e):gsub('%(', '['):gsub('%)', ']'):gsub('\r?\n', ' ')
+    table.insert(lines, '(millpath: ' .. safe .. ')')
+  end
+  if #lines == 0 then
+    return result.gcode or ''
+  end
+  return table.concat(lines, '\n') .. '\n' .. (result.gcode or '')
+end
+M._preview_text = preview_text
+
 local function show(buf, result, err)
   local text
   if err then
     text = '(millpath: ' .. (err.message or vim.inspect(err)) .. ')'
   else
-    text = result.gcode
+    text = preview_text(result)
   end
   local lines = vim.split(text, '\n', { plain = true })
   if lines[#lines] == '' then
