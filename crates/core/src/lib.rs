@@ -133,7 +133,10 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
         );
         return outcome;
     }
-    if built.is_empty() && !aborted && !reference_check {
+    // "no error-free path" only where no error says why already (the reference's command
+    // line keeps its rule: it prints the line after the errors too)
+    let explained = session.diags.errors_reported() > 0 && !session.settings.reference_check;
+    if built.is_empty() && !aborted && !reference_check && !explained {
         // "DXF file" only for a DXF file
         let msg = if crate::load::fs::is_text_file(input) {
             Msg::NoErrorFreePathInFile

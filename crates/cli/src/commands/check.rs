@@ -96,6 +96,8 @@ pub fn run(m: &MachineArgs, format: Format, quiet: bool, paths: &[PathBuf]) -> u
         // like the reference's "no files" (exit 3); a report in the format asked for, so that
         // a JSON or SARIF reader gets a document it can parse
         let shown: Vec<String> = paths.iter().map(|p| p.display().to_string()).collect();
+        // no drawing to find millpath.toml from: the folder given tells the language
+        let lang = lang_of(m, paths.first().map(PathBuf::as_path));
         let d = Diagnostic::error(
             Msg::NoDrawingsFound,
             Origin::Input,
