@@ -315,6 +315,11 @@ messages! {
     FileTooLarge = "File {0} is larger than {1} MiB, the most a drawing may have", "Datei {0} ist größer als {1} MiB, das Höchstmaß für eine Zeichnung";
     // entity order in the assignment of texts (reference-input.md §2.4)
     TextTakenFirst = "The drawing's entity order decides which element text '{0}' belongs to: it overlaps best the element that text '{1}' took, which comes first in the file, so a CAD re-save can change the G-code; move the texts so that each is nearest to its own element", "Die Reihenfolge der Elemente in der Zeichnung entscheidet, zu welchem Element der Text '{0}' gehört: er überlappt am besten das Element, das der Text '{1}' bekam, der in der Datei zuerst kommt; ein erneutes Speichern im CAD kann also den G-Code ändern; die Texte so verschieben, dass jeder seinem eigenen Element am nächsten liegt";
+    // one drawing's outputs are one set (issue 20): unfilled _Z.txt, mixed sets, stale outputs
+    ZNoValue = "No measured value for probe {0} (nominal height {1}): type the height the probing program measured after '='", "Kein Messwert für Messpunkt {0} (Soll-Höhe {1}): die vom Antastprogramm gemessene Höhe nach '=' eintragen";
+    ZSetMismatch = "{0} and {1} are not from the same compile: compile the drawing again, run the new probing program and fill in the new _Z.txt", "{0} und {1} stammen nicht aus derselben Übersetzung: die Zeichnung neu übersetzen, das neue Antastprogramm laufen lassen und die neue _Z.txt ausfüllen";
+    StaleOutputRemoved = "Removed {0}: an output of an earlier compile of this drawing, and this compile wrote no new one", "{0} entfernt: eine Ausgabe einer früheren Übersetzung dieser Zeichnung, und diese Übersetzung hat keine neue geschrieben";
+    OutputSetRestored = "{0} could not be written: the outputs of this drawing were left as they were before this compile", "{0} konnte nicht geschrieben werden: die Ausgaben dieser Zeichnung sind geblieben, wie sie vor dieser Übersetzung waren";
 }
 
 impl Msg {

@@ -64,9 +64,18 @@ pub fn run(max: f64, x: Option<&str>, lang: Lang, files: &[String], reference_li
                 eprintln!("---- {line}");
             }
         }
-        if let Some(content) =
-            adjustz::adjust(&clean, &clean_path, &z_text, &z_path, max, opt, &mut diags)
-        {
+        // the probing program that measured the values, when it is beside them
+        let probing_path = format!("{base}_Probing.gcode");
+        let probing = std::fs::read_to_string(&probing_path).ok();
+        let set = |name, text| adjustz::SetFile { name, text };
+        if let Some(content) = adjustz::adjust_set(
+            set(&clean_path, &clean),
+            set(&z_path, &z_text),
+            probing.as_deref().map(|p| set(&probing_path, p)),
+            max,
+            opt,
+            &mut diags,
+        ) {
             planned.push((milling, content));
         }
     }
