@@ -129,16 +129,10 @@ fn remove_stale_milling(milling: &Path, inputs: &[&String], diags: &mut Diags) {
     let Some(input) = newer_input else {
         return;
     };
-    match std::fs::remove_file(milling) {
-        Ok(()) => diags.push(Diagnostic::warning(
-            Msg::StaleMillingRemoved,
-            Origin::Input,
-            millpath_core::args![milling.display(), input],
-        )),
-        Err(e) => diags.error(
-            Msg::CannotRemove,
-            Origin::Input,
-            millpath_core::args![milling.display(), e],
-        ),
-    }
+    let said = Diagnostic::warning(
+        Msg::StaleMillingRemoved,
+        Origin::Input,
+        millpath_core::args![milling.display(), input],
+    );
+    crate::output::remove_with(milling, said, diags);
 }

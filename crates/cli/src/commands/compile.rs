@@ -2,7 +2,7 @@
 
 use crate::args::{lang_of, settings_for, MachineArgs};
 use crate::inputs::compile_inputs;
-use crate::output::{flush_info, print_human, print_stats, write_outputs};
+use crate::output::{flush_info, print_human, print_stats, write_drawing_outputs};
 use crate::report;
 use millpath_core::diag::{Diagnostic, Diags, Severity};
 use millpath_core::{compile_file, Lang, OsFileSystem, Session};
@@ -46,7 +46,7 @@ pub fn run(m: &MachineArgs, files: &[String]) -> u8 {
     for input in inputs {
         let outcome = compile_file(&mut session, &input, &millpath_core::banner());
         flush_info(&mut session);
-        if write_outputs(&outcome.outputs, lang, &mut write_errors) {
+        if write_drawing_outputs(&input, &outcome, lang, &mut write_errors) {
             print_stats(&outcome, lang);
             if let (Some(v), false) = (outcome.removed_volume, outcome.outputs.is_empty()) {
                 // not in pathdxf2gcode's output, which stays the reference's
