@@ -2,32 +2,142 @@
 
 use crate::{out, report, write};
 use millpath_core::diag::{Diagnostic, Diags, Msg, Origin};
+use millpath_core::probe::adjustz;
 use millpath_core::{Lang, Session};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-/// Writes the outputs; "Writing …" is printed only for a file that was written. False when
-/// any write failed.
+/// Writes the outputs of one drawing as one set, all or none ([`write::write_set`]);
+/// "Writing …" is printed for each file once the set is in place. False when it failed.
 pub fn write_outputs(outputs: &[millpath_core::OutputFile], lang: Lang, diags: &mut Diags) -> bool {
+    write_reported(outputs, lang, diags).is_ok()
+}
+
+/// [`write_outputs`]; `Err` names the file that could not be written.
+fn write_reported(
+    outputs: &[millpath_core::OutputFile],
+    lang: Lang,
+    diags: &mut Diags,
+) -> Result<(), PathBuf> {
     let verb = if lang == Lang::De {
         "Schreiben von"
     } else {
         "Writing"
     };
-    let mut ok = true;
-    for o in outputs {
-        match write::write_atomic(&o.path, &o.content) {
-            Ok(()) => eprintln!("---- {verb} {}", o.path.display()),
-            Err(e) => {
-                ok = false;
-                diags.error(
-                    Msg::CannotWrite,
-                    Origin::Options,
-                    millpath_core::args![o.path.display(), e],
-                );
+    let files: Vec<(&Path, &str)> = outputs
+        .iter()
+        .map(|o| (o.path.as_path(), o.content.as_str()))
+        .collect();
+    match write::write_set(&files) {
+        Ok(()) => {
+            for o in outputs {
+                eprintln!("---- {verb} {}", o.path.display());
             }
+            Ok(())
+        }
+        Err((path, e)) => {
+            diags.error(
+                Msg::CannotWrite,
+                Origin::Options,
+                millpath_core::args![path.display(), e],
+            );
+            Err(path)
         }
     }
-    ok
+}
+
+/// The endings of a drawing's outputs: a milling program, or a probing set.
+const MILLING: &[&str] = &["_Milling.gcode"];
+const PROBING: &[&str] = &["_Probing.gcode", "_Z.txt", "_Clean.gcode"];
+
+/// `compile`'s writing of one drawing: the set all or none, and no output of an earlier
+/// compile of the same drawing left beside it that does not belong to this one (`verify`
+/// and `adjust-z` would take it for current). After a failed compile that is its
+/// `_Milling.gcode`, `_Probing.gcode` and `_Clean.gcode` (a filled-in `_Z.txt` holds the
+/// machinist's measurements and cannot be used without its `_Clean.gcode`: it stays);
+/// after a milling program, an older probing program and `_Clean.gcode`; after a probing
+/// set, a `_Milling.gcode` adjusted from another set. False when nothing was written.
+pub fn write_drawing_outputs(
+    input: &Path,
+    outcome: &millpath_core::FileOutcome,
+    lang: Lang,
+    diags: &mut Diags,
+) -> bool {
+    if outcome.outputs.is_empty() {
+        // a drawing that is not there (a mistyped name) has no outputs of its own
+        if !input.is_file() {
+            return false;
+        }
+        let prefix = millpath_core::output_prefix(input, "");
+        for end in ["_Milling.gcode", "_Probing.gcode", "_Clean.gcode"] {
+            remove_stale(&with_end(&prefix, end), diags);
+        }
+        return false;
+    }
+    if let Err(failed) = write_reported(&outcome.outputs, lang, diags) {
+        if outcome.outputs.len() > 1 {
+            diags.push(Diagnostic::warning(
+                Msg::OutputSetRestored,
+                Origin::Options,
+                millpath_core::args![failed.display()],
+            ));
+        }
+        return false;
+    }
+    let written = |end: &str| {
+        outcome.outputs.iter().find_map(|o| {
+            let s = o.path.to_string_lossy();
+            s.strip_suffix(end).map(|p| (PathBuf::from(p), o))
+        })
+    };
+    if let Some((prefix, _)) = written(MILLING[0]) {
+        for end in ["_Probing.gcode", "_Clean.gcode"] {
+            remove_stale(&with_end(&prefix, end), diags);
+        }
+    } else if let Some((prefix, clean)) = written(PROBING[2]) {
+        // an adjusted program of this very set (same digest) is still right
+        let milling = with_end(&prefix, MILLING[0]);
+        let ours = adjustz::stored_digest(&clean.content);
+        let same = std::fs::read_to_string(&milling)
+            .ok()
+            .is_some_and(|m| ours.is_some() && adjustz::stored_digest(&m) == ours);
+        if !same {
+            remove_stale(&milling, diags);
+        }
+    }
+    true
+}
+
+fn with_end(prefix: &Path, end: &str) -> PathBuf {
+    PathBuf::from(format!("{}{end}", prefix.display()))
+}
+
+/// Removes `path`, an output of an earlier compile, with a warning; nothing when it is not
+/// a file.
+pub fn remove_stale(path: &Path, diags: &mut Diags) {
+    remove_with(
+        path,
+        Diagnostic::warning(
+            Msg::StaleOutputRemoved,
+            Origin::File(millpath_core::diag::FileRef::new(path.to_path_buf())),
+            millpath_core::args![path.display()],
+        ),
+        diags,
+    );
+}
+
+/// Removes the file `path` and reports `said` (a warning naming it), or why it could not.
+pub fn remove_with(path: &Path, said: Diagnostic, diags: &mut Diags) {
+    if !std::fs::symlink_metadata(path).is_ok_and(|m| m.is_file()) {
+        return;
+    }
+    match std::fs::remove_file(path) {
+        Ok(()) => diags.push(said),
+        Err(e) => diags.error(
+            Msg::CannotRemove,
+            Origin::Input,
+            millpath_core::args![path.display(), e],
+        ),
+    }
 }
 
 pub fn print_stats(outcome: &millpath_core::FileOutcome, lang: Lang) {

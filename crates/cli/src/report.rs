@@ -188,6 +188,8 @@ fn names_its_file(msg: millpath_core::Msg) -> bool {
             | Msg::CannotWrite
             | Msg::StaleMillingRemoved
             | Msg::CannotRemove
+            | Msg::StaleOutputRemoved
+            | Msg::OutputSetRestored
     )
 }
 

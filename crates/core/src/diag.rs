@@ -329,6 +329,11 @@ messages! {
     CommentTextChanged = "'{0}' is written as '{1}' in the G-code comments (dialect {2}): a controller would misread it there (a nested parenthesis, an active comment word, a real-time command character or a line too long); rename the file or change the text to keep it as it is", "'{0}' wird in den G-Code-Kommentaren als '{1}' geschrieben (Dialekt {2}): eine Steuerung würde es dort falsch lesen (eine verschachtelte Klammer, ein aktives Kommentarwort, ein Echtzeit-Befehlszeichen oder eine zu lange Zeile); die Datei umbenennen oder den Text ändern, um ihn unverändert zu behalten";
     // `check` on folders without drawings (a report in every format)
     NoDrawingsFound = "no drawings (*.dxf, *.mpath) found in {0}", "keine Zeichnungen (*.dxf, *.mpath) in {0} gefunden";
+    // one drawing's outputs are one set (issue 20): unfilled _Z.txt, mixed sets, stale outputs
+    ZNoValue = "No measured value for probe {0} (nominal height {1}): type the height the probing program measured after '='", "Kein Messwert für Messpunkt {0} (Soll-Höhe {1}): die vom Antastprogramm gemessene Höhe nach '=' eintragen";
+    ZSetMismatch = "{0} and {1} are not from the same compile: compile the drawing again, run the new probing program and fill in the new _Z.txt", "{0} und {1} stammen nicht aus derselben Übersetzung: die Zeichnung neu übersetzen, das neue Antastprogramm laufen lassen und die neue _Z.txt ausfüllen";
+    StaleOutputRemoved = "Removed {0}: an output of an earlier compile of this drawing, and this compile wrote no new one", "{0} entfernt: eine Ausgabe einer früheren Übersetzung dieser Zeichnung, und diese Übersetzung hat keine neue geschrieben";
+    OutputSetRestored = "{0} could not be written: the outputs of this drawing were left as they were before this compile", "{0} konnte nicht geschrieben werden: die Ausgaben dieser Zeichnung sind geblieben, wie sie vor dieser Übersetzung waren";
 }
 
 impl Msg {

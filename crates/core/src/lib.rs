@@ -57,8 +57,9 @@ pub fn complete_input(arg: &str) -> PathBuf {
     }
 }
 
-/// Output prefix: the input path minus its extension, plus the path's `R` suffix.
-fn output_prefix(input: &Path, suffix: &str) -> PathBuf {
+/// Output prefix: the input path minus its extension, plus the path's `R` suffix (public:
+/// the command line finds the outputs of an earlier compile of a drawing by it).
+pub fn output_prefix(input: &Path, suffix: &str) -> PathBuf {
     let s = input.to_string_lossy();
     let cut = match s.rfind('.') {
         Some(p) if !s[p..].contains('/') => &s[..p],

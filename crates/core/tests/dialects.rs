@@ -272,10 +272,16 @@ fn probing_programs_follow_the_dialect_without_spindle() {
     let run = compile_with(&[("1000.1P.mpath", text.into())], "1000.1P.mpath", s);
     assert!(run.diags.is_empty(), "{:?}", run.messages());
     let probing = run.output("_Probing.gcode");
+    // the banner line carries the probing set's digest (grbl has no `%`: it is line 1)
+    let (banner, probing) = probing.split_once('\n').unwrap();
+    assert!(
+        banner.starts_with("(millpath test set=")
+            && banner.len() == "(millpath test set=)".len() + 16,
+        "{banner}"
+    );
     assert_eq!(
         probing,
-        "(millpath test)
-(1000.1P.mpath)
+        "(1000.1P.mpath)
 (MILLPATH-STOCK T=2.000 O=2.000 BOTTOM=-0.300)
 G17 G21 G40 G49 G54 G80 G90 G94
 F150.000

@@ -196,6 +196,23 @@ pub enum FindingKind {
     StockSkipped(StockSkip),
     StockComment(StockCommentProblem),
     Limit(Limit),
+    /// A program adjusted to a measured surface (`(==…)` lines).
+    Adjusted(AdjustedProblem),
+}
+
+/// Problems of a program adjusted by adjust-z.
+#[derive(Debug, Clone, PartialEq)]
+pub enum AdjustedProblem {
+    /// The written Z is not the value of its probe expression with the measured heights.
+    ZMismatch { z: f64, expected: f64 },
+    /// The probe expression after `(==` cannot be read.
+    Unreadable,
+    /// A probe of the expression has no measured height in `(MILLPATH-PROBES …)`.
+    NoValue { name: String },
+    /// A word of `(MILLPATH-PROBES …)` is not `#n=<number>`.
+    BadValue { text: String },
+    /// Adjusted lines but no measured heights: checked at the drawn heights only.
+    NoValues,
 }
 
 fn f3(v: f64) -> String {
@@ -221,6 +238,7 @@ impl FindingKind {
             FindingKind::StockSkipped(_) => "stock-skipped",
             FindingKind::StockComment(_) => "stock-comment",
             FindingKind::Limit(_) => "limit",
+            FindingKind::Adjusted(_) => "adjusted",
         }
     }
 
@@ -329,6 +347,34 @@ impl FindingKind {
                 "the program has no end (M30, M2 or a closing %): is it truncated?".into(),
                 "das Programm hat kein Ende (M30, M2 oder abschließendes %): ist es abgeschnitten?".into(),
             ),
+            FindingKind::Adjusted(p) => match p {
+                AdjustedProblem::ZMismatch { z, expected } => pick(
+                    format!(
+                        "Z{} is not the value {} of its probe expression with the measured heights (MILLPATH-PROBES): the line was changed after adjust-z",
+                        f3(*z), f3(*expected)
+                    ),
+                    format!(
+                        "Z{} ist nicht der Wert {} seines Messpunkt-Ausdrucks mit den gemessenen Höhen (MILLPATH-PROBES): die Zeile wurde nach adjust-z geändert",
+                        f3(*z), f3(*expected)
+                    ),
+                ),
+                AdjustedProblem::Unreadable => pick(
+                    "probe expression after '(==' cannot be read: the depth of this line is not known".into(),
+                    "Messpunkt-Ausdruck nach '(==' ist nicht lesbar: die Tiefe dieser Zeile ist unbekannt".into(),
+                ),
+                AdjustedProblem::NoValue { name } => pick(
+                    format!("probe {name} has no measured height in the (MILLPATH-PROBES …) comment"),
+                    format!("Messpunkt {name} hat keine gemessene Höhe im Kommentar (MILLPATH-PROBES …)"),
+                ),
+                AdjustedProblem::BadValue { text } => pick(
+                    format!("'{text}' in (MILLPATH-PROBES …) is not #n=<number>"),
+                    format!("'{text}' in (MILLPATH-PROBES …) ist nicht #n=<Zahl>"),
+                ),
+                AdjustedProblem::NoValues => pick(
+                    "adjusted program without measured heights (no MILLPATH-PROBES comment): depths are checked at the drawn heights only, not below the measured surface".into(),
+                    "angepasstes Programm ohne gemessene Höhen (kein Kommentar MILLPATH-PROBES): Tiefen werden nur an den gezeichneten Höhen geprüft, nicht unter der gemessenen Oberfläche".into(),
+                ),
+            },
             FindingKind::AfterProgramEnd => pick(
                 "code after the program end (M2/M30) is ignored by the controller".into(),
                 "Code nach dem Programmende (M2/M30) wird von der Steuerung ignoriert".into(),

@@ -21,14 +21,16 @@
 //! the grid has at most [`Limits::max_cells`] cells, and the stock model stops after
 //! [`Limits::max_work`] cell visits (each with a finding saying so).
 
+mod adjusted;
 mod finding;
 mod machine;
 mod parse;
 mod stock;
 
+pub use adjusted::PROBES_WORD;
 pub use finding::{
-    ArcProblem, Finding, FindingKind, Lang, Limit, NoFeedReason, NumberProblem, Severity,
-    StockCommentProblem, StockSkip, SyntaxError,
+    AdjustedProblem, ArcProblem, Finding, FindingKind, Lang, Limit, NoFeedReason, NumberProblem,
+    Severity, StockCommentProblem, StockSkip, SyntaxError,
 };
 pub use parse::MAX_MAGNITUDE;
 
@@ -223,8 +225,25 @@ pub fn verify(program: &str, options: &Options) -> Report {
     let limits = options.limits;
     let mut m = Machine::new(options.dialect);
     let mut lines: Vec<&str> = Vec::new();
-    let mut extra: Vec<Raw> = Vec::new();
     let body = program.strip_suffix('\n').unwrap_or(program);
+    // adjust-z's programs: heights back to the drawing's frame (adjusted.rs)
+    let (surface, problems) = adjusted::Surface::scan(body.split('\n').take(limits.max_lines));
+    let mut extra: Vec<Raw> = problems
+        .into_iter()
+        .map(|(line, kind)| Raw {
+            line: Some(line),
+            kind,
+            severity: Severity::Error,
+        })
+        .collect();
+    if surface.adjusted && !surface.has_values() {
+        extra.push(Raw {
+            line: None,
+            kind: FindingKind::Adjusted(AdjustedProblem::NoValues),
+            severity: Severity::Warning,
+        });
+    }
+    let rise = surface.max_rise();
     for (idx, raw) in body.split('\n').enumerate() {
         let no = idx + 1;
         if idx >= limits.max_lines {
@@ -245,6 +264,16 @@ pub fn verify(program: &str, options: &Options) -> Report {
             parse::parse_line(l)
         };
         match parsed {
+            Ok(mut b) if surface.adjusted => {
+                if let Err(kind) = to_drawing_frame(&mut b, &surface, rise) {
+                    extra.push(Raw {
+                        line: Some(no),
+                        kind: FindingKind::Adjusted(kind),
+                        severity: Severity::Error,
+                    });
+                }
+                m.exec(no, &b)
+            }
             Ok(b) => m.exec(no, &b),
             Err(kind) => {
                 if m.ended {
@@ -339,6 +368,24 @@ pub fn verify(program: &str, options: &Options) -> Report {
         })
         .collect();
     report
+}
+
+/// Moves the Z of a line of an adjusted program to the drawing's frame ([`adjusted`]).
+fn to_drawing_frame(
+    b: &mut parse::Block,
+    surface: &adjusted::Surface,
+    rise: f64,
+) -> Result<(), AdjustedProblem> {
+    let Some(z) = b.words.iter_mut().find(|w| w.letter == 'Z') else {
+        return Ok(());
+    };
+    match b.comments.iter().find_map(|c| c.strip_prefix("==")) {
+        Some(expr) => {
+            z.value = surface.nominal_z(z.value, expr)?;
+        }
+        None => z.value -= rise,
+    }
+    Ok(())
 }
 
 /// The stock model over all moves: rapids checked against it, cuts lowering it.

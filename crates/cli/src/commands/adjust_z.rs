@@ -64,9 +64,18 @@ pub fn run(max: f64, x: Option<&str>, lang: Lang, files: &[String], reference_li
                 eprintln!("---- {line}");
             }
         }
-        if let Some(content) =
-            adjustz::adjust(&clean, &clean_path, &z_text, &z_path, max, opt, &mut diags)
-        {
+        // the probing program that measured the values, when it is beside them
+        let probing_path = format!("{base}_Probing.gcode");
+        let probing = std::fs::read_to_string(&probing_path).ok();
+        let set = |name, text| adjustz::SetFile { name, text };
+        if let Some(content) = adjustz::adjust_set(
+            set(&clean_path, &clean),
+            set(&z_path, &z_text),
+            probing.as_deref().map(|p| set(&probing_path, p)),
+            max,
+            opt,
+            &mut diags,
+        ) {
             planned.push((milling, content));
         }
     }
@@ -120,16 +129,10 @@ fn remove_stale_milling(milling: &Path, inputs: &[&String], diags: &mut Diags) {
     let Some(input) = newer_input else {
         return;
     };
-    match std::fs::remove_file(milling) {
-        Ok(()) => diags.push(Diagnostic::warning(
-            Msg::StaleMillingRemoved,
-            Origin::Input,
-            millpath_core::args![milling.display(), input],
-        )),
-        Err(e) => diags.error(
-            Msg::CannotRemove,
-            Origin::Input,
-            millpath_core::args![milling.display(), e],
-        ),
-    }
+    let said = Diagnostic::warning(
+        Msg::StaleMillingRemoved,
+        Origin::Input,
+        millpath_core::args![milling.display(), input],
+    );
+    crate::output::remove_with(milling, said, diags);
 }

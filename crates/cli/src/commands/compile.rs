@@ -3,7 +3,7 @@
 
 use crate::args::{lang_of, settings_for, MachineArgs};
 use crate::inputs::compile_inputs;
-use crate::output::{flush_info, print_human, print_stats, write_outputs};
+use crate::output::{flush_info, print_human, print_stats, write_drawing_outputs};
 use crate::report;
 use millpath_core::diag::{Diags, Severity};
 use millpath_core::{compile_file, Lang, OsFileSystem, Session, Settings};
@@ -71,9 +71,8 @@ fn compile_one(settings: &Settings, input: &Path) -> bool {
     let outcome = compile_file(&mut session, input, &millpath_core::banner());
     flush_info(&mut session);
     let mut write_errors = Diags::default();
-    let written = !session.diags.has_errors()
-        && !outcome.outputs.is_empty()
-        && write_outputs(&outcome.outputs, lang, &mut write_errors);
+    // a failed drawing writes nothing and leaves none of its older outputs looking current
+    let written = write_drawing_outputs(input, &outcome, lang, &mut write_errors);
     if written {
         print_stats(&outcome, lang);
         if let Some(v) = outcome.removed_volume {

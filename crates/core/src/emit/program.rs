@@ -7,6 +7,7 @@ use crate::emit::stats::Stats;
 use crate::emit::{emit, emit_until, Emitted};
 use crate::geom::{near, F3, P2, P3};
 use crate::model::*;
+use crate::probe::adjustz::{banner_index, banner_with_digest, set_digest};
 
 /// The files of one compiled path.
 #[derive(Debug, Clone, PartialEq)]
@@ -153,11 +154,23 @@ pub fn generate_for(
             format!("{} {}=", as_comment(0, &inner), p.name)
         })
         .collect();
+    let z_txt = join(&z_lines);
+    // the set's digest in the banner line of both programs (the line the reference's outputs
+    // are compared without): adjust-z refuses files of different compiles
+    let stamped = as_comment(0, &banner_with_digest(banner, &set_digest(&z_txt, &body)));
+    let stamp = |text: String| {
+        let at = banner_index(&text);
+        let mut lines: Vec<&str> = text.lines().collect();
+        if let Some(l) = lines.get_mut(at) {
+            *l = &stamped;
+        }
+        join(&lines)
+    };
     Ok(Generated {
         output: Output::Probing {
-            probing: join(&pl),
-            z_txt: join(&z_lines),
-            clean: body,
+            probing: stamp(join(&pl)),
+            z_txt,
+            clean: stamp(body),
         },
         stats,
         line_sources,
@@ -173,8 +186,12 @@ fn start(sx: f64) -> P3 {
     }
 }
 
-fn join(lines: &[String]) -> String {
-    let mut s = lines.join("\n");
+fn join<S: AsRef<str>>(lines: &[S]) -> String {
+    let mut s = lines
+        .iter()
+        .map(AsRef::as_ref)
+        .collect::<Vec<&str>>()
+        .join("\n");
     s.push('\n');
     s
 }

@@ -1,0 +1,204 @@
+//! The digest of a probing set: `_Probing.gcode`, `_Z.txt` and `_Clean.gcode` of one compile.
+//!
+//! `_Z.txt` itself cannot carry it (the reference's `_Z.txt` is compared whole, and the
+//! machinist fills it in), so the digest covers what adjust-z can recompute from the files it
+//! reads: the nominal part of every `_Z.txt` line (`(comment) #n=`, the measured value left
+//! out) and every line of `_Clean.gcode` but its banner line. Compile writes it into the
+//! banner line (line 2; line 1 in grbl, which has no `%`) of `_Clean.gcode` and
+//! `_Probing.gcode` as ` set=<16 hex digits>`, a line the reference's outputs are compared
+//! without. SipHash-2-4 with fixed keys: the digest guards against files of different
+//! compiles put together by accident, not against forgery.
+
+use super::line_origin;
+use crate::args;
+use crate::diag::{Diags, Msg};
+use siphasher::sip::SipHasher24;
+use std::hash::Hasher;
+
+/// The word before the digest in a banner line.
+pub const SET_WORD: &str = "set=";
+
+/// Index of the banner line: the line after a leading `%`, else the first line.
+pub fn banner_index(program: &str) -> usize {
+    usize::from(program.lines().next().is_some_and(|l| l.trim() == "%"))
+}
+
+/// The nominal part of a `_Z.txt` line: `(comment) #n=` without the value and blanks; a line
+/// of another form as it is (it is reported when the file is read).
+fn nominal_z_line(line: &str) -> String {
+    let t = line.trim();
+    let nominal = (|| {
+        let close = t.strip_prefix('(')?.find(')')? + 1;
+        let rest = t[close + 1..].trim_start().strip_prefix('#')?.trim_start();
+        let digits = rest.len() - rest.trim_start_matches(|c: char| c.is_ascii_digit()).len();
+        let (name, after) = rest.split_at(digits);
+        after.trim_start().strip_prefix('=')?;
+        (digits > 0).then(|| format!("{} #{name}=", &t[..=close]))
+    })();
+    nominal.unwrap_or_else(|| t.to_string())
+}
+
+/// The digest of a set: `_Z.txt` (filled in or not) and `_Clean.gcode` (with or without a
+/// digest in its banner line), as 16 lower-case hex digits.
+pub fn set_digest(z_txt: &str, clean: &str) -> String {
+    let mut h = SipHasher24::new_with_keys(0, 0);
+    h.write(b"millpath probing set 1\n");
+    let z_txt = z_txt.strip_prefix('\u{feff}').unwrap_or(z_txt);
+    for line in z_txt.lines().filter(|l| !l.trim().is_empty()) {
+        h.write(nominal_z_line(line).as_bytes());
+        h.write(b"\n");
+    }
+    h.write(b"--\n");
+    let banner = banner_index(clean);
+    for (i, line) in clean.lines().enumerate() {
+        if i != banner {
+            h.write(line.trim_end().as_bytes());
+            h.write(b"\n");
+        }
+    }
+    format!("{:016x}", h.finish())
+}
+
+/// The digest in a program's banner line, if it has one.
+pub fn stored_digest(program: &str) -> Option<&str> {
+    let line = program.lines().nth(banner_index(program))?;
+    let at = line.find(SET_WORD)? + SET_WORD.len();
+    let hex = line.get(at..at + 16)?;
+    hex.bytes().all(|b| b.is_ascii_hexdigit()).then_some(hex)
+}
+
+/// `banner` with the digest, as written into line 2 of `_Clean.gcode` and `_Probing.gcode`.
+pub fn banner_with_digest(banner: &str, digest: &str) -> String {
+    format!("{banner} {SET_WORD}{digest}")
+}
+
+/// One file of a set as adjust-z read it.
+pub struct SetFile<'a> {
+    pub name: &'a str,
+    pub text: &'a str,
+}
+
+/// Refuses a mix: `_Clean.gcode`'s digest must be that of `_Clean.gcode` with this `_Z.txt`,
+/// and a `_Probing.gcode` with a digest must carry the same. A `_Clean.gcode` without a
+/// digest (older files, hand-made ones) is accepted as before. False after an error.
+pub fn check_set(clean: SetFile, z: SetFile, probing: Option<SetFile>, diags: &mut Diags) -> bool {
+    let Some(stored) = stored_digest(clean.text) else {
+        return true;
+    };
+    let banner_line = banner_index(clean.text) + 1;
+    let mut ok = true;
+    if set_digest(z.text, clean.text) != stored {
+        diags.error(
+            Msg::ZSetMismatch,
+            line_origin(clean.name, banner_line),
+            args![clean.name, z.name],
+        );
+        ok = false;
+    }
+    if let Some(p) = probing {
+        if stored_digest(p.text).is_some_and(|d| d != stored) {
+            diags.error(
+                Msg::ZSetMismatch,
+                line_origin(p.name, banner_index(p.text) + 1),
+                args![p.name, clean.name],
+            );
+            ok = false;
+        }
+    }
+    ok
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const CLEAN: &str = "%\n(millpath V.1)\nG01 Z0.800(=0.800+1.000*[#51-2.000])\nM30\n%\n";
+    const Z: &str = "([1.000 2.000]/T=2.000) #51=\n";
+
+    fn stamped(clean: &str, z: &str) -> String {
+        let d = set_digest(z, clean);
+        clean.replace("(millpath V.1)", &format!("(millpath V.1 set={d})"))
+    }
+
+    fn msgs(clean: &str, z: &str, probing: Option<&str>) -> Vec<String> {
+        let mut d = Diags::default();
+        check_set(
+            SetFile {
+                name: "c",
+                text: clean,
+            },
+            SetFile { name: "z", text: z },
+            probing.map(|text| SetFile { name: "p", text }),
+            &mut d,
+        );
+        d.list.iter().map(|x| x.message(crate::Lang::En)).collect()
+    }
+
+    #[test]
+    fn measured_values_blanks_and_line_ends_keep_the_digest() {
+        let d = set_digest(Z, CLEAN);
+        assert_eq!(d.len(), 16);
+        for z in [
+            "([1.000 2.000]/T=2.000) #51=2,1\n",
+            "([1.000 2.000]/T=2.000)  # 51 = 2.1 \r\n\n",
+            "\u{feff}([1.000 2.000]/T=2.000) #51=\n",
+        ] {
+            assert_eq!(set_digest(z, CLEAN), d, "{z:?}");
+        }
+        assert_eq!(set_digest(Z, &CLEAN.replace('\n', "\r\n")), d);
+        // the banner line is not covered: the digest can be written into it
+        assert_eq!(set_digest(Z, &stamped(CLEAN, Z)), d);
+    }
+
+    #[test]
+    fn a_moved_probe_or_another_program_changes_the_digest() {
+        let d = set_digest(Z, CLEAN);
+        assert_ne!(
+            set_digest(&Z.replace("1.000 2.000", "1.000 3.000"), CLEAN),
+            d
+        );
+        assert_ne!(set_digest(&Z.replace("T=2.000", "T=2.500"), CLEAN), d);
+        assert_ne!(set_digest(&Z.replace("#51", "#52"), CLEAN), d);
+        assert_ne!(
+            set_digest(Z, &CLEAN.replace("Z0.800(=0.800", "Z0.500(=0.500")),
+            d
+        );
+        assert_ne!(set_digest(&format!("{Z}{Z}"), CLEAN), d);
+    }
+
+    #[test]
+    fn mixes_are_refused_naming_the_files() {
+        let clean = stamped(CLEAN, Z);
+        assert!(msgs(&clean, "([1.000 2.000]/T=2.000) #51=2.1\n", None).is_empty());
+        let moved = "([1.000 9.000]/T=2.000) #51=2.1\n";
+        let m = msgs(&clean, moved, None);
+        assert_eq!(m.len(), 1);
+        assert!(
+            m[0].starts_with("c and z are not from the same compile"),
+            "{m:?}"
+        );
+        // a probing program of another compile
+        let other = stamped(&CLEAN.replace("0.800", "0.700"), Z);
+        let m = msgs(&clean, Z, Some(&other));
+        assert_eq!(m.len(), 1);
+        assert!(m[0].starts_with("p and c are not"), "{m:?}");
+        assert!(msgs(&clean, Z, Some(&clean)).is_empty());
+        // files without a digest are accepted as before
+        assert!(msgs(CLEAN, moved, Some(&other)).is_empty());
+        assert!(msgs(&clean, Z, Some("%\n(PathDxf2GCode)\nM30\n%\n")).is_empty());
+    }
+
+    #[test]
+    fn digest_is_found_in_the_banner_line_only() {
+        let clean = stamped(CLEAN, Z);
+        assert_eq!(stored_digest(&clean), Some(set_digest(Z, CLEAN).as_str()));
+        assert_eq!(stored_digest(CLEAN), None);
+        assert_eq!(stored_digest("%\n(a)\n(set=0123456789abcdef)\n"), None);
+        assert_eq!(
+            stored_digest("(x set=0123456789abcdef)\nM30\n"),
+            Some("0123456789abcdef")
+        );
+        assert_eq!(stored_digest("%\n(x set=0123)\n"), None);
+        assert_eq!(stored_digest(""), None);
+    }
+}

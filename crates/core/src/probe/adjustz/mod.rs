@@ -1,0 +1,394 @@
+//! adjust-z: `_Clean.gcode` + measured `_Z.txt` → `_Milling.gcode` (reference-output.md §15).
+//!
+//! Beyond the reference, adjust-z refuses anything that could make a dangerous program
+//! (docs/differences.md): every number must be finite and within ±[`LIMIT`]; the nominal
+//! height of each probe comes from `_Clean.gcode` (the `w*[#n-TH]` terms), and `_Z.txt` must
+//! agree with it and hold exactly the probes used there; `_Clean.gcode` must be a complete
+//! program; lines and expression nesting are bounded. [`adjust`] is the one entry point.
+
+mod digest;
+mod expr;
+mod rewrite;
+mod zfile;
+
+pub use digest::{
+    banner_index, banner_with_digest, check_set, set_digest, stored_digest, SetFile, SET_WORD,
+};
+pub use expr::eval;
+use rewrite::rewrite_program;
+pub use rewrite::{measured_values, read_clean, CleanProgram, Probe, PROBES_WORD};
+pub use zfile::{parse_z_file, ZLine};
+
+use crate::args;
+use crate::diag::{Diagnostic, Diags, Msg, Origin};
+
+/// Largest absolute value of any number adjust-z reads or writes (mm).
+pub const LIMIT: f64 = 1e6;
+/// Longest line of `_Clean.gcode` or `_Z.txt`, in bytes.
+pub const MAX_LINE: usize = 10_000;
+/// Deepest nesting of `(`, `[` and unary `-` in a probe expression.
+pub const MAX_DEPTH: usize = 64;
+
+/// The file argument reduced to its base: `.dxf`, `_Clean.gcode`, `_Z.txt` or `.gcode` removed.
+pub fn base_path(arg: &str) -> String {
+    let lower = arg.to_ascii_lowercase();
+    for suffix in [".dxf", "_clean.gcode", "_z.txt", ".gcode", ".mpath"] {
+        if lower.ends_with(suffix) {
+            return arg[..arg.len() - suffix.len()].to_string();
+        }
+    }
+    arg.to_string()
+}
+
+/// The limit option as the user spelled it: `/m` (reference command line) or `--max`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MaxOption {
+    Slash,
+    Long,
+}
+
+impl MaxOption {
+    pub fn name(self) -> &'static str {
+        match self {
+            MaxOption::Slash => "/m",
+            MaxOption::Long => "--max",
+        }
+    }
+}
+
+/// `None` when `max` is a usable limit (finite, > 0, ≤ [`LIMIT`]), else the option error.
+pub fn check_max(max: f64, text: &str, opt: MaxOption) -> Option<Diagnostic> {
+    if max.is_finite() && max > 0.0 && max <= LIMIT {
+        None
+    } else {
+        Some(Diagnostic::error(
+            Msg::MaxInvalid,
+            Origin::Options,
+            args![opt.name(), text],
+        ))
+    }
+}
+
+fn line_origin(file: &str, line: usize) -> Origin {
+    Origin::FileLine {
+        file: file.to_string(),
+        line,
+    }
+}
+/// The whole of adjust-z for one part: `_Milling.gcode`'s content, or `None` after errors
+/// (each naming its file and line). Nothing is produced unless every check passes.
+pub fn adjust(
+    clean: &str,
+    clean_file: &str,
+    z: &str,
+    z_file: &str,
+    max: f64,
+    opt: MaxOption,
+    diags: &mut Diags,
+) -> Option<String> {
+    let clean = SetFile {
+        name: clean_file,
+        text: clean,
+    };
+    let z = SetFile {
+        name: z_file,
+        text: z,
+    };
+    adjust_set(clean, z, None, max, opt, diags)
+}
+
+/// [`adjust`] with the `_Probing.gcode` beside them, when there is one: a set whose files
+/// come from different compiles is refused first ([`check_set`]), as its other errors would
+/// only be consequences of the mix.
+pub fn adjust_set(
+    clean: SetFile,
+    z: SetFile,
+    probing: Option<SetFile>,
+    max: f64,
+    opt: MaxOption,
+    diags: &mut Diags,
+) -> Option<String> {
+    let before = diags.error_count();
+    if let Some(d) = check_max(max, &max.to_string(), opt) {
+        diags.push(d);
+        return None;
+    }
+    let (clean_file, z_file) = (clean.name, z.name);
+    let (clean_text, z_text) = (clean.text, z.text);
+    if !check_set(clean, z, probing, diags) {
+        return None;
+    }
+    let lines = parse_z_file(z_text, z_file, diags);
+    let prog = read_clean(clean_text, clean_file, diags);
+    if diags.error_count() > before {
+        return None;
+    }
+    let vars = measured_values(&prog, clean_file, &lines, z_file, max, opt, diags);
+    if diags.error_count() > before {
+        return None;
+    }
+    let milling = rewrite_program(clean_text, clean_file, &prog, &vars, diags);
+    if diags.error_count() > before {
+        return None;
+    }
+    // only our own compiles (with a digest) get the measured values for `verify`: a reference
+    // `_Clean.gcode` gives the reference's `_Milling.gcode` unchanged
+    Some(match digest::stored_digest(clean_text) {
+        Some(_) => rewrite::record_measured(&milling, &prog, &vars),
+        None => milling,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rewrite::{has_expression_mark, z_regex};
+
+    const CLEAN: &str =
+        "%\nG00 Z5.000\nG01 Z0.800(=0.800+0.794*[#51-2.000]+0.206*[#52-2.000])\nM30\n%\n";
+    const Z: &str = "([57.358 242.020]/T=2.000) #51=2,1\n\n([1.000 2.000]/L:a/T=2.000) #52=2.2\n";
+
+    fn run(clean: &str, z: &str, max: f64) -> (Option<String>, Vec<Msg>, Diags) {
+        let mut d = Diags::default();
+        let out = adjust(clean, "c", z, "z", max, MaxOption::Slash, &mut d);
+        let msgs = d.list.iter().map(|x| x.msg).collect();
+        (out, msgs, d)
+    }
+
+    #[test]
+    fn adjusts_good_input_unchanged() {
+        let (out, msgs, _) = run(CLEAN, Z, 1.0);
+        assert!(msgs.is_empty(), "{msgs:?}");
+        assert_eq!(
+            out.unwrap(),
+            "%\nG00 Z5.000\nG01 Z0.921(==0.800+0.794*[#51-2.000]+0.206*[#52-2.000])\nM30\n%\n"
+        );
+    }
+
+    #[test]
+    fn non_finite_or_insane_numbers_are_refused() {
+        for bad in [
+            "NaN",
+            "inf",
+            "Infinity",
+            "-Infinity",
+            "1e999",
+            "2e6",
+            "-1000001",
+        ] {
+            let z = Z.replace("#51=2,1", &format!("#51={bad}"));
+            let (out, msgs, d) = run(CLEAN, &z, 1e6);
+            assert!(out.is_none(), "{bad}");
+            assert!(
+                msgs == [Msg::ZNotNumber] || msgs == [Msg::ZOutOfRange],
+                "{bad}: {msgs:?}"
+            );
+            assert_eq!(d.list[0].origin.context(), "z:1");
+            let z = Z.replace("T=2.000) #51", &format!("T={bad}) #51"));
+            assert!(run(CLEAN, &z, 1e6).0.is_none(), "T={bad}");
+        }
+        let (_, _, d) = run(CLEAN, &Z.replace("#51=2,1", "#51=NaN"), 1.0);
+        assert_eq!(
+            d.list[0].message(crate::Lang::En),
+            "Value 'NaN' for #51 is not a valid number"
+        );
+        let (_, msgs, _) = run(CLEAN, &Z.replace("#51=2,1", "#51=2e6"), 1.0);
+        assert_eq!(msgs, [Msg::ZOutOfRange]);
+    }
+
+    #[test]
+    fn max_must_be_finite_and_positive() {
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 0.0, -1.0, 2e6] {
+            let (out, msgs, _) = run(CLEAN, Z, bad);
+            assert!(out.is_none(), "{bad}");
+            assert_eq!(msgs, [Msg::MaxInvalid], "{bad}");
+        }
+        let d = check_max(f64::NAN, "NaN", MaxOption::Long).unwrap();
+        assert_eq!(
+            d.message(crate::Lang::En),
+            "--max value NaN must be a finite number > 0 and at most 1000000"
+        );
+        assert!(check_max(0.5, "0.5", MaxOption::Slash).is_none());
+    }
+
+    #[test]
+    fn nominal_height_comes_from_clean_gcode() {
+        // editing T in _Z.txt does not move the limit: the T must match _Clean.gcode
+        let z = Z.replace("T=2.000) #51=2,1", "T=-50) #51=-50");
+        let (out, msgs, d) = run(CLEAN, &z, 0.5);
+        assert!(out.is_none());
+        assert_eq!(msgs, [Msg::ZNominalMismatch]);
+        assert_eq!(
+            d.list[0].message(crate::Lang::En),
+            "T=-50 for #51 differs from its nominal height 2.000 in c:3"
+        );
+        assert_eq!(d.list[0].origin.context(), "z:1");
+        // the limit is measured from the nominal height of _Clean.gcode
+        let z = Z.replace("#51=2,1", "#51=2.6");
+        assert_eq!(run(CLEAN, &z, 0.5).1, [Msg::ZTooFar]);
+        // T written differently but equal is fine
+        let z = Z.replace("T=2.000) #51", "T=2) #51");
+        assert!(run(CLEAN, &z, 0.5).0.is_some());
+        // a probe of _Clean.gcode without a value
+        let (out, msgs, d) = run(CLEAN, "([0 0]/T=2.000) #51=2\n", 0.5);
+        assert!(out.is_none());
+        assert_eq!(msgs, [Msg::ZProbeMissing]);
+        assert_eq!(d.list[0].origin.context(), "c:3");
+        // one probe with two nominal heights in _Clean.gcode
+        let clean = CLEAN.replace("M30", "G01 Z1.000(=1.000+1.000*[#51-3.000])\nM30");
+        assert_eq!(run(&clean, Z, 0.5).1, [Msg::ZProbeHeightsDiffer]);
+        // a probe variable outside a [#n-TH] term
+        let clean = CLEAN.replace("M30", "G01 Z1.000(=1.000+#51)\nM30");
+        assert_eq!(run(&clean, Z, 0.5).1, [Msg::ZProbeTermForm]);
+    }
+
+    #[test]
+    fn negative_nominal_heights() {
+        let clean = "%\nG01 Z-1.000(=-1.000+1.000*[#51--1.500])\nM30\n%\n";
+        let (out, msgs, _) = run(clean, "([0 0]/T=-1.500) #51=-1,4\n", 0.5);
+        assert!(msgs.is_empty(), "{msgs:?}");
+        assert_eq!(
+            out.unwrap(),
+            "%\nG01 Z-0.900(==-1.000+1.000*[#51--1.500])\nM30\n%\n"
+        );
+    }
+
+    #[test]
+    fn incomplete_programs_are_refused() {
+        for (clean, line) in [
+            ("", 1),
+            ("\n\n", 1),
+            ("G00 Z5.000\nM30\n%\n", 1),
+            ("%\nG00 Z5.000\nM30\n", 3),
+            ("%\nG00 Z5.000\n%\n", 3),
+            ("%\nG01 Z0.800(=0.800+0.794*[#51-2.000]+0.206*[#52-2.0", 2),
+            ("%\n", 1),
+        ] {
+            let (out, msgs, d) = run(clean, "", 0.5);
+            assert!(out.is_none(), "{clean:?}");
+            assert!(
+                msgs.contains(&Msg::ZIncompleteProgram),
+                "{clean:?}: {msgs:?}"
+            );
+            let d = d
+                .list
+                .iter()
+                .find(|d| d.msg == Msg::ZIncompleteProgram)
+                .unwrap();
+            assert_eq!(d.origin.context(), format!("c:{line}"), "{clean:?}");
+        }
+        // trailing blank lines and CR LF are fine
+        let crlf = CLEAN.replace('\n', "\r\n") + "\r\n";
+        assert!(run(&crlf, Z, 1.0).0.is_some());
+    }
+
+    #[test]
+    fn unknown_probes_in_z_file_are_errors() {
+        let z = format!("{Z}([0 0]/T=2.000) #99=2\n");
+        let (out, msgs, d) = run(CLEAN, &z, 1.0);
+        assert!(out.is_none());
+        assert_eq!(msgs, [Msg::ZUnknownProbe]);
+        assert_eq!(d.list[0].origin.context(), "z:4");
+    }
+
+    #[test]
+    fn too_far_names_the_measured_value_first() {
+        let z = Z.replace("#51=2,1", "#51=9,9");
+        let (_, _, d) = run(CLEAN, &z, 0.5);
+        assert_eq!(
+            d.list[0].message(crate::Lang::En),
+            "Value 9,9 for #51 differs from 2.000 by more than /m=0.5"
+        );
+        let mut d = Diags::default();
+        adjust(CLEAN, "c", &z, "z", 0.5, MaxOption::Long, &mut d);
+        assert_eq!(
+            d.list[0].message(crate::Lang::En),
+            "Value 9,9 for #51 differs from 2.000 by more than --max=0.5"
+        );
+        assert_eq!(
+            d.list[0].message(crate::Lang::De),
+            "Wert 9,9 für #51 weicht von 2.000 um mehr als --max=0.5 ab"
+        );
+    }
+
+    #[test]
+    fn clean_lines_the_rewriting_cannot_handle_are_refused() {
+        // a second expression on a line would stay uncorrected
+        let clean = CLEAN.replace(
+            "M30",
+            "G01 X1.000(=1.000+1.000*[#51-2.000]) Z0.800(=0.800+1.000*[#51-2.000])\nM30",
+        );
+        assert_eq!(run(&clean, Z, 1.0).1, [Msg::ZUnreadableExpression]);
+        let clean = CLEAN.replace("M30", "G01 Z0.800(=0.800 + 1.000*[#51-2.000])\nM30");
+        assert_eq!(run(&clean, Z, 1.0).1, [Msg::ZUnreadableExpression]);
+        // an already adjusted line carries an old measurement
+        let clean = CLEAN.replace("M30", "G01 Z0.900(==0.800+1.000*[#51-2.000])\nM30");
+        assert_eq!(run(&clean, Z, 1.0).1, [Msg::ZAlreadyAdjusted]);
+        // a long line
+        let clean = CLEAN.replace("M30", &format!("({})\nM30", "x".repeat(MAX_LINE)));
+        assert_eq!(run(&clean, Z, 1.0).1, [Msg::LineTooLong]);
+        // comments may say anything
+        let clean = CLEAN.replace("M30", "  (a (=b (==c)\n; G00 Z1(=x\nM30");
+        assert!(run(&clean, Z, 1.0).0.is_some());
+        // expression errors name the line
+        let clean = CLEAN.replace("[#52-2.000])", "[#52-2.000)");
+        let (_, msgs, d) = run(&clean, Z, 1.0);
+        assert_eq!(msgs, [Msg::ExprBracketExpected]);
+        assert_eq!(d.list[0].origin.context(), "c:3");
+    }
+
+    #[test]
+    fn rewrites_lines_once() {
+        let (out, _, _) = run(CLEAN, Z, 1.0);
+        let out = out.unwrap();
+        // the adjusted program no longer matches: nothing is left to rewrite
+        assert!(!has_expression_mark(&out));
+        assert!(z_regex().captures(&out).is_none());
+    }
+
+    #[test]
+    fn base_paths() {
+        assert_eq!(base_path("a/8999.19P.dxf"), "a/8999.19P");
+        assert_eq!(base_path("8999.19P_Clean.gcode"), "8999.19P");
+        assert_eq!(base_path("8999.19P_Z.txt"), "8999.19P");
+        assert_eq!(base_path("x.GCODE"), "x");
+        assert_eq!(base_path("x"), "x");
+    }
+
+    #[test]
+    fn grbl_programs_without_percent_are_complete() {
+        let grbl = CLEAN.replace("%\n", "");
+        assert!(run(&grbl, Z, 1.0).0.is_some());
+        let cut = grbl.replace("M30\n", "");
+        assert_eq!(run(&cut, Z, 1.0).1, [Msg::ZIncompleteProgram]);
+    }
+
+    #[test]
+    fn own_compiles_get_the_measured_values_for_verify() {
+        let stamp = |clean: &str| {
+            let clean = clean.replacen("%\n", "%\n(millpath V.1)\n", 1);
+            let d = set_digest(Z, &clean);
+            clean.replace("(millpath V.1)", &format!("(millpath V.1 set={d})"))
+        };
+        // reference dialect: the banner comment carries them
+        let (out, msgs, _) = run(&stamp(CLEAN), Z, 1.0);
+        assert!(msgs.is_empty(), "{msgs:?}");
+        let out = out.unwrap();
+        let line2 = out.lines().nth(1).unwrap();
+        assert!(
+            line2.ends_with(" MILLPATH-PROBES #51=2.100 #52=2.200)"),
+            "{line2}"
+        );
+        assert_eq!(out.lines().count(), stamp(CLEAN).lines().count());
+        // other dialects: lines after the stock comment
+        let with_stock =
+            CLEAN.replace("G00 Z5.000", "(MILLPATH-STOCK T=2.000 O=1.000)\nG00 Z5.000");
+        let out = run(&stamp(&with_stock), Z, 1.0).0.unwrap();
+        let lines: Vec<&str> = out.lines().collect();
+        assert_eq!(lines[3], "(MILLPATH-PROBES #51=2.100 #52=2.200)");
+        assert!(!lines[1].contains("MILLPATH-PROBES"));
+        // a reference _Clean.gcode (no digest) gives the reference's output unchanged
+        let plain = run(CLEAN, Z, 1.0).0.unwrap();
+        assert!(!plain.contains("MILLPATH-PROBES"));
+    }
+}
