@@ -16,13 +16,7 @@ pub fn severity_word(s: Severity, lang: Lang) -> &'static str {
 
 /// `error[MP012]: message` with the location and related locations on further lines.
 pub fn human(d: &Diagnostic, lang: Lang) -> String {
-    let mut s = format!(
-        "{}[{}]: {}",
-        severity_word(d.severity, lang),
-        d.msg.code(),
-        d.message(lang)
-    );
-    s.push_str(&format!("\n  --> {}", location(&d.origin, lang)));
+    let mut s = head(d, lang);
     if let Origin::Entity(e) = &d.origin {
         let word = if lang == Lang::De { "Pfad" } else { "path" };
         s.push_str(&format!("\n   = {word} {}", e.path));
@@ -31,6 +25,17 @@ pub fn human(d: &Diagnostic, lang: Lang) -> String {
         s.push_str(&format!("\n   = {}: {}", r.note, location(&r.origin, lang)));
     }
     s
+}
+
+/// `error[MP012]: message` and the `  --> location` line.
+fn head(d: &Diagnostic, lang: Lang) -> String {
+    format!(
+        "{}[{}]: {}\n  --> {}",
+        severity_word(d.severity, lang),
+        d.msg.code(),
+        d.message(lang),
+        location(&d.origin, lang)
+    )
 }
 
 /// Whether reports on a stream that `is_terminal` get colour: only on a terminal, and never
@@ -48,9 +53,14 @@ pub fn human_rich(d: &Diagnostic, lang: Lang, color: bool) -> String {
     else {
         return human(d, lang);
     };
-    let Ok(src) = std::fs::read_to_string(&file.path) else {
+    // the text the spans count in: decoded as the compiler read it (BOM, UTF-16)
+    let Ok(bytes) = std::fs::read(&file.path) else {
         return human(d, lang);
     };
+    let Ok(decoded) = millpath_core::load::text_file::decode(&bytes) else {
+        return human(d, lang);
+    };
+    let src = decoded.text;
     match snippet(
         d,
         lang,
@@ -110,10 +120,20 @@ fn snippet(
         .finish()
         .write((name, Source::from(src)), &mut buf)
         .ok()?;
-    let mut s = String::from_utf8_lossy(&buf).trim_end().to_string();
+    let mut drawn = String::from_utf8_lossy(&buf).trim_end().to_string();
     if !color {
         // ariadne colours a custom report kind's name even without colour
-        s = strip_ansi(&s);
+        drawn = strip_ansi(&drawn);
+    }
+    // one format for every front-end: `error[MP042]: message` and `--> file:line:col` as in
+    // [`human`], then ariadne's drawing of the line without its own heading
+    let mut s = head(d, lang);
+    for line in drawn.lines().skip(1) {
+        s.push('\n');
+        match line.find("╭─[") {
+            Some(at) => s.push_str(&format!("{}╭─", &line[..at])),
+            None => s.push_str(line),
+        }
     }
     for r in &d.related {
         s.push_str(&format!("\n   = {}: {}", r.note, location(&r.origin, lang)));

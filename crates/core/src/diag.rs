@@ -315,6 +315,17 @@ messages! {
     FileTooLarge = "File {0} is larger than {1} MiB, the most a drawing may have", "Datei {0} ist größer als {1} MiB, das Höchstmaß für eine Zeichnung";
     // entity order in the assignment of texts (reference-input.md §2.4)
     TextTakenFirst = "The drawing's entity order decides which element text '{0}' belongs to: it overlaps best the element that text '{1}' took, which comes first in the file, so a CAD re-save can change the G-code; move the texts so that each is nearest to its own element", "Die Reihenfolge der Elemente in der Zeichnung entscheidet, zu welchem Element der Text '{0}' gehört: er überlappt am besten das Element, das der Text '{1}' bekam, der in der Datei zuerst kommt; ein erneutes Speichern im CAD kann also den G-Code ändern; die Texte so verschieben, dass jeder seinem eigenen Element am nächsten liegt";
+    // text files: encodings and syntax errors ({0} of SyntaxExpected/{1}: words per language)
+    SyntaxExpected = "Expected {0}, found {1}", "Erwartet: {0}; gefunden: {1}";
+    SyntaxUnknownKind = "`{0}` is not an element kind", "`{0}` ist keine Elementart";
+    SyntaxKindDidYouMean = "`{0}` is not an element kind: did you mean `{1}`?", "`{0}` ist keine Elementart: `{1}` gemeint?";
+    SyntaxDidYouMean = "Unknown word `{0}`: did you mean `{1}`?", "Unbekanntes Wort `{0}`: `{1}` gemeint?";
+    SyntaxDecimalComma = "Coordinates need a decimal point: write `{1}`, not `{0}` (the decimal comma is only for parameter texts)", "Koordinaten brauchen einen Dezimalpunkt: `{1}` statt `{0}` schreiben (das Dezimalkomma gilt nur in Parametertexten)";
+    SyntaxNotANumber = "`{0}` is not a number", "`{0}` ist keine Zahl";
+    SyntaxNotPrefixed = "`{0}` is not {1} followed by a number", "`{0}` ist nicht {1} mit einer Zahl dahinter";
+    SyntaxMissingBrace = "Missing `}` at the end of the path", "`}` am Ende des Pfades fehlt";
+    SyntaxUnexpectedChar = "Unexpected character `{0}`", "Unerwartetes Zeichen `{0}`";
+    TextNulBytes = "{0} is not a text file in UTF-8: it holds NUL bytes (UTF-16 without a byte-order mark?); save it as UTF-8", "{0} ist keine Textdatei in UTF-8: sie enthält NUL-Bytes (UTF-16 ohne Byte-Order-Mark?); als UTF-8 speichern";
 }
 
 impl Msg {
@@ -405,11 +416,11 @@ impl Diagnostic {
     }
     /// The message for people (editor, human and JSON reports).
     pub fn message(&self, lang: Lang) -> String {
-        fill(self.msg.human_template(lang), &self.args)
+        fill(self.msg.human_template(lang), &args_in(&self.args, lang))
     }
     /// The message exactly as the reference prints it in its `****` lines.
     pub fn reference_message(&self, lang: Lang) -> String {
-        fill(self.msg.template(lang), &self.args)
+        fill(self.msg.template(lang), &args_in(&self.args, lang))
     }
     /// The reference's error line: `**** <context>: <message>` (CR LF in contexts → `|`).
     pub fn reference_line(&self, lang: Lang) -> String {
@@ -421,6 +432,27 @@ impl Diagnostic {
         };
         format!("{mark} {ctx}: {}", self.reference_message(lang))
     }
+}
+
+/// Separates the two wordings of an argument made by [`arg_per_lang`] (no text has it).
+const LANG_SEP: char = '\u{1e}';
+
+/// An argument that is itself words (a list like "a number or `)`" inside a syntax error):
+/// both wordings, of which a message shows the one of its language.
+pub fn arg_per_lang(en: &str, de: &str) -> String {
+    format!("{en}{LANG_SEP}{de}")
+}
+
+/// The arguments with the wording of `lang` where they have two.
+fn args_in(args: &[String], lang: Lang) -> std::borrow::Cow<'_, [String]> {
+    if !args.iter().any(|a| a.contains(LANG_SEP)) {
+        return std::borrow::Cow::Borrowed(args);
+    }
+    let pick = |a: &String| match a.split_once(LANG_SEP) {
+        Some((en, de)) => if lang == Lang::De { de } else { en }.to_string(),
+        None => a.clone(),
+    };
+    std::borrow::Cow::Owned(args.iter().map(pick).collect())
 }
 
 /// Builds an argument list from anything printable.
@@ -481,6 +513,17 @@ mod tests {
                 assert_eq!(en.contains(&p), de.contains(&p), "{m:?} placeholder {p}");
             }
         }
+    }
+
+    #[test]
+    fn an_argument_worded_per_language_shows_in_the_message_language() {
+        let d = Diagnostic::error(
+            Msg::SyntaxExpected,
+            Origin::Options,
+            vec![arg_per_lang("a number", "eine Zahl"), "`x`".into()],
+        );
+        assert_eq!(d.message(Lang::En), "Expected a number, found `x`");
+        assert_eq!(d.message(Lang::De), "Erwartet: eine Zahl; gefunden: `x`");
     }
 
     #[test]

@@ -126,8 +126,8 @@ impl SyntaxError {
             ErrorKind::UnknownKind {
                 word,
                 suggestion: Some(s),
-            }
-            | ErrorKind::DidYouMean {
+            } => format!("`{word}` is not an element kind: did you mean `{s}`?"),
+            ErrorKind::DidYouMean {
                 word,
                 suggestion: s,
             } => format!("unknown word `{word}`: did you mean `{s}`?"),

@@ -158,7 +158,7 @@ path 1234.1P {  # key handle
         assert_eq!(kinds[3], &ErrorKind::NotANumber("x".into()));
         assert_eq!(
             errors[0].message(),
-            "unknown word `mil`: did you mean `mill`?"
+            "`mil` is not an element kind: did you mean `mill`?"
         );
         assert_eq!(errors.len(), 4, "{errors:?}");
         let (_, errors) = parse("pat X {\n");
