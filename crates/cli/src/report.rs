@@ -477,4 +477,36 @@ mod tests {
             "{g}"
         );
     }
+
+    /// A `.mpath` error with its source line starts as a DXF error does: `error[MPnnn]:`,
+    /// then `--> file:line:col` (not ariadne's `[MPnnn] error:` heading).
+    #[test]
+    fn text_errors_have_the_format_of_drawing_errors() {
+        let src = "path X {\n  mil (0, 0) -> (1, 1)\n}\n";
+        let file = FileRef::new("dir/a.mpath".into());
+        let mut diags = millpath_core::Diags::default();
+        millpath_core::front::text::text_objects(src, &file, &mut diags).unwrap();
+        let d = diags.list.remove(0);
+        for lang in [Lang::En, Lang::De] {
+            let (start, end) = (12, 15);
+            let rich = snippet(&d, lang, false, "dir/a.mpath", src, start, end).unwrap();
+            let plain = human(&d, lang);
+            let head: Vec<&str> = rich.lines().take(2).collect();
+            assert_eq!(head, plain.lines().take(2).collect::<Vec<_>>(), "{rich}");
+            assert_eq!(head[1], "  --> dir/a.mpath:2:3");
+            assert!(rich.contains(" 2 │   mil (0, 0)"), "{rich}");
+            assert!(
+                !rich.contains("] error:") && !rich.contains("] Fehler:"),
+                "{rich}"
+            );
+        }
+        assert_eq!(
+            human(&d, Lang::En).lines().next().unwrap(),
+            format!(
+                "error[{}]: `mil` is not an element kind: did you mean `mill`?",
+                Msg::SyntaxKindDidYouMean.code()
+            )
+        );
+        assert!(human(&d, Lang::De).starts_with("Fehler["));
+    }
 }
