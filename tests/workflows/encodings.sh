@@ -10,7 +10,7 @@ mkdir plain
 cat > plain/3000.mpath <<'EOF'
 path 3000.1P {
   start (0, 0)  M3 O2 T3 I1,5 B-0,2
-  end (20, 0)
+  end (20, 10)
   mill (0, 0) -> (20, 0)
   mill arc (20, 5) r5 from 270 to 90  # Bogen über die Kante
 }
@@ -69,14 +69,16 @@ cmp -s utf16/3000.mpath plain/3000.mpath || fail "fmt did not write the UTF-16 f
 # a syntax error in a BOM file: located as in the plain file, one format, German wholly German
 printf '\xef\xbb\xbfpath 3000.2P {\n  mil (0, 0) -> (20, 0)\n  mill (12,5, 0) -> (1, 1)\n}\n' > bom/typo.mpath
 expect_status 1 "$MILLPATH" check bom/typo.mpath
-grep -q '^error\[MP[0-9]*\]: `mil` is not an element kind: did you mean `mill`?$' "$WORK/err" || fail "no did-you-mean: $(cat "$WORK/err")"
-grep -q -- '--> bom/typo.mpath:2:3$' "$WORK/err" || fail "typo not at 2:3"
-grep -q 'write `12.5`, not `12,5`' "$WORK/err" || fail "no decimal-point hint"
-grep -q -- '--> bom/typo.mpath:3:9$' "$WORK/err" || fail "decimal comma not at 3:9"
-if grep -q '^\[MP' "$WORK/err"; then fail "a [MPnnn] error: heading is left"; fi
+cat "$WORK/out" "$WORK/err" > report
+grep -q '^error\[MP[0-9]*\]: `mil` is not an element kind: did you mean `mill`?$' report || fail "no did-you-mean: $(cat report)"
+grep -q -- '--> bom/typo.mpath:2:3$' report || fail "typo not at 2:3"
+grep -q 'write `12.5`, not `12,5`' report || fail "no decimal-point hint"
+grep -q -- '--> bom/typo.mpath:3:9$' report || fail "decimal comma not at 3:9"
+if grep -q '^\[MP' report; then fail "a [MPnnn] error: heading is left"; fi
 expect_status 1 "$MILLPATH" check --lang de bom/typo.mpath
-grep -q '^Fehler\[MP[0-9]*\]: `mil` ist keine Elementart: `mill` gemeint?$' "$WORK/err" || fail "German did-you-mean: $(cat "$WORK/err")"
-if grep -q 'expected\|found' "$WORK/err"; then fail "English words in the German report"; fi
+cat "$WORK/out" "$WORK/err" > report
+grep -q '^Fehler\[MP[0-9]*\]: `mil` ist keine Elementart: `mill` gemeint?$' report || fail "German did-you-mean: $(cat report)"
+if grep -q 'expected\|found' report; then fail "English words in the German report"; fi
 
 # a DXF saved with a BOM reads as the plain drawing; a UTF-16 one is refused by name
 "$MILLPATH" text2dxf plain/3000.mpath -o plain/3000.dxf >/dev/null
@@ -90,15 +92,15 @@ cmp -s dxfbom/back.mpath plain/back.mpath || fail "DXF with BOM: other text"
 "$PY" -c 'import sys; open(sys.argv[2], "wb").write(open(sys.argv[1], encoding="ascii").read().encode("utf-16"))' \
   plain/3000.dxf dxfbom/u16.dxf
 expect_status 1 "$MILLPATH" check dxfbom/u16.dxf
-grep -q 'UTF-16 LE' "$WORK/err" || fail "UTF-16 DXF not named: $(cat "$WORK/err")"
+cat "$WORK/out" "$WORK/err" | grep -q 'UTF-16 LE' || fail "UTF-16 DXF not named"
 
 # the pre-commit hooks on a checkout with core.autocrlf: the files are CRLF and pass
 if git --version >/dev/null 2>&1 && "$PY" -m pre_commit --version >/dev/null 2>&1; then
   PC=("$PY" -m pre_commit)
 else
   PC=()
-  python3 -m venv pcvenv >/dev/null 2>&1 && pcvenv/bin/pip install -q pre-commit >/dev/null 2>&1 \
-    && PC=(pcvenv/bin/pre-commit)
+  python3 -m venv "$WORK/pcvenv" >/dev/null 2>&1 && "$WORK/pcvenv/bin/pip" install -q pre-commit >/dev/null 2>&1 \
+    && PC=("$WORK/pcvenv/bin/pre-commit")
 fi
 if [ ${#PC[@]} -eq 0 ]; then
   echo "skipped: the pre-commit hook part (no pre-commit, and pip could not install it)"
