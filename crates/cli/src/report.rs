@@ -17,13 +17,7 @@ pub fn severity_word(s: Severity, lang: Lang) -> &'static str {
 
 /// `error[MP012]: message` with the location and related locations on further lines.
 pub fn human(d: &Diagnostic, lang: Lang) -> String {
-    let mut s = format!(
-        "{}[{}]: {}",
-        severity_word(d.severity, lang),
-        d.msg.code(),
-        d.message(lang)
-    );
-    s.push_str(&format!("\n  --> {}", location(&shown_origin(d), lang)));
+    let mut s = head(d, lang);
     if let Origin::Entity(e) = &d.origin {
         let word = if lang == Lang::De { "Pfad" } else { "path" };
         s.push_str(&format!("\n   = {word} {}", e.path));
@@ -32,6 +26,17 @@ pub fn human(d: &Diagnostic, lang: Lang) -> String {
         s.push_str(&format!("\n   = {}: {}", r.note, location(&r.origin, lang)));
     }
     s
+}
+
+/// `error[MP012]: message` and the `  --> location` line.
+fn head(d: &Diagnostic, lang: Lang) -> String {
+    format!(
+        "{}[{}]: {}\n  --> {}",
+        severity_word(d.severity, lang),
+        d.msg.code(),
+        d.message(lang),
+        location(&shown_origin(d), lang)
+    )
 }
 
 /// Whether reports on a stream that `is_terminal` get colour: only on a terminal, and never
@@ -49,9 +54,14 @@ pub fn human_rich(d: &Diagnostic, lang: Lang, color: bool) -> String {
     else {
         return human(d, lang);
     };
-    let Ok(src) = std::fs::read_to_string(&file.path) else {
+    // the text the spans count in: decoded as the compiler read it (BOM, UTF-16)
+    let Ok(bytes) = std::fs::read(&file.path) else {
         return human(d, lang);
     };
+    let Ok(decoded) = millpath_core::load::text_file::decode(&bytes) else {
+        return human(d, lang);
+    };
+    let src = decoded.text;
     match snippet(
         d,
         lang,
@@ -111,10 +121,20 @@ fn snippet(
         .finish()
         .write((name, Source::from(src)), &mut buf)
         .ok()?;
-    let mut s = String::from_utf8_lossy(&buf).trim_end().to_string();
+    let mut drawn = String::from_utf8_lossy(&buf).trim_end().to_string();
     if !color {
         // ariadne colours a custom report kind's name even without colour
-        s = strip_ansi(&s);
+        drawn = strip_ansi(&drawn);
+    }
+    // one format for every front-end: `error[MP042]: message` and `--> file:line:col` as in
+    // [`human`], then ariadne's drawing of the line without its own heading
+    let mut s = head(d, lang);
+    for line in drawn.lines().skip(1) {
+        s.push('\n');
+        match line.find("╭─[") {
+            Some(at) => s.push_str(&format!("{}╭─", &line[..at])),
+            None => s.push_str(line),
+        }
     }
     for r in &d.related {
         s.push_str(&format!("\n   = {}: {}", r.note, location(&r.origin, lang)));
@@ -616,5 +636,37 @@ mod tests {
         // outside the repository: the absolute path
         assert_eq!(ci_path(Path::new("/tmp/x.dxf"), cwd, root), "/tmp/x.dxf");
         assert_eq!(ci_path(Path::new("../../x.dxf"), cwd, root), "/x.dxf");
+    }
+
+    /// A `.mpath` error with its source line starts as a DXF error does: `error[MPnnn]:`,
+    /// then `--> file:line:col` (not ariadne's `[MPnnn] error:` heading).
+    #[test]
+    fn text_errors_have_the_format_of_drawing_errors() {
+        let src = "path X {\n  mil (0, 0) -> (1, 1)\n}\n";
+        let file = FileRef::new("dir/a.mpath".into());
+        let mut diags = millpath_core::Diags::default();
+        millpath_core::front::text::text_objects(src, &file, &mut diags).unwrap();
+        let d = diags.list.remove(0);
+        for lang in [Lang::En, Lang::De] {
+            let (start, end) = (12, 15);
+            let rich = snippet(&d, lang, false, "dir/a.mpath", src, start, end).unwrap();
+            let plain = human(&d, lang);
+            let head: Vec<&str> = rich.lines().take(2).collect();
+            assert_eq!(head, plain.lines().take(2).collect::<Vec<_>>(), "{rich}");
+            assert_eq!(head[1], "  --> dir/a.mpath:2:3");
+            assert!(rich.contains(" 2 │   mil (0, 0)"), "{rich}");
+            assert!(
+                !rich.contains("] error:") && !rich.contains("] Fehler:"),
+                "{rich}"
+            );
+        }
+        assert_eq!(
+            human(&d, Lang::En).lines().next().unwrap(),
+            format!(
+                "error[{}]: `mil` is not an element kind: did you mean `mill`?",
+                Msg::SyntaxKindDidYouMean.code()
+            )
+        );
+        assert!(human(&d, Lang::De).starts_with("Fehler["));
     }
 }

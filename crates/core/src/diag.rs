@@ -334,6 +334,17 @@ messages! {
     ZSetMismatch = "{0} and {1} are not from the same compile: compile the drawing again, run the new probing program and fill in the new _Z.txt", "{0} und {1} stammen nicht aus derselben Übersetzung: die Zeichnung neu übersetzen, das neue Antastprogramm laufen lassen und die neue _Z.txt ausfüllen";
     StaleOutputRemoved = "Removed {0}: an output of an earlier compile of this drawing, and this compile wrote no new one", "{0} entfernt: eine Ausgabe einer früheren Übersetzung dieser Zeichnung, und diese Übersetzung hat keine neue geschrieben";
     OutputSetRestored = "{0} could not be written: the outputs of this drawing were left as they were before this compile", "{0} konnte nicht geschrieben werden: die Ausgaben dieser Zeichnung sind geblieben, wie sie vor dieser Übersetzung waren";
+    // text files: encodings and syntax errors ({0} of SyntaxExpected/{1}: words per language)
+    SyntaxExpected = "Expected {0}, found {1}", "Erwartet: {0}; gefunden: {1}";
+    SyntaxUnknownKind = "`{0}` is not an element kind", "`{0}` ist keine Elementart";
+    SyntaxKindDidYouMean = "`{0}` is not an element kind: did you mean `{1}`?", "`{0}` ist keine Elementart: `{1}` gemeint?";
+    SyntaxDidYouMean = "Unknown word `{0}`: did you mean `{1}`?", "Unbekanntes Wort `{0}`: `{1}` gemeint?";
+    SyntaxDecimalComma = "Coordinates need a decimal point: write `{1}`, not `{0}` (the decimal comma is only for parameter texts)", "Koordinaten brauchen einen Dezimalpunkt: `{1}` statt `{0}` schreiben (das Dezimalkomma gilt nur in Parametertexten)";
+    SyntaxNotANumber = "`{0}` is not a number", "`{0}` ist keine Zahl";
+    SyntaxNotPrefixed = "`{0}` is not {1} followed by a number", "`{0}` ist nicht {1} mit einer Zahl dahinter";
+    SyntaxMissingBrace = "Missing `}` at the end of the path", "`}` am Ende des Pfades fehlt";
+    SyntaxUnexpectedChar = "Unexpected character `{0}`", "Unerwartetes Zeichen `{0}`";
+    TextNulBytes = "{0} is not a text file in UTF-8: it holds NUL bytes (UTF-16 without a byte-order mark?); save it as UTF-8", "{0} ist keine Textdatei in UTF-8: sie enthält NUL-Bytes (UTF-16 ohne Byte-Order-Mark?); als UTF-8 speichern";
 }
 
 impl Msg {
@@ -458,10 +469,13 @@ impl Diagnostic {
         let template = self.human_text(lang);
         if lang == Lang::De {
             // operating-system errors among the arguments are English texts of the OS
-            let args: Vec<String> = self.args.iter().map(|a| os_error_text(a, lang)).collect();
+            let args: Vec<String> = args_in(&self.args, lang)
+                .iter()
+                .map(|a| os_error_text(a, lang))
+                .collect();
             return fill(template, &args);
         }
-        fill(template, &self.args)
+        fill(template, &args_in(&self.args, lang))
     }
 
     /// The template for people, where the arguments call for another wording than the
@@ -480,7 +494,7 @@ impl Diagnostic {
     }
     /// The message exactly as the reference prints it in its `****` lines.
     pub fn reference_message(&self, lang: Lang) -> String {
-        fill(self.msg.template(lang), &self.args)
+        fill(self.msg.template(lang), &args_in(&self.args, lang))
     }
     /// The reference's error line: `**** <context>: <message>` (CR LF in contexts → `|`).
     pub fn reference_line(&self, lang: Lang) -> String {
@@ -492,6 +506,27 @@ impl Diagnostic {
         };
         format!("{mark} {ctx}: {}", self.reference_message(lang))
     }
+}
+
+/// Separates the two wordings of an argument made by [`arg_per_lang`] (no text has it).
+const LANG_SEP: char = '\u{1e}';
+
+/// An argument that is itself words (a list like "a number or `)`" inside a syntax error):
+/// both wordings, of which a message shows the one of its language.
+pub fn arg_per_lang(en: &str, de: &str) -> String {
+    format!("{en}{LANG_SEP}{de}")
+}
+
+/// The arguments with the wording of `lang` where they have two.
+fn args_in(args: &[String], lang: Lang) -> std::borrow::Cow<'_, [String]> {
+    if !args.iter().any(|a| a.contains(LANG_SEP)) {
+        return std::borrow::Cow::Borrowed(args);
+    }
+    let pick = |a: &String| match a.split_once(LANG_SEP) {
+        Some((en, de)) => if lang == Lang::De { de } else { en }.to_string(),
+        None => a.clone(),
+    };
+    std::borrow::Cow::Owned(args.iter().map(pick).collect())
 }
 
 /// Builds an argument list from anything printable.
@@ -552,6 +587,17 @@ mod tests {
                 assert_eq!(en.contains(&p), de.contains(&p), "{m:?} placeholder {p}");
             }
         }
+    }
+
+    #[test]
+    fn an_argument_worded_per_language_shows_in_the_message_language() {
+        let d = Diagnostic::error(
+            Msg::SyntaxExpected,
+            Origin::Options,
+            vec![arg_per_lang("a number", "eine Zahl"), "`x`".into()],
+        );
+        assert_eq!(d.message(Lang::En), "Expected a number, found `x`");
+        assert_eq!(d.message(Lang::De), "Erwartet: eine Zahl; gefunden: `x`");
     }
 
     #[test]

@@ -166,6 +166,8 @@ pub enum DxfErrorKind {
     Binary,
     /// No `EOF` / missing sections: not a DXF file at all.
     NotDxf,
+    /// UTF-16 text (a byte-order mark): a DXF file is ASCII or UTF-8.
+    Utf16 { big_endian: bool },
 }
 
 impl fmt::Display for DxfError {
@@ -193,6 +195,13 @@ impl fmt::Display for DxfError {
             }
             DxfErrorKind::Binary => {
                 write!(f, "binary DXF files are not supported; export as ASCII DXF")
+            }
+            DxfErrorKind::Utf16 { big_endian } => {
+                let which = if *big_endian { "BE" } else { "LE" };
+                write!(
+                    f,
+                    "the file is UTF-16 {which} text, a DXF must be ASCII or UTF-8 (PowerShell 5's `>` writes UTF-16: write with -o FILE instead)"
+                )
             }
             DxfErrorKind::NotDxf => {
                 write!(f, "line {}: not a DXF file (no SECTION found)", self.line)

@@ -260,6 +260,19 @@ enum Route {
 
 /// Reads a DXF file (ASCII, R12 to current versions).
 pub fn read_dxf(bytes: &[u8]) -> Result<Drawing, DxfError> {
+    // a UTF-8 byte-order mark (an editor's save) is no part of the first group code;
+    // UTF-16 (PowerShell 5's `>`) would need the code page before reading: refused by name
+    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
+    if let Some(big_endian) = match bytes {
+        [0xFF, 0xFE, ..] => Some(false),
+        [0xFE, 0xFF, ..] => Some(true),
+        _ => None,
+    } {
+        return Err(DxfError {
+            line: 0,
+            kind: DxfErrorKind::Utf16 { big_endian },
+        });
+    }
     if bytes.starts_with(b"AutoCAD Binary DXF") {
         return Err(DxfError {
             line: 0,

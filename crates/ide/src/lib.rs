@@ -174,7 +174,12 @@ impl Workspace {
         self.overlays
             .get(path)
             .cloned()
-            .or_else(|| std::fs::read_to_string(path).ok())
+            // decoded as the compiler reads it: BOM dropped, UTF-16 decoded
+            .or_else(|| {
+                let bytes = std::fs::read(path).ok()?;
+                let decoded = millpath_core::load::text_file::decode(&bytes).ok()?;
+                Some(decoded.text.into_owned())
+            })
     }
 
     /// `millpath.toml` (nearest above the file), then the editor's settings.

@@ -489,3 +489,42 @@ fn toolpath_moves_report_their_own_segment() {
         lines[l - 1]
     );
 }
+
+/// A file on disk as Windows tools write it (a UTF-8 BOM, UTF-16 LE with CRLF) reads as the
+/// plain file: no diagnostics, the same paths, a typo located from the first real character.
+#[test]
+fn files_with_a_bom_or_in_utf16_read_as_plain_text() {
+    let (dir, ws) = setup();
+    let mut bom = b"\xEF\xBB\xBF".to_vec();
+    bom.extend_from_slice(PART.as_bytes());
+    let mut utf16 = vec![0xFF, 0xFE];
+    utf16.extend(
+        PART.replace('\n', "\r\n")
+            .encode_utf16()
+            .flat_map(u16::to_le_bytes),
+    );
+    for (name, bytes) in [("2001.mpath", bom), ("2001.mpath", utf16)] {
+        std::fs::write(dir.path().join(name), &bytes).unwrap();
+        let a = analyze(&ws, &p(dir.path(), name));
+        assert!(a.diagnostics.is_empty(), "{:?}", a.diagnostics);
+        assert_eq!(a.paths.len(), 1);
+        assert!(a.src.starts_with("path 2001.1P {"));
+    }
+    let mut typo = b"\xEF\xBB\xBF".to_vec();
+    typo.extend_from_slice(PART.replace("mill (5", "mil (5").as_bytes());
+    std::fs::write(dir.path().join("2001.mpath"), &typo).unwrap();
+    let a = analyze(&ws, &p(dir.path(), "2001.mpath"));
+    let d = &a.diagnostics[0];
+    assert_eq!(d.msg, millpath_core::Msg::SyntaxKindDidYouMean);
+    let millpath_core::Origin::Span {
+        start,
+        end,
+        line,
+        col,
+        ..
+    } = &d.origin
+    else {
+        panic!("{d:?}")
+    };
+    assert_eq!((&a.src[*start..*end], *line, *col), ("mil", 5, 3));
+}

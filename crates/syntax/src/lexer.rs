@@ -4,7 +4,8 @@ use logos::Logos;
 use std::ops::Range;
 
 #[derive(Logos, Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[logos(skip r"[ \t\f]+")]
+// a byte-order mark reads as blank space (readers strip it; an editor's buffer may keep it)
+#[logos(skip r"[ \t\f\u{FEFF}]+")]
 pub enum Token<'a> {
     #[token("(")]
     LParen,
@@ -27,7 +28,7 @@ pub enum Token<'a> {
     #[regex(r#""([^"\\\r\n]|\\.)*""#)]
     Str(&'a str),
     /// Keywords, numbers, names and parameter tokens.
-    #[regex(r#"[^\s(){},#"][^\s(){},"]*"#)]
+    #[regex(r#"[^\s(){},#"\u{FEFF}][^\s(){},"\u{FEFF}]*"#)]
     Word(&'a str),
     /// Anything the lexer does not understand (reported by the parser).
     Error,

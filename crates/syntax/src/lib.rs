@@ -2,13 +2,15 @@
 //! per line, parameters written exactly as in the drawing. See `docs/language.md`.
 
 pub mod ast;
+pub mod error;
 pub mod format;
 pub mod lexer;
 pub mod parser;
 
 pub use ast::*;
+pub use error::{ErrorKind, Expected, Found, SyntaxError};
 pub use format::format;
-pub use parser::{parse, SyntaxError};
+pub use parser::parse;
 
 #[cfg(test)]
 mod tests {
@@ -115,15 +117,70 @@ path 1234.1P {  # key handle
             "{errors:?}"
         );
         assert!(
-            errors.iter().any(|e| e.message.contains("missing `}`")),
+            errors.iter().any(|e| e.message().contains("missing `}`")),
             "{errors:?}"
         );
         assert!(
             errors
                 .iter()
-                .any(|e| e.message.contains("`x` is not a number")),
+                .any(|e| e.message().contains("`x` is not a number")),
             "{errors:?}"
         );
+    }
+
+    #[test]
+    fn errors_carry_their_hint() {
+        let src = "path X {\n  mil (0, 0) -> (1, 1)\n  mill (12,5, 0) -> (1, 1)\n  frobnicate (0, 0)\n  mill (0, x) -> (1, 1)\n}\n";
+        let (_, errors) = parse(src);
+        let kinds: Vec<&ErrorKind> = errors.iter().map(|e| &e.kind).collect();
+        assert_eq!(
+            kinds[0],
+            &ErrorKind::UnknownKind {
+                word: "mil".into(),
+                suggestion: Some("mill")
+            }
+        );
+        assert_eq!(
+            kinds[1],
+            &ErrorKind::DecimalComma {
+                written: "12,5".into(),
+                fixed: "12.5".into()
+            }
+        );
+        assert_eq!(&src[errors[1].span.clone()], "12,5");
+        assert_eq!(
+            kinds[2],
+            &ErrorKind::UnknownKind {
+                word: "frobnicate".into(),
+                suggestion: None
+            }
+        );
+        assert_eq!(kinds[3], &ErrorKind::NotANumber("x".into()));
+        assert_eq!(
+            errors[0].message(),
+            "`mil` is not an element kind: did you mean `mill`?"
+        );
+        assert_eq!(errors.len(), 4, "{errors:?}");
+        let (_, errors) = parse("pat X {\n");
+        assert_eq!(
+            errors[0].kind,
+            ErrorKind::DidYouMean {
+                word: "pat".into(),
+                suggestion: "path"
+            }
+        );
+    }
+
+    #[test]
+    fn byte_order_marks_and_crlf_read_as_plain_text() {
+        let plain = "path X {\n  start (0, 0)  T1 # c\n  mill (0, 0) -> (1, 1)  B1\n}\n";
+        let (want, e) = parse(plain);
+        assert!(e.is_empty());
+        for src in [format!("\u{FEFF}{plain}"), plain.replace('\n', "\r\n")] {
+            let (f, e) = parse(&src);
+            assert!(e.is_empty(), "{e:?}");
+            assert_eq!(format(&f, &src), format(&want, plain));
+        }
     }
 
     #[test]

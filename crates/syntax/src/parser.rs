@@ -3,16 +3,15 @@
 
 use crate::ast::*;
 use crate::ast::{Span, Spanned};
+pub use crate::error::SyntaxError;
+use crate::error::{decimal_comma, nearest, ErrorKind, Expected, Found, KIND_WORDS};
 use crate::lexer::{lex, split_params, unquote, Token};
 use chumsky::input::{Input as _, MappedInput};
 use chumsky::prelude::*;
 
-/// A syntax error with its byte range.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SyntaxError {
-    pub span: Span,
-    pub message: String,
-}
+/// Custom errors travel through chumsky as text: a tag, then the offending word.
+const NOT_A_NUMBER: &str = "number\u{1f}";
+const MISSING_BRACE: &str = "brace\u{1f}";
 
 type Extra<'t, 's> = extra::Err<Rich<'t, Token<'s>, SimpleSpan>>;
 type In<'t, 's> = MappedInput<'t, Token<'s>, SimpleSpan, &'t [(Token<'s>, SimpleSpan)]>;
@@ -63,7 +62,7 @@ fn number<'t, 's: 't>() -> impl Parser<'t, In<'t, 's>, f64, Extra<'t, 's>> + Clo
     select! { Token::Word(w) => w }
         .labelled("number")
         .try_map(|w: &str, span| {
-            parse_num(w).ok_or_else(|| Rich::custom(span, format!("`{w}` is not a number")))
+            parse_num(w).ok_or_else(|| Rich::custom(span, format!("{NOT_A_NUMBER}{w}")))
         })
 }
 
@@ -84,9 +83,8 @@ fn prefixed<'t, 's: 't>(
 ) -> impl Parser<'t, In<'t, 's>, f64, Extra<'t, 's>> + Clone {
     let attached = select! { Token::Word(w) if w.len() > 1 && w.starts_with(prefix) => w }.try_map(
         move |w: &str, span| {
-            parse_num(&w[prefix.len()..]).ok_or_else(|| {
-                Rich::custom(span, format!("`{w}` is not {prefix} followed by a number"))
-            })
+            parse_num(&w[prefix.len()..])
+                .ok_or_else(|| Rich::custom(span, format!("{prefix}\u{1f}{w}")))
         },
     );
     let separate = kw(prefix).ignore_then(number());
@@ -241,7 +239,7 @@ fn file_parser<'t, 's: 't>() -> impl Parser<'t, In<'t, 's>, Vec<RawItem>, Extra<
         .or_not()
         .validate(|c, e, emitter| {
             if c.is_none() {
-                emitter.emit(Rich::custom(e.span(), "missing `}` at the end of the path"));
+                emitter.emit(Rich::custom(e.span(), MISSING_BRACE));
             }
         });
     let path = kw("path")
@@ -279,7 +277,7 @@ pub fn parse(src: &str) -> (File, Vec<SyntaxError>) {
         .filter(|(t, _)| *t == Token::Error)
         .map(|(_, s)| SyntaxError {
             span: range(*s),
-            message: format!("unexpected character `{}`", &src[range(*s)]),
+            kind: ErrorKind::UnexpectedChar(src[range(*s)].to_string()),
         })
         .collect();
     let eoi = SimpleSpan::from(src.len()..src.len());
@@ -291,10 +289,7 @@ pub fn parse(src: &str) -> (File, Vec<SyntaxError>) {
         if errors.iter().any(|x| x.span == span) {
             continue;
         }
-        errors.push(SyntaxError {
-            span,
-            message: describe(&e),
-        });
+        errors.push(describe(&e, span, src));
     }
     let items = out
         .unwrap_or_default()
@@ -305,29 +300,128 @@ pub fn parse(src: &str) -> (File, Vec<SyntaxError>) {
     (File { items }, errors)
 }
 
-fn describe(e: &Rich<Token, SimpleSpan>) -> String {
-    use chumsky::error::RichReason;
-    match e.reason() {
-        RichReason::Custom(msg) => msg.to_string(),
+/// The error as data, with the hint where the fix is known.
+fn describe(e: &Rich<Token, SimpleSpan>, span: Span, src: &str) -> SyntaxError {
+    use chumsky::error::{RichPattern, RichReason};
+    let kind = match e.reason() {
+        RichReason::Custom(msg) => match msg.split_once('\u{1f}') {
+            Some(("number", w)) => ErrorKind::NotANumber(w.to_string()),
+            Some(("brace", _)) => ErrorKind::MissingBrace,
+            Some((prefix, w)) => ErrorKind::NotPrefixedNumber {
+                word: w.to_string(),
+                prefix: if prefix == "r" { "r" } else { "d" },
+            },
+            None => ErrorKind::UnexpectedChar(msg.to_string()),
+        },
         RichReason::ExpectedFound { expected, found } => {
-            let mut exp: Vec<String> = expected
+            let mut exp: Vec<Expected> = expected
                 .iter()
-                .map(|x| x.to_string().trim_matches('\'').to_string())
-                .filter(|x| x != "something else")
+                .filter_map(|x| match x {
+                    RichPattern::Token(t) => Some(token_expected(t)),
+                    RichPattern::Label(l) => Some(label_expected(l)),
+                    RichPattern::Identifier(i) => Some(Expected::Text(i.clone())),
+                    RichPattern::EndOfInput => Some(Expected::EndOfLine),
+                    _ => None,
+                })
                 .collect();
             exp.sort();
             exp.dedup();
-            let found = found
-                .as_ref()
-                .map_or("end of input".to_string(), |t| t.to_string());
-            if exp.is_empty() {
-                format!("unexpected {found}")
-            } else {
-                format!("expected {}, found {found}", exp.join(" or "))
+            let found = match found.as_deref() {
+                None => Found::EndOfInput,
+                Some(Token::Newline) => Found::EndOfLine,
+                Some(_) => Found::Text(src.get(span.clone()).unwrap_or("").to_string()),
+            };
+            return hint(exp, found, span, src);
+        }
+    };
+    SyntaxError { span, kind }
+}
+
+fn token_expected(t: &Token) -> Expected {
+    match t {
+        Token::Newline => Expected::EndOfLine,
+        Token::LParen => Expected::Text("(".into()),
+        Token::RParen => Expected::Text(")".into()),
+        Token::Comma => Expected::Text(",".into()),
+        Token::LBrace => Expected::Text("{".into()),
+        Token::RBrace => Expected::Text("}".into()),
+        Token::Arrow => Expected::Text("->".into()),
+        Token::Word(w) => Expected::Text(w.to_string()),
+        Token::Str(s) => Expected::Text(s.to_string()),
+        Token::Comment(_) | Token::Error => Expected::Text("#".into()),
+    }
+}
+
+fn label_expected(l: &str) -> Expected {
+    match l {
+        "number" => Expected::Number,
+        "point `(x, y)`" => Expected::Point,
+        "path name" => Expected::PathName,
+        "line type" => Expected::LineType,
+        // `r`, `d` and every keyword are labelled with themselves
+        word => Expected::Text(word.to_string()),
+    }
+}
+
+/// An expected/found error made specific where the fix is known: a misspelt kind or
+/// keyword, a decimal comma inside a point.
+fn hint(expected: Vec<Expected>, found: Found, span: Span, src: &str) -> SyntaxError {
+    let words: Vec<&'static str> = expected
+        .iter()
+        .filter_map(|e| match e {
+            // one-letter keywords (`r`, `d`) are a distance of 1 from every other letter
+            Expected::Text(t) if t.len() > 1 => KEYWORDS.iter().find(|k| *k == t).copied(),
+            _ => None,
+        })
+        .collect();
+    if let Found::Text(w) = &found {
+        let is_word = w.chars().next().is_some_and(char::is_alphabetic);
+        if is_word && words.iter().any(|k| KIND_WORDS.contains(k)) && words.contains(&"mill") {
+            let kind = ErrorKind::UnknownKind {
+                word: w.clone(),
+                suggestion: nearest(w, KIND_WORDS),
+            };
+            return SyntaxError { span, kind };
+        }
+        if is_word {
+            if let Some(s) = nearest(w, &words) {
+                let kind = ErrorKind::DidYouMean {
+                    word: w.clone(),
+                    suggestion: s,
+                };
+                return SyntaxError { span, kind };
+            }
+        }
+        // `(12,5, 0)`: the comma of a number read as the one between x and y
+        let in_point = expected.contains(&Expected::Text(")".into()));
+        if w == "," && in_point {
+            let line_start = src[..span.start].rfind('\n').map_or(0, |p| p + 1);
+            if let Some(open) = src[line_start..span.start].rfind('(') {
+                let open = line_start + open + 1;
+                let close = src[open..]
+                    .find([')', '\n'])
+                    .map_or(src.len(), |p| open + p);
+                if let Some((r, written, fixed)) = decimal_comma(&src[open..close]) {
+                    let kind = ErrorKind::DecimalComma { written, fixed };
+                    return SyntaxError {
+                        span: open + r.start..open + r.end,
+                        kind,
+                    };
+                }
             }
         }
     }
+    SyntaxError {
+        span,
+        kind: ErrorKind::Expected { expected, found },
+    }
 }
+
+/// Every keyword of the language (element kinds and the words inside elements).
+const KEYWORDS: &[&str] = &[
+    "path", "start", "end", "turn", "probe", "noprobe", "mill", "mark", "bars", "sub", "sweep",
+    "move", "skip", "drill", "helix", "raw", "arc", "from", "to", "ccw", "cw", "around", "r", "d",
+];
 
 fn finish_item(i: RawItem, src: &str) -> Item {
     match i {

@@ -61,8 +61,12 @@ pub fn run(
     } else {
         InputMode::Reference
     };
-    let src = String::from_utf8_lossy(&bytes);
     let fref = FileRef::new(file.to_path_buf());
+    // a BOM, UTF-16 and CRLF read as in `check` (load/text_file.rs)
+    let Ok(decoded) = millpath_core::load::text_file::decode(&bytes) else {
+        return fail(Msg::TextNulBytes, file, args![file.display()], lang);
+    };
+    let src = decoded.text;
     // `-o -`: standard output; else the file to write
     let dest: Option<PathBuf> = match (output, into) {
         (Some(o), _) if o.as_os_str() == "-" => None,

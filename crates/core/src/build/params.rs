@@ -63,11 +63,8 @@ impl Session<'_> {
         if let Some(t) = text {
             for (k, _) in &t.params {
                 if !CHAIN_KEYS.contains(*k) {
-                    self.diags.error(
-                        Msg::Unsupported,
-                        first.origin.clone(),
-                        args![k, text_context(t)],
-                    );
+                    let d = unsupported(*k, CHAIN_KEYS, t, &first.origin, self.settings.lang);
+                    self.diags.push(d);
                 }
             }
         }
@@ -149,8 +146,8 @@ impl Session<'_> {
     pub(crate) fn check_text(&mut self, t: &ParamText, allowed: &str, origin: &Origin, ev: &Eval) {
         for (k, raw) in &t.params {
             if !allowed.contains(*k) {
-                self.diags
-                    .error(Msg::Unsupported, origin.clone(), args![k, text_context(t)]);
+                let d = unsupported(*k, allowed, t, origin, self.settings.lang);
+                self.diags.push(d);
                 continue;
             }
             if "ABCDFHIOPSTUWZ".contains(*k) {
@@ -190,5 +187,63 @@ pub(crate) fn text_context(t: &ParamText) -> String {
     match &t.origin {
         Origin::Entity(e) => format!("{} @ {}", e.code_name, e.pos),
         o => o.context(),
+    }
+}
+
+/// The reference's "Unsupported K value" with a hint for people beside it (the `****` line
+/// stays the reference's): the capital letter meant, or the keys allowed at this element.
+fn unsupported(
+    k: char,
+    allowed: &str,
+    t: &crate::params::ParamText,
+    origin: &crate::diag::Origin,
+    lang: crate::Lang,
+) -> Diagnostic {
+    let upper = k.to_uppercase().next().unwrap_or(k);
+    let de = lang == crate::Lang::De;
+    let hint = if upper != k && allowed.contains(upper) {
+        if de {
+            format!("{upper} gemeint? (Schlüssel sind Großbuchstaben)")
+        } else {
+            format!("did you mean {upper}? (keys are capital letters)")
+        }
+    } else {
+        let mut keys: Vec<String> = allowed.chars().map(String::from).collect();
+        keys.sort();
+        let keys = keys.join(" ");
+        if de {
+            format!("hier erlaubte Schlüssel: {keys}")
+        } else {
+            format!("keys allowed here: {keys}")
+        }
+    };
+    Diagnostic::error(Msg::Unsupported, origin.clone(), args![k, text_context(t)])
+        .with_related(origin.clone(), hint)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diag::FileRef;
+
+    #[test]
+    fn an_unsupported_key_says_which_would_do() {
+        let origin = Origin::File(FileRef::new("a.mpath".into()));
+        let t = ParamText::parse("b1 X2", origin.clone()).unwrap();
+        let d = unsupported('b', CHAIN_KEYS, &t, &origin, crate::Lang::En);
+        assert_eq!(d.message(crate::Lang::En), "Unsupported b value; a.mpath");
+        assert_eq!(
+            d.related[0].note,
+            "did you mean B? (keys are capital letters)"
+        );
+        let d = unsupported('X', CHAIN_KEYS, &t, &origin, crate::Lang::De);
+        assert_eq!(
+            d.related[0].note,
+            "hier erlaubte Schlüssel: B C D F I N Q S W"
+        );
+        assert_eq!(
+            d.reference_line(crate::Lang::En),
+            "**** a.mpath: Unsupported X value; a.mpath"
+        );
     }
 }

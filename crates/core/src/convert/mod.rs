@@ -474,15 +474,17 @@ pub fn format_text(src: &str, file: &Arc<FileRef>) -> Result<String, Vec<crate::
         return Err(errors
             .into_iter()
             .map(|e| {
-                crate::Diagnostic::error(
-                    crate::Msg::SyntaxError,
-                    crate::front::text::span_origin(src, file, &e.span),
-                    crate::args![e.message],
-                )
+                let origin = crate::front::text::span_origin(src, file, &e.span);
+                crate::front::text::syntax_diagnostic(e, origin)
             })
             .collect());
     }
-    Ok(millpath_syntax::format(&ast, src))
+    // the file's own line ends (a CRLF checkout stays CRLF)
+    let crlf = crate::load::text_file::LineEnds::of(src).written_crlf();
+    Ok(crate::load::text_file::with_line_ends(
+        millpath_syntax::format(&ast, src),
+        crlf,
+    ))
 }
 
 #[cfg(test)]

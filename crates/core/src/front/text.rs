@@ -2,11 +2,12 @@
 //! produces, so that everything after it is shared.
 
 use crate::args;
-use crate::diag::{Diagnostic, Diags, FileRef, Msg, Origin};
+use crate::diag::{arg_per_lang, Diagnostic, Diags, FileRef, Msg, Origin};
 use crate::front::drawing::{DrawnObject, Shape};
 use crate::geom::{normalize_angle, Geom, P2};
 use crate::params::ParamText;
-use millpath_syntax::{parse, Geometry, Kind, Span};
+use millpath_syntax::error::or_list;
+use millpath_syntax::{parse, ErrorKind, Expected, Found, Geometry, Kind, Span, SyntaxError};
 use std::sync::Arc;
 
 /// 1-based line and column of a byte offset.
@@ -67,6 +68,61 @@ pub fn span_origin(src: &str, file: &Arc<FileRef>, span: &Span) -> Origin {
     }
 }
 
+/// A syntax error as a diagnostic whose words follow the message language.
+pub fn syntax_diagnostic(e: SyntaxError, origin: Origin) -> Diagnostic {
+    let (msg, args) = match e.kind {
+        ErrorKind::UnexpectedChar(c) => (Msg::SyntaxUnexpectedChar, args![c]),
+        ErrorKind::NotANumber(w) => (Msg::SyntaxNotANumber, args![w]),
+        ErrorKind::NotPrefixedNumber { word, prefix } => {
+            (Msg::SyntaxNotPrefixed, args![word, prefix])
+        }
+        ErrorKind::MissingBrace => (Msg::SyntaxMissingBrace, vec![]),
+        ErrorKind::UnknownKind {
+            word,
+            suggestion: Some(s),
+        } => (Msg::SyntaxKindDidYouMean, args![word, s]),
+        ErrorKind::DidYouMean {
+            word,
+            suggestion: s,
+        } => (Msg::SyntaxDidYouMean, args![word, s]),
+        ErrorKind::UnknownKind {
+            word,
+            suggestion: None,
+        } => (Msg::SyntaxUnknownKind, args![word]),
+        ErrorKind::DecimalComma { written, fixed } => {
+            (Msg::SyntaxDecimalComma, args![written, fixed])
+        }
+        ErrorKind::Expected { expected, found } => {
+            let en: Vec<String> = expected.iter().map(Expected::english).collect();
+            let de: Vec<String> = expected.iter().map(expected_de).collect();
+            let found_de = match &found {
+                Found::Text(t) => format!("`{t}`"),
+                Found::EndOfLine => "das Zeilenende".into(),
+                Found::EndOfInput => "das Dateiende".into(),
+            };
+            (
+                Msg::SyntaxExpected,
+                vec![
+                    arg_per_lang(&or_list(&en, "or"), &or_list(&de, "oder")),
+                    arg_per_lang(&found.english(), &found_de),
+                ],
+            )
+        }
+    };
+    Diagnostic::error(msg, origin, args)
+}
+
+fn expected_de(e: &Expected) -> String {
+    match e {
+        Expected::Text(t) => format!("`{t}`"),
+        Expected::Number => "eine Zahl".into(),
+        Expected::Point => "ein Punkt `(x, y)`".into(),
+        Expected::PathName => "ein Pfadname".into(),
+        Expected::LineType => "ein Linientyp".into(),
+        Expected::EndOfLine => "das Zeilenende".into(),
+    }
+}
+
 fn p2(p: millpath_syntax::Point) -> P2 {
     P2::new(p.x, p.y)
 }
@@ -92,11 +148,8 @@ pub fn objects_of(
 ) -> Result<TextDrawing, Diagnostic> {
     let lines = Lines::new(src);
     for e in errors {
-        diags.error(
-            Msg::SyntaxError,
-            lines.origin(file, &e.span),
-            args![e.message],
-        );
+        let origin = lines.origin(file, &e.span);
+        diags.push(syntax_diagnostic(e, origin));
     }
     let mut out = Vec::with_capacity(ast.paths().map(|p| p.items.len()).sum());
     let mut declared = Vec::new();
@@ -259,8 +312,16 @@ mod tests {
         )
         .unwrap();
         assert_eq!(objs.objects.len(), 1);
-        assert_eq!(d.list[0].msg, Msg::SyntaxError);
+        assert_eq!(d.list[0].msg, Msg::SyntaxExpected);
         assert_eq!(d.list[0].origin.context(), "a.mpath:2:17");
+        assert_eq!(
+            d.list[0].message(crate::Lang::En),
+            "Expected a point `(x, y)`, found the end of the line"
+        );
+        assert_eq!(
+            d.list[0].message(crate::Lang::De),
+            "Erwartet: ein Punkt `(x, y)`; gefunden: das Zeilenende"
+        );
         let e = text_objects("path X {\n  start (0, 0)  B1 B2\n}\n", &file, &mut d).unwrap_err();
         assert_eq!(e.msg, Msg::DuplicateParameter);
         assert_eq!(line_col("ab\ncd", 4), (2, 2));

@@ -10,3 +10,4 @@ pub mod regex_cache;
 pub mod search;
 pub mod session;
 pub mod settings;
+pub mod text_file;

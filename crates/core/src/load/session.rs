@@ -286,7 +286,15 @@ impl<'a> Session<'a> {
         };
         if is_text_file(&file.path) {
             info.push(format!("---- {verb} {}", file.path.display()));
-            let src = String::from_utf8_lossy(bytes);
+            let src = crate::load::text_file::decode(bytes)
+                .map_err(|_| {
+                    Diagnostic::error(
+                        Msg::TextNulBytes,
+                        Origin::File(file.clone()),
+                        args![file.path.display()],
+                    )
+                })?
+                .text;
             let (ast, errors) = millpath_syntax::parse(&src);
             let (_, paths) = self.text_paths(&ast, errors, &src, file, diags)?;
             return Ok(crate::front::drawing::DrawingFile {

@@ -16,7 +16,10 @@ pub(crate) async fn did_open(b: &Backend, params: DidOpenTextDocumentParams) {
     }
     let Some(p) = to_path(&uri) else { return };
     // the same text as on disk changes nothing for the files depending on it
-    let as_on_disk = std::fs::read_to_string(&p).is_ok_and(|t| t == params.text_document.text);
+    let as_on_disk = std::fs::read(&p).is_ok_and(|b| {
+        millpath_core::load::text_file::decode(&b)
+            .is_ok_and(|d| d.text == params.text_document.text.as_str())
+    });
     if let Ok(mut st) = b.state.lock() {
         st.ws.overlays.insert(p.clone(), params.text_document.text);
         st.versions.insert(p.clone(), params.text_document.version);
