@@ -140,10 +140,10 @@ enum Command {
         /// Only check: exit 1 and list the files that are not formatted
         #[arg(long)]
         check: bool,
-        /// MillPath files (.mpath) or folders
         /// Message language
         #[arg(long, value_enum)]
         lang: Option<LangArg>,
+        /// MillPath files (.mpath) or folders
         #[arg(required = true)]
         paths: Vec<PathBuf>,
     },

@@ -11,15 +11,22 @@ use millpath_core::Msg;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// The diagnostics' first lines (`error[MP…]: …` or, for text files, `[MP…] error: …`),
-/// sorted: the severity, code and message of each.
+/// The diagnostics' first lines (`error[MP…]: …`), sorted: the severity, code and message
+/// of each. What compile says about the files it writes or removes (an older output of a
+/// drawing that failed) is no diagnostic of the drawing: check writes nothing.
 fn heads(text: &str) -> Vec<String> {
+    let about_files = [
+        Msg::StaleOutputRemoved.code(),
+        Msg::OutputSetRestored.code(),
+        Msg::CannotWrite.code(),
+    ];
     let mut v: Vec<String> = text
         .lines()
         .filter(|l| {
             let l = l.trim_start();
-            (l.starts_with("error[") || l.starts_with("warning[") || l.starts_with("[MP"))
+            (l.starts_with("error[") || l.starts_with("warning["))
                 && l.contains("MP")
+                && !about_files.iter().any(|c| l.contains(&format!("[{c}]")))
         })
         .map(|l| l.trim().to_string())
         .collect();

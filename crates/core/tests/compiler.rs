@@ -534,10 +534,9 @@ fn graph_errors() {
     let mut d = Drawing::new();
     d.start(L, (0.0, 0.0), "O2 T1 I2 B0")
         .line(L, "CONTINUOUS", (0.0, 0.0), (10.0, 0.0), "");
-    assert_eq!(
-        compile_one(&d).errors(),
-        [Msg::EndMissing, Msg::NoErrorFreePath]
-    );
+    // no "no error-free path" after an error that says why (pathdxf2gcode prints it: the
+    // reference's rule, `reference_check`)
+    assert_eq!(compile_one(&d).errors(), [Msg::EndMissing]);
 
     let mut d = Drawing::new();
     d.start(L, (0.0, 0.0), "O2 T1 I2 B0")
@@ -577,10 +576,7 @@ fn parameter_errors_and_warnings() {
         .end(L, (10.0, 0.0))
         .line(L, "CONTINUOUS", (0.0, 0.0), (10.0, 0.0), "");
     let run = compile_one(&d);
-    assert_eq!(
-        run.errors(),
-        [Msg::DuplicateParameter, Msg::NoErrorFreePath]
-    );
+    assert_eq!(run.errors(), [Msg::DuplicateParameter]);
 
     // range checks of the path
     let mut d = Drawing::new();
@@ -686,6 +682,7 @@ fn at_reference_uses_the_other_start_text() {
         "1000.dxf",
         millpath_core::Settings {
             check: true,
+            reference_check: true,
             ..settings()
         },
     );
