@@ -20,7 +20,11 @@ use std::path::Path;
 /// Parses the command line, with clap's messages in the run's language.
 pub fn parse<P: CommandFactory + FromArgMatches>(raw: &[String]) -> P {
     let lang = lang_before_parsing(raw);
-    let result = P::command()
+    let command = match lang {
+        Lang::En => P::command(),
+        Lang::De => crate::help_de::german(P::command()),
+    };
+    let result = command
         .try_get_matches_from(raw)
         .and_then(|m| P::from_arg_matches(&m));
     match result {

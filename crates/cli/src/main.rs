@@ -7,6 +7,7 @@ mod clap_de;
 mod commands;
 mod compat;
 mod config;
+mod help_de;
 mod inputs;
 mod output;
 mod png;

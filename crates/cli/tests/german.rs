@@ -98,7 +98,8 @@ fn english_words(text: &str) -> Vec<String> {
         }
         for word in kept.split_whitespace() {
             // file names, paths, options, codes: not message text
-            if word.contains(['.', '/', '\\', '_', '=', '[', ']'])
+            // (and `<FILE>`: placeholders of the command-line syntax, as option names)
+            if word.contains(['.', '/', '\\', '_', '=', '[', ']', '<', '>'])
                 || word.starts_with('-')
                 || word.starts_with("MP")
             {
@@ -241,8 +242,15 @@ fn every_command_with_lang_de_prints_no_english() {
     for (cmd, out) in commands(dir.path(), &["--lang", "de"]) {
         assert_german(&cmd, &out);
     }
-    // help: clap's headings in German (the option descriptions are still English)
+    // help: clap's headings and every description in German, for every command
+    for cmd in [
+        "compile", "check", "verify", "adjust-z", "dxf2text", "text2dxf", "fmt", "render",
+    ] {
+        let help = run(dir.path(), &[cmd, "--lang", "de", "--help"]);
+        assert_german(&format!("{cmd} --help"), &help);
+    }
     let help = run(dir.path(), &["compile", "--lang", "de", "--help"]);
+    assert!(help.contains("Vorschub der Fräsbewegungen"), "{help}");
     for de in [
         "Aufruf: millpath compile [OPTIONEN]",
         "Argumente:",
