@@ -2,23 +2,13 @@
 //! reference's case-insensitive layer test is kept with a warning, a subpath written in the
 //! wrong case gets a hint, and a feed below 1 mm/min is a located error wherever it comes from.
 
+mod common;
+
 use millpath_core::Msg;
 use std::path::Path;
-use std::process::{Command, Output};
 
 fn millpath(dir: &Path, args: &[&str]) -> (i32, String) {
-    let out: Output = Command::new(env!("CARGO_BIN_EXE_millpath"))
-        .args(args)
-        .current_dir(dir)
-        .env("NO_COLOR", "1")
-        .output()
-        .unwrap();
-    let text = format!(
-        "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    (out.status.code().unwrap_or(-1), text)
+    common::status_and_text(dir, args)
 }
 
 fn examples(sub: &str) -> std::path::PathBuf {

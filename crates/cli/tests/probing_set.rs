@@ -1,8 +1,9 @@
 //! The outputs of one drawing are one set (issue 20): all-or-none writing, stale outputs of
 //! a failed compile, adjust-z refusing a mix, verify on adjusted programs.
 
+mod common;
+
 use std::path::Path;
-use std::process::Command;
 
 const DRAWING: &str = "path 2020.1P {
   start (0, 0)  M10x3 O2 T3 I1,5 B-0,2
@@ -14,17 +15,7 @@ const DRAWING: &str = "path 2020.1P {
 ";
 
 fn run(dir: &Path, args: &[&str]) -> (i32, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_millpath"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap();
-    let text = format!(
-        "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    (out.status.code().unwrap_or(-1), text)
+    common::status_and_text(dir, args)
 }
 
 fn setup() -> tempfile::TempDir {

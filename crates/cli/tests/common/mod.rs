@@ -15,6 +15,23 @@ pub fn millpath(dir: &Path, args: &[&str]) -> Output {
         .unwrap()
 }
 
+/// Runs the binary in `dir` with `args`, without colour: its exit status and its standard
+/// output followed by its standard error.
+pub fn status_and_text(dir: &Path, args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_millpath"))
+        .args(args)
+        .current_dir(dir)
+        .env("NO_COLOR", "1")
+        .output()
+        .unwrap();
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    (out.status.code().unwrap_or(-1), text)
+}
+
 /// The machine settings `compile` asks for, as options (F150, sweeps at 500 mm/min, 15 mm up).
 pub const MACHINE: [&str; 6] = [
     "--feed",
