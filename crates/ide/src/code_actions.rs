@@ -52,11 +52,19 @@ pub fn code_actions(a: &Analysis, start: usize, end: usize) -> Vec<Action> {
                 } else {
                     format!("{key}{placeholder}")
                 };
-                out.push(Action {
-                    title: format!(
+                let title = if de(a) {
+                    format!(
+                        "{value} am Anfang von {} ergänzen (dann den richtigen Wert eintragen)",
+                        block.name.value
+                    )
+                } else {
+                    format!(
                         "Add {value} at the start of {} (then set the real value)",
                         block.name.value
-                    ),
+                    )
+                };
+                out.push(Action {
+                    title,
                     edits: vec![TextEdit {
                         start: at,
                         end: at,
@@ -72,7 +80,12 @@ pub fn code_actions(a: &Analysis, start: usize, end: usize) -> Vec<Action> {
                 let dd = st.params.iter().find(|p| p.value.starts_with('D'));
                 if let (Some(b), Some(dd)) = (b, dd) {
                     out.push(Action {
-                        title: "Swap the values of B and D".into(),
+                        title: if de(a) {
+                            "Die Werte von B und D tauschen"
+                        } else {
+                            "Swap the values of B and D"
+                        }
+                        .into(),
                         edits: vec![
                             TextEdit {
                                 start: b.span.start,
@@ -94,18 +107,26 @@ pub fn code_actions(a: &Analysis, start: usize, end: usize) -> Vec<Action> {
                 };
                 let line_end = a.src[ds..].find('\n').map_or(a.src.len(), |p| ds + p + 1);
                 let indent = "  ";
-                out.push(Action {
-                    title: format!(
+                let title = if de(a) {
+                    format!(
+                        "Das Sackgassen-Ende mit einer Wendemarke bei ({}, {}) schließen",
+                        pos.0, pos.1
+                    )
+                } else {
+                    format!(
                         "Close the dead end with a turn marker at ({}, {})",
                         pos.0, pos.1
-                    ),
+                    )
+                };
+                out.push(Action {
+                    title,
                     edits: vec![TextEdit {
                         start: line_end,
                         end: line_end,
                         text: format!("{indent}turn ({}, {})\n", pos.0, pos.1),
                     }],
                 });
-                out.extend(sweep_to_end(block, &pos, line_end));
+                out.extend(sweep_to_end(block, &pos, line_end, de(a)));
             }
             Msg::EndNotAtLast => {
                 // the walk ended somewhere else: sweep from there to the end marker
@@ -121,7 +142,12 @@ pub fn code_actions(a: &Analysis, start: usize, end: usize) -> Vec<Action> {
                 let sh = &path.segments[last.index].shape;
                 let p = if last.reversed { sh.start() } else { sh.end() };
                 let line_end = a.src[ds..].find('\n').map_or(a.src.len(), |x| ds + x + 1);
-                out.extend(sweep_to_end(block, &(fmt_num(p.x), fmt_num(p.y)), line_end));
+                out.extend(sweep_to_end(
+                    block,
+                    &(fmt_num(p.x), fmt_num(p.y)),
+                    line_end,
+                    de(a),
+                ));
             }
             Msg::OrderDecidesText => out.extend(pin_order(a, ds, d.args.get(1))),
             _ => {}
@@ -154,7 +180,11 @@ fn pin_order(a: &Analysis, at: usize, pin: Option<&String>) -> Option<Action> {
         }
     };
     Some(Action {
-        title: format!("Pin the choice with {pin} (independent of the order of the lines)"),
+        title: if de(a) {
+            format!("Die Wahl mit {pin} festlegen (unabhängig von der Reihenfolge der Zeilen)")
+        } else {
+            format!("Pin the choice with {pin} (independent of the order of the lines)")
+        },
         edits: vec![edit],
     })
 }
@@ -164,6 +194,7 @@ pub(crate) fn sweep_to_end(
     block: &PathBlock,
     from: &(String, String),
     at: usize,
+    german: bool,
 ) -> Option<Action> {
     let end_marker = block
         .elements()
@@ -172,10 +203,17 @@ pub(crate) fn sweep_to_end(
         return None;
     };
     Some(Action {
-        title: format!(
-            "Add a sweep from ({}, {}) to the end marker",
-            from.0, from.1
-        ),
+        title: if german {
+            format!(
+                "Eine Leerfahrt von ({}, {}) zur Ende-Markierung ergänzen",
+                from.0, from.1
+            )
+        } else {
+            format!(
+                "Add a sweep from ({}, {}) to the end marker",
+                from.0, from.1
+            )
+        },
         edits: vec![TextEdit {
             start: at,
             end: at,

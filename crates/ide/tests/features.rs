@@ -274,6 +274,29 @@ fn code_actions_fix_missing_values_swapped_depths_and_dead_ends() {
     assert!(fixed.contains("  sweep (10, 5) -> (20, 0)\n"), "{fixed}");
     ws.overlays.insert(path.clone(), fixed);
     assert!(analyze(&ws, &path).diagnostics.is_empty());
+    // in German, with `lang = "de"` in millpath.toml: every title
+    std::fs::write(
+        dir.path().join("millpath.toml"),
+        "feed = 150\nsweep_speed = 500\nsweep_height = 15\nlang = \"de\"\n",
+    )
+    .unwrap();
+    let mut titles = Vec::new();
+    for text in [NO_B, &swapped, branch, open] {
+        ws.overlays.insert(path.clone(), text.into());
+        let a = analyze(&ws, &path);
+        titles.extend(code_actions(&a, 0, text.len()).into_iter().map(|x| x.title));
+    }
+    for de in [
+        "B0 am Anfang von 2030.1P ergänzen",
+        "Die Werte von B und D tauschen",
+        "Wendemarke bei (10, 5)",
+        "Leerfahrt von (10, 5) zur Ende-Markierung",
+    ] {
+        assert!(titles.iter().any(|t| t.contains(de)), "{de}: {titles:?}");
+    }
+    for en in ["Add", "Swap", "Close", "sweep", "Pin"] {
+        assert!(!titles.iter().any(|t| t.contains(en)), "{en}: {titles:?}");
+    }
 }
 
 fn apply(src: &str, edits: &[TextEdit]) -> String {
