@@ -166,7 +166,7 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
                     session.diags.push(d);
                 }
             }
-            if reference_check {
+            if reference_check || session.settings.quick_check {
                 match emit::check_until(
                     &model,
                     session.settings.sweep_speed,

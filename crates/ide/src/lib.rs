@@ -409,6 +409,8 @@ pub fn analyze_from(
     };
     let mut check = settings.settings.clone();
     check.check = true;
+    // answered while typing: no second opinion (its stock simulation is `millpath check`'s)
+    check.quick_check = true;
     let mut objects = Vec::new();
     let mut paths = Vec::new();
     let mut diagnostics;

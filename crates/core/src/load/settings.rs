@@ -28,6 +28,11 @@ pub struct Settings {
     /// Check mode knows the sweep height `compile` would use (options or millpath.toml):
     /// the top-level default S is then `/s`, as in `compile`, not T+O.
     pub check_sweep_height: bool,
+    /// The editor's check, answered while typing: each path is planned as compile plans it
+    /// (every emitter error, the statistics; cancellable between elements and passes) but not
+    /// written out and not given to the second opinion, whose stock simulation would take
+    /// the answer past a frame on a large drawing. `millpath check` and `compile` review.
+    pub quick_check: bool,
     /// `/d`: further search directories, in order.
     pub search_dirs: Vec<PathBuf>,
     pub path_pattern: String,
@@ -68,6 +73,7 @@ impl Default for Settings {
             probe_feed: None,
             check: false,
             reference_check: false,
+            quick_check: false,
             check_sweep_height: false,
             search_dirs: Vec::new(),
             path_pattern: crate::load::names::DEFAULT_PATH_PATTERN.into(),
