@@ -56,6 +56,14 @@ pub struct MachineArgs {
     /// `input = "extended"`; default: as PathDxf2GCode, with a warning for what it ignores)
     #[arg(long)]
     pub extended: bool,
+    /// Probe a grid over the cuts with points every STEP mm (or `step` in `[heightmap]`;
+    /// linuxcnc and grbl)
+    #[arg(long, value_name = "STEP")]
+    pub heightmap_step: Option<f64>,
+    /// Margin added around the cuts for the height map, mm (or `margin` in `[heightmap]`;
+    /// default 0)
+    #[arg(long, value_name = "MM")]
+    pub heightmap_margin: Option<f64>,
 }
 
 /// The settings the conversions use: path and file names, the message language.
@@ -155,8 +163,13 @@ pub fn settings_for(
         .clone()
         .or_else(|| first_input.and_then(config::find));
     if let Some(p) = cfg_path {
-        config::load_in(&p, lang)?.apply(&mut s, &mut have);
+        let cfg = config::load_in(&p, lang)?;
+        cfg.apply(&mut s, &mut have);
+        if cfg.heightmap.is_some() {
+            s.heightmap_file = Some(p);
+        }
     }
+    heightmap_options(m, &mut s, de)?;
     if let Some(v) = m.feed {
         s.feed = v;
         have.feed = true;
@@ -245,6 +258,31 @@ pub fn settings_for(
         }
     }
     Ok(s)
+}
+
+/// `--heightmap-step` and `--heightmap-margin` over the `[heightmap]` of the settings file; a
+/// margin alone has no grid to widen.
+fn heightmap_options(m: &MachineArgs, s: &mut Settings, de: bool) -> Result<(), String> {
+    if let Some(step) = m.heightmap_step {
+        let hm = s
+            .heightmap
+            .unwrap_or(millpath_core::probe::heightmap::Heightmap::with_step(step));
+        s.heightmap = Some(millpath_core::probe::heightmap::Heightmap { step, ..hm });
+        s.heightmap_options.0 = true;
+    }
+    if let Some(margin) = m.heightmap_margin {
+        let Some(hm) = s.heightmap.as_mut() else {
+            return Err(if de {
+                "--heightmap-margin braucht --heightmap-step oder eine [heightmap] in millpath.toml"
+                    .into()
+            } else {
+                "--heightmap-margin needs --heightmap-step or a [heightmap] in millpath.toml".into()
+            });
+        };
+        hm.margin = margin;
+        s.heightmap_options.1 = true;
+    }
+    Ok(())
 }
 
 /// The message language, known before the first message: `--lang`, else `lang` of the

@@ -345,6 +345,15 @@ messages! {
     SyntaxMissingBrace = "Missing `}` at the end of the path", "`}` am Ende des Pfades fehlt";
     SyntaxUnexpectedChar = "Unexpected character `{0}`", "Unerwartetes Zeichen `{0}`";
     TextNulBytes = "{0} is not a text file in UTF-8: it holds NUL bytes (UTF-16 without a byte-order mark?); save it as UTF-8", "{0} ist keine Textdatei in UTF-8: sie enthält NUL-Bytes (UTF-16 ohne Byte-Order-Mark?); als UTF-8 speichern";
+    // height map as a setting (issue 21): the grid and its probing program (probe/heightmap.rs)
+    HeightmapStepTooSmall = "{0}={1} mm is below the smallest grid step, {2} mm", "{0}={1} mm ist kleiner als der kleinste Rasterabstand, {2} mm";
+    HeightmapNegative = "{0}={1} must be >= 0", "{0}={1} muss >= 0 sein";
+    HeightmapAreaEmpty = "heightmap.area = [{0}, {1}, {2}, {3}] must be [xmin, ymin, xmax, ymax] with xmin <= xmax and ymin <= ymax", "heightmap.area = [{0}, {1}, {2}, {3}] muss [xmin, ymin, xmax, ymax] mit xmin <= xmax und ymin <= ymax sein";
+    HeightmapTooManyPoints = "The height map's grid would have {0} × {1} = {2} probe points, more than {3}: choose a larger heightmap.step or a smaller area", "Das Raster der Höhenkarte hätte {0} × {1} = {2} Messpunkte, mehr als {3}: einen größeren heightmap.step oder eine kleinere Fläche wählen";
+    HeightmapReferenceDialect = "[heightmap] needs the linuxcnc or grbl dialect: the reference dialect writes PathDxf2GCode's programs, which know no height map", "[heightmap] braucht den Dialekt linuxcnc oder grbl: der Dialekt reference schreibt die Programme von PathDxf2GCode, die keine Höhenkarte kennen";
+    HeightmapWithDrawnProbes = "Path {0} has drawn Z probes ({1}) and millpath.toml has a [heightmap]: use one or the other (both would correct the same Z twice)", "Pfad {0} hat gezeichnete Z-Messpunkte ({1}) und millpath.toml eine [heightmap]: nur eines von beiden verwenden (beide würden dasselbe Z doppelt korrigieren)";
+    HeightmapNoCuts = "Path {0} has no cutting moves: the height map has no area to cover (give heightmap.area)", "Pfad {0} hat keine Fräsbewegungen: die Höhenkarte hat keine Fläche (heightmap.area angeben)";
+    HeightmapAreaTooSmall = "The cutting moves of path {0} reach {1} to {2}, outside heightmap.area [{3}, {4}, {5}, {6}]: the height map must cover every cut", "Die Fräsbewegungen von Pfad {0} reichen von {1} bis {2}, außerhalb von heightmap.area [{3}, {4}, {5}, {6}]: die Höhenkarte muss jeden Schnitt abdecken";
 }
 
 impl Msg {

@@ -12,6 +12,7 @@ use crate::geom::{f3, P3};
 use crate::load::settings::Settings;
 use crate::model::{Element, Model};
 use crate::params::fmt_num;
+use crate::probe::heightmap::Heightmap;
 use serde::Deserialize;
 
 /// The controller a program is written for.
@@ -64,6 +65,8 @@ pub struct Controller {
     pub spindle_dwell: f64,
     /// Machine limits for the time estimates; `None`: the reference's time model.
     pub machine: Option<Machine>,
+    /// `[heightmap]`: the probing set is a grid over the cuts (its probe feed resolved).
+    pub heightmap: Option<Heightmap>,
 }
 
 impl Default for Controller {
@@ -81,6 +84,7 @@ impl Controller {
             spindle_rpm: None,
             spindle_dwell: DEFAULT_SPINDLE_DWELL,
             machine: None,
+            heightmap: None,
         }
     }
 
@@ -91,6 +95,10 @@ impl Controller {
             spindle_rpm: s.spindle_rpm,
             spindle_dwell: s.spindle_dwell,
             machine: s.machine(),
+            heightmap: s.heightmap.map(|h| Heightmap {
+                probe_feed: Some(h.probe_feed.unwrap_or(s.probe_feed())),
+                ..h
+            }),
         }
     }
 

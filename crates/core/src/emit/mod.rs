@@ -18,6 +18,7 @@ pub mod chain_order;
 pub mod comment;
 pub mod dialect;
 pub mod elements;
+pub mod heightmap_program;
 pub mod helix;
 pub mod motion;
 pub mod optimize;

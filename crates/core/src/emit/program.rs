@@ -1,8 +1,10 @@
-//! File layouts (reference-output.md §4, §12.2, §12.3): the milling program, the probing program and `_Z.txt`.
+//! File layouts (reference-output.md §4, §12.2, §12.3): the milling program, the probing program and `_Z.txt`
+//! (of drawn probes, or of a height map's grid: `heightmap_program.rs`).
 
-use crate::diag::{Diagnostic, Lang, Origin};
+use crate::diag::{Diagnostic, Lang, Msg, Origin};
 use crate::emit::as_comment;
 use crate::emit::dialect::Controller;
+use crate::emit::heightmap_program::{grid_set, GridSet};
 use crate::emit::stats::Stats;
 use crate::emit::{emit, emit_until, Emitted};
 use crate::geom::{near, F3, P2, P3};
@@ -95,6 +97,25 @@ pub fn generate_for(
     let s = model.params.s;
 
     let stats = Stats::timed(&items, sweep_speed, start(sx), ctl.machine.as_ref());
+    // a height map's probing set needs the cutting moves before they become lines
+    let grid = match &ctl.heightmap {
+        Some(hm) => {
+            if !probes.is_empty() {
+                // one correction or the other: both would move the same Z twice
+                let names: Vec<&str> = probes.iter().map(|p| p.name.as_str()).collect();
+                return Err(vec![Diagnostic::error(
+                    Msg::HeightmapWithDrawnProbes,
+                    model.raw.origin(),
+                    crate::args![model.name(), names.join(", ")],
+                )]);
+            }
+            let log = crate::output_prefix(std::path::Path::new(file_name), &model.params.r);
+            let log = format!("{}_probes.txt", log.display());
+            let set = grid_set(hm, ctl, model, &items, banner, file_name, &log);
+            Some(set.map_err(|e| vec![e])?)
+        }
+        None => None,
+    };
     let mut lines = ctl.prologue(banner, file_name, model, sx, true);
     let mut line_sources: Vec<Option<Origin>> = vec![None; lines.len()];
     line_sources.extend(
@@ -107,6 +128,19 @@ pub fn generate_for(
     lines.extend(stats.model_line(lang).map(|l| format!("  ({l})")));
     lines.extend(ctl.epilogue(true));
     let body = join(&lines);
+    if let Some(GridSet { probing, z_lines }) = grid {
+        let z_txt = join(&z_lines);
+        let (probing, clean) = stamp_set(banner, &z_txt, join(&probing), body);
+        return Ok(Generated {
+            output: Output::Probing {
+                probing,
+                z_txt,
+                clean,
+            },
+            stats,
+            line_sources,
+        });
+    }
     if probes.is_empty() {
         return Ok(Generated {
             output: Output::Milling(body),
@@ -155,9 +189,23 @@ pub fn generate_for(
         })
         .collect();
     let z_txt = join(&z_lines);
-    // the set's digest in the banner line of both programs (the line the reference's outputs
-    // are compared without): adjust-z refuses files of different compiles
-    let stamped = as_comment(0, &banner_with_digest(banner, &set_digest(&z_txt, &body)));
+    let (probing, clean) = stamp_set(banner, &z_txt, join(&pl), body);
+    Ok(Generated {
+        output: Output::Probing {
+            probing,
+            z_txt,
+            clean,
+        },
+        stats,
+        line_sources,
+    })
+}
+
+/// The set's digest in the banner line of both programs (the line the reference's outputs
+/// are compared without): adjust-z refuses files of different compiles. Returns the stamped
+/// probing and clean programs.
+fn stamp_set(banner: &str, z_txt: &str, probing: String, clean: String) -> (String, String) {
+    let stamped = as_comment(0, &banner_with_digest(banner, &set_digest(z_txt, &clean)));
     let stamp = |text: String| {
         let at = banner_index(&text);
         let mut lines: Vec<&str> = text.lines().collect();
@@ -166,15 +214,7 @@ pub fn generate_for(
         }
         join(&lines)
     };
-    Ok(Generated {
-        output: Output::Probing {
-            probing: stamp(join(&pl)),
-            z_txt,
-            clean: stamp(body),
-        },
-        stats,
-        line_sources,
-    })
+    (stamp(probing), stamp(clean))
 }
 
 /// Where the body's moves start: above the origin at the start height.

@@ -3,6 +3,7 @@
 
 use crate::emit::dialect::Dialect;
 use crate::emit::timing::Axes;
+use crate::probe::heightmap::Heightmap;
 use crate::Settings;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
@@ -34,6 +35,34 @@ pub struct FileConfig {
     pub machine: Option<MachineConfig>,
     /// `reference` (default) or `extended`: polylines, blocks, line-type aliases, units.
     pub input: Option<crate::InputMode>,
+    /// `[heightmap]`: probe a grid over the cuts (linuxcnc and grbl).
+    pub heightmap: Option<HeightmapConfig>,
+}
+
+/// `[heightmap]`: `step` (mm, required), `margin` (mm, default 0), `area = [xmin, ymin,
+/// xmax, ymax]` (instead of the cuts' extent plus margin), `probe_feed` (mm/min, default the
+/// probe feed), `probe_depth` (mm below the nominal top, default 5).
+#[derive(Debug, Deserialize, Clone, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct HeightmapConfig {
+    pub step: f64,
+    pub margin: Option<f64>,
+    pub area: Option<[f64; 4]>,
+    pub probe_feed: Option<f64>,
+    pub probe_depth: Option<f64>,
+}
+
+impl HeightmapConfig {
+    pub fn heightmap(&self) -> Heightmap {
+        let d = Heightmap::with_step(self.step);
+        Heightmap {
+            margin: self.margin.unwrap_or(d.margin),
+            area: self.area,
+            probe_feed: self.probe_feed,
+            probe_depth: self.probe_depth.unwrap_or(d.probe_depth),
+            ..d
+        }
+    }
 }
 
 /// `[machine]`: `max_velocity` (mm/min) and `max_acceleration` (mm/s²), each one number for
@@ -118,6 +147,9 @@ impl FileConfig {
         }
         if let Some(i) = self.input {
             s.input = i;
+        }
+        if let Some(h) = &self.heightmap {
+            s.heightmap = Some(h.heightmap());
         }
         if let Some(m) = &self.machine {
             if let Some(v) = m.max_velocity {

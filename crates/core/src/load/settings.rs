@@ -6,6 +6,7 @@ use crate::diag::{Diagnostic, Msg, Origin};
 use crate::emit::dialect::{Dialect, DEFAULT_SPINDLE_DWELL};
 use crate::emit::timing::{Axes, Machine, DEFAULT_PATH_TOLERANCE};
 use crate::params::MAX_MAGNITUDE;
+use crate::probe::heightmap::Heightmap;
 use std::path::PathBuf;
 
 /// Machine settings and options of a run.
@@ -62,6 +63,12 @@ pub struct Settings {
     /// How DXF geometry is read: as the reference, or also polylines, blocks, line-type
     /// aliases and units (`--extended`, `input = "extended"`).
     pub input: crate::InputMode,
+    /// `[heightmap]`: the probing set is a grid over the cuts (linuxcnc and grbl).
+    pub heightmap: Option<Heightmap>,
+    /// Where the `[heightmap]` was given (its errors are located there); `None`: options.
+    pub heightmap_file: Option<PathBuf>,
+    /// `--heightmap-step` / `--heightmap-margin` given on the command line.
+    pub heightmap_options: (bool, bool),
 }
 
 impl Default for Settings {
@@ -89,6 +96,9 @@ impl Default for Settings {
             max_acceleration: None,
             path_tolerance: DEFAULT_PATH_TOLERANCE,
             input: crate::InputMode::Reference,
+            heightmap: None,
+            heightmap_file: None,
+            heightmap_options: (false, false),
         }
     }
 }
@@ -155,10 +165,37 @@ impl Settings {
                 args!["spindle_dwell", crate::params::fmt_num(self.spindle_dwell)],
             ));
         }
+        errors.extend(self.heightmap_errors());
         if self.max_velocity.is_some() && self.max_acceleration.is_none() {
             errors.push(Diagnostic::error(
                 Msg::MachineNeedsAcceleration,
                 Origin::Options,
+                vec![],
+            ));
+        }
+        errors
+    }
+
+    /// `[heightmap]` values out of bounds, located at the settings file or the options, and
+    /// a height map in the reference dialect (PathDxf2GCode's programs have none).
+    fn heightmap_errors(&self) -> Vec<Diagnostic> {
+        let Some(hm) = &self.heightmap else {
+            return Vec::new();
+        };
+        let file = || match &self.heightmap_file {
+            Some(p) => Origin::File(crate::diag::FileRef::new(p.clone())),
+            None => Origin::Options,
+        };
+        let at = |name: &str| match (name, self.heightmap_options) {
+            ("step", (true, _)) => ("--heightmap-step".to_string(), Origin::Options),
+            ("margin", (_, true)) => ("--heightmap-margin".to_string(), Origin::Options),
+            _ => (format!("heightmap.{name}"), file()),
+        };
+        let mut errors = hm.errors(&at);
+        if self.dialect == Dialect::Reference {
+            errors.push(Diagnostic::error(
+                Msg::HeightmapReferenceDialect,
+                file(),
                 vec![],
             ));
         }
