@@ -451,6 +451,46 @@ fn every_grbl_program_uses_only_words_grbl_accepts() {
 }
 
 #[test]
+fn a_height_maps_grbl_programs_use_only_words_grbl_accepts() {
+    // arcs, a helix, a drill: every kind of cut widens the grid; the grid's probes G38.2
+    let text = "path 1000.1P {
+  start (0, 0)  O2 T3 I1,2 B-0,3 S8
+  end (60, 0)
+  sweep (0, 0) -> (10, 20)
+  mill arc (20, 20) r10 from 180 to 360
+  sweep (30, 20) -> (40, 20)
+  helix (40, 20) d6
+  sweep (40, 20) -> (50, 20)
+  drill (50, 20) d2
+  sweep (50, 20) -> (60, 0)
+}
+";
+    let hm = millpath_core::probe::heightmap::Heightmap {
+        margin: 1.0,
+        ..millpath_core::probe::heightmap::Heightmap::with_step(5.0)
+    };
+    let s = Settings {
+        heightmap: Some(hm),
+        ..with(Dialect::Grbl)
+    };
+    let run = compile_with(&[("1000.1P.mpath", text.into())], "1000.1P.mpath", s);
+    assert!(run.errors().is_empty(), "{:?}", run.messages());
+    let probing = run.output("_Probing.gcode");
+    assert!(probing.contains("\nG38.2 Z-2.000 F150.000\n"), "{probing}");
+    // cuts from x 10 (the arc's start) to 50 (the drill), y 10 (the arc's lowest point, not
+    // an end) to 22 (the helix: Ø6 − O2 around y 20), plus the margin 1
+    assert!(
+        probing.contains("(MILLPATH-HEIGHTMAP X0=9.000 Y0=9.000 X1=51.000 Y1=23.000"),
+        "{probing}"
+    );
+    for (name, g) in [("probing", probing), ("clean", run.output("_Clean.gcode"))] {
+        if let Err(e) = grbl::check_program(g) {
+            panic!("{name}: {e}\n{g}");
+        }
+    }
+}
+
+#[test]
 fn the_grbl_checker_rejects_what_grbl_rejects() {
     for bad in [
         "%",

@@ -7,7 +7,7 @@
 use crate::diag::{Diagnostic, Msg};
 use crate::emit::comment::comment_line;
 use crate::emit::dialect::{Controller, Dialect};
-use crate::emit::{as_comment, Item};
+use crate::emit::{as_comment, Item, NamedProbe};
 use crate::geom::{f3, F3, P2};
 use crate::model::Model;
 use crate::probe::heightmap::{cut_extent, var_name, Grid, Heightmap};
@@ -18,17 +18,16 @@ pub(crate) struct GridSet {
     pub z_lines: Vec<String>,
 }
 
-/// The probing set of a height map over the cutting moves in `items`. `log_name` is the
-/// file LinuxCNC writes the contacts to (`NAME_probes.txt`).
-pub(crate) fn grid_set(
+/// The grid of a height map over the cutting moves in `items`, or why there is none: the
+/// reference dialect, drawn probes beside it (both would correct the same Z twice), no
+/// cuts, too many points, cuts outside an explicit area. `check` and `compile` both ask.
+pub(crate) fn grid_of(
     hm: &Heightmap,
     ctl: &Controller,
     model: &Model,
     items: &[Item],
-    banner: &str,
-    file_name: &str,
-    log_name: &str,
-) -> Result<GridSet, Diagnostic> {
+    drawn: &[NamedProbe],
+) -> Result<Grid, Diagnostic> {
     let origin = model.raw.origin();
     if ctl.dialect == Dialect::Reference {
         // Settings refuse this already; a second guard where the program is made
@@ -38,8 +37,29 @@ pub(crate) fn grid_set(
             vec![],
         ));
     }
+    if !drawn.is_empty() {
+        let names: Vec<&str> = drawn.iter().map(|p| p.name.as_str()).collect();
+        return Err(Diagnostic::error(
+            Msg::HeightmapWithDrawnProbes,
+            origin,
+            crate::args![model.name(), names.join(", ")],
+        ));
+    }
     let extent = cut_extent(items, P2::default());
-    let grid = Grid::of_program(hm, extent, model.name(), &origin)?;
+    Grid::of_program(hm, extent, model.name(), &origin)
+}
+
+/// The probing set of a height map's `grid`. `log_name` is the file LinuxCNC writes the
+/// contacts to (`NAME_probes.txt`).
+pub(crate) fn grid_set(
+    hm: &Heightmap,
+    ctl: &Controller,
+    model: &Model,
+    grid: &Grid,
+    banner: &str,
+    file_name: &str,
+    log_name: &str,
+) -> GridSet {
     let points = grid.serpentine();
     let (s, t, o) = (model.params.s, model.params.t, model.params.o);
     let feed = hm.probe_feed.unwrap_or(model.params.f);
@@ -99,8 +119,8 @@ pub(crate) fn grid_set(
             )
         })
         .collect();
-    Ok(GridSet {
+    GridSet {
         probing: pl,
         z_lines,
-    })
+    }
 }

@@ -1,10 +1,10 @@
 //! File layouts (reference-output.md §4, §12.2, §12.3): the milling program, the probing program and `_Z.txt`
 //! (of drawn probes, or of a height map's grid: `heightmap_program.rs`).
 
-use crate::diag::{Diagnostic, Lang, Msg, Origin};
+use crate::diag::{Diagnostic, Lang, Origin};
 use crate::emit::as_comment;
 use crate::emit::dialect::Controller;
-use crate::emit::heightmap_program::{grid_set, GridSet};
+use crate::emit::heightmap_program::{grid_of, grid_set, GridSet};
 use crate::emit::stats::Stats;
 use crate::emit::{emit, emit_until, Emitted};
 use crate::geom::{near, F3, P2, P3};
@@ -52,6 +52,10 @@ pub fn check_until(
     stop: Option<&dyn Fn() -> bool>,
 ) -> Result<Stats, Vec<Diagnostic>> {
     let e = emit_until(model, true, ctl, stop)?;
+    // the editor's check refuses a height map as compile does
+    if let Some(hm) = &ctl.heightmap {
+        grid_of(hm, ctl, model, &e.items, &e.probes).map_err(|d| vec![d])?;
+    }
     Ok(Stats::timed(
         &e.items,
         sweep_speed,
@@ -100,19 +104,10 @@ pub fn generate_for(
     // a height map's probing set needs the cutting moves before they become lines
     let grid = match &ctl.heightmap {
         Some(hm) => {
-            if !probes.is_empty() {
-                // one correction or the other: both would move the same Z twice
-                let names: Vec<&str> = probes.iter().map(|p| p.name.as_str()).collect();
-                return Err(vec![Diagnostic::error(
-                    Msg::HeightmapWithDrawnProbes,
-                    model.raw.origin(),
-                    crate::args![model.name(), names.join(", ")],
-                )]);
-            }
+            let grid = grid_of(hm, ctl, model, &items, &probes).map_err(|e| vec![e])?;
             let log = crate::output_prefix(std::path::Path::new(file_name), &model.params.r);
             let log = format!("{}_probes.txt", log.display());
-            let set = grid_set(hm, ctl, model, &items, banner, file_name, &log);
-            Some(set.map_err(|e| vec![e])?)
+            Some(grid_set(hm, ctl, model, &grid, banner, file_name, &log))
         }
         None => None,
     };
