@@ -192,6 +192,14 @@ impl Settings {
             _ => (format!("heightmap.{name}"), file()),
         };
         let mut errors = hm.errors(&at);
+        // a probe feed that rounds to nothing in the program
+        if let Some(v) = hm.probe_feed.filter(|v| v.is_finite() && *v > 0.0) {
+            errors.extend(crate::build::validate::feed_too_small(
+                "heightmap.probe_feed",
+                v,
+                &file(),
+            ));
+        }
         if self.dialect == Dialect::Reference {
             errors.push(Diagnostic::error(
                 Msg::HeightmapReferenceDialect,
