@@ -8,6 +8,8 @@
 
 mod digest;
 mod expr;
+mod log_match;
+mod probe_log;
 mod rewrite;
 mod zfile;
 
@@ -15,6 +17,13 @@ pub use digest::{
     banner_index, banner_with_digest, check_set, set_digest, stored_digest, SetFile, SET_WORD,
 };
 pub use expr::eval;
+pub use log_match::{
+    check_tolerance, fill_z_from_log, probe_points, LogInputs, ProbePoint, DEFAULT_TOLERANCE,
+    MAX_TOLERANCE,
+};
+pub use probe_log::{
+    detect, read_measurements, LogFormat, Measurement, MAX_LOG_BYTES, MAX_LOG_LINES,
+};
 use rewrite::rewrite_program;
 pub use rewrite::{measured_values, read_clean, CleanProgram, Probe, PROBES_WORD};
 pub use zfile::{parse_z_file, ZLine};
@@ -137,6 +146,61 @@ pub fn adjust_set(
         Some(_) => rewrite::record_measured(&milling, &prog, &vars),
         None => milling,
     })
+}
+
+/// [`adjust_set`] with the measured heights read from a controller's probe log instead of
+/// the values typed into `_Z.txt` (which still names each probe and its nominal height): each
+/// measurement is matched by XY, within `tol`, to a `G38` move of the probing program, which
+/// is therefore required. A filled-in `_Z.txt` as the log is read as today.
+pub fn adjust_with_log(
+    set: [SetFile; 2],
+    probing: Option<SetFile>,
+    log: SetFile,
+    tol: f64,
+    max: f64,
+    diags: &mut Diags,
+) -> Option<String> {
+    let [clean, z] = set;
+    let opt = MaxOption::Long;
+    let Some(probing) = probing else {
+        let name = format!("{}_Probing.gcode", base_path(clean.name));
+        diags.error(Msg::ProbeLogNoProbing, Origin::Input, args![name]);
+        return None;
+    };
+    if let Some(d) = check_tolerance(tol, &tol.to_string()) {
+        diags.push(d);
+        return None;
+    }
+    let format = match probe_log::detect(log.text) {
+        Some(LogFormat::ZFile) => return adjust_set(clean, log, Some(probing), max, opt, diags),
+        Some(f) => f,
+        None => {
+            let first = log.text.lines().position(|l| !l.trim().is_empty());
+            let at = line_origin(log.name, first.map_or(1, |i| i + 1));
+            diags.error(Msg::ProbeLogUnknownFormat, at, vec![]);
+            return None;
+        }
+    };
+    // a mix of compiles first: the matching's errors would only be its consequences
+    if !check_set(clean, z, Some(probing), diags) {
+        return None;
+    }
+    let before = diags.error_count();
+    let measured = read_measurements(log.text, log.name, format, diags);
+    if diags.error_count() > before {
+        return None;
+    }
+    let inputs = LogInputs {
+        probing: (probing.name, probing.text),
+        z: (z.name, z.text),
+        log: (log.name, &measured),
+    };
+    let filled = fill_z_from_log(inputs, tol, max, diags)?;
+    let z = SetFile {
+        name: z.name,
+        text: &filled,
+    };
+    adjust_set(clean, z, Some(probing), max, opt, diags)
 }
 
 #[cfg(test)]
