@@ -47,8 +47,20 @@ grep -q "MILLPATH-PROBES #51=" 2021_Milling.gcode || fail "no measured heights f
 expect_status 0 "$MILLPATH" verify 2021_Milling.gcode
 grep -q "0 error(s), 0 warning(s)" "$WORK/err" || fail "verify: $(cat "$WORK/out" "$WORK/err")"
 
-# 5. LinuxCNC's interpreter accepts the adjusted program (tests/rs274.sh installs it)
+# 5. the probing program with PROBEOPEN added as the manual says: the set is still one
+#    (the digest does not cover the probing program's body), and LinuxCNC's interpreter
+#    accepts it and the adjusted program (tests/rs274.sh installs it)
+sed -i -e '/^T1$/a (PROBEOPEN 2021_probes.txt)' -e 's/^M30$/(PROBECLOSE)\nM30/' 2021_Probing.gcode
+grep -q '^(PROBECLOSE)$' 2021_Probing.gcode || fail "PROBECLOSE not added"
+cp probes.txt 2021_probes.txt
+expect_status 0 "$MILLPATH" adjust-z --probe-log 2021_probes.txt --max 0.5 2021
+cmp 2021_Milling.gcode typed_Milling.gcode || fail "another program after adding PROBEOPEN"
 if command -v rs274 >/dev/null; then
+  status=0
+  err=$(timeout 60 rs274 -g 2021_Probing.gcode </dev/null 2>&1 >/dev/null) || status=$?
+  why=$(printf '%s\n' "$err" | grep -v '^executing$' || true)
+  [ "$status" -eq 0 ] && [ -z "$why" ] || fail "rs274 rejects the probing program: $why"
+  echo "rs274 runs 2021_Probing.gcode with PROBEOPEN/PROBECLOSE"
   status=0
   err=$(timeout 60 rs274 -g 2021_Milling.gcode </dev/null 2>&1 >/dev/null) || status=$?
   why=$(printf '%s\n' "$err" | grep -v '^executing$' || true)
@@ -78,7 +90,8 @@ grep -q "GRBL reports no contact here" "$WORK/err" || fail "$(cat "$WORK/err")"
 sed 2d probes.txt > short.txt
 expect_status 1 "$MILLPATH" adjust-z --probe-log short.txt --max 0.5 2021
 grep -q "No measurement in short.txt for probe #52 at X25.000 Y-7.000" "$WORK/err" || fail "$(cat "$WORK/err")"
-grep -q "2021_Probing.gcode:18" "$WORK/err" || fail "missing point not located: $(cat "$WORK/err")"
+g38=$(grep -n "^G38" 2021_Probing.gcode | sed -n 2p | cut -d: -f1)  # the second probe move
+grep -q "2021_Probing.gcode:$g38\$" "$WORK/err" || fail "missing point not located: $(cat "$WORK/err")"
 [ ! -f 2021_Milling.gcode ] || fail "a milling program was written with a point missing"
 # a log from another surface, beyond --max at one point
 awk '{ $3 = sprintf("%f", $3 + 0.6) } 1' probes.txt > high.txt
