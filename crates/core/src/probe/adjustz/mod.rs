@@ -455,4 +455,66 @@ mod tests {
         let plain = run(CLEAN, Z, 1.0).0.unwrap();
         assert!(!plain.contains("MILLPATH-PROBES"));
     }
+
+    #[test]
+    fn heights_from_a_probe_log_give_the_typed_program() {
+        let probing = "%\n(b)\nG00 X0.000 Y0.000\nG00 X10.000 Y5.000\nG38.3 Z0 F50.000\nG00 X50.000 Y5.000\nG38.3 Z0 F50.000\nM30\n%\n";
+        let unfilled = "([57.358 242.020]/T=2.000) #51=\n([1.000 2.000]/L:a/T=2.000) #52=\n";
+        let set = |name, text| SetFile { name, text };
+        let with_log = |log: &str, d: &mut Diags| {
+            adjust_with_log(
+                [set("c", CLEAN), set("z", unfilled)],
+                Some(set("p", probing)),
+                SetFile {
+                    name: "log",
+                    text: log,
+                },
+                DEFAULT_TOLERANCE,
+                0.5,
+                d,
+            )
+        };
+        let typed = run(CLEAN, Z, 0.5).0.unwrap();
+        for log in [
+            "10.000000 5.000000 2.100000 0 0 0 0 0 0\n50.000000 5.000000 2.200000 0 0 0 0 0 0\n",
+            "[G54:-1.000,-2.000,-3.000]\n[PRB:49.000,3.000,-0.800:1]\nok\n[PRB:9.000,3.000,-0.900:1]\n",
+            "10 5 2.1\n50 5 2.2\n",
+            Z,
+        ] {
+            let mut d = Diags::default();
+            let out = with_log(log, &mut d);
+            assert!(d.list.is_empty(), "{log}: {:?}", d.list);
+            assert_eq!(out.unwrap(), typed, "{log}");
+        }
+        // unknown content, named at its first line
+        let mut d = Diags::default();
+        assert!(with_log("\nG38.3 Z0\n", &mut d).is_none());
+        assert_eq!(d.list[0].msg, Msg::ProbeLogUnknownFormat);
+        assert_eq!(d.list[0].origin.context(), "log:2");
+        assert!(d.list[0]
+            .message(crate::Lang::De)
+            .starts_with("Kein Antast-Protokoll, das millpath liest"));
+        // a NaN height and a no-contact report: refused, nothing produced
+        let mut d = Diags::default();
+        assert!(with_log("10 5 NaN\n50 5 2.2\n", &mut d).is_none());
+        assert_eq!(d.list[0].msg, Msg::ProbeLogBadNumber);
+        let mut d = Diags::default();
+        assert!(with_log("[G54:0,0,0]\n[PRB:10,5,2.1:1]\n[PRB:50,5,2.2:0]\n", &mut d).is_none());
+        assert_eq!(d.list[0].msg, Msg::ProbeLogNoContact);
+        // without the probing program there is nothing to match against
+        let mut d = Diags::default();
+        let out = adjust_with_log(
+            [set("x_Clean.gcode", CLEAN), set("z", unfilled)],
+            None,
+            set("log", "10 5 2.1\n"),
+            DEFAULT_TOLERANCE,
+            0.5,
+            &mut d,
+        );
+        assert!(out.is_none());
+        assert_eq!(
+            d.list[0].message(crate::Lang::En),
+            "--probe-log needs x_Probing.gcode: its probe points say which probe each measurement belongs to"
+        );
+    }
 }
