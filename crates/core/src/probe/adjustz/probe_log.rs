@@ -6,8 +6,8 @@
 //! - a sender's console log with GRBL reports `[PRB:x,y,z:1]`: GRBL reports machine
 //!   coordinates, so the log must also hold the work offset `[G54:x,y,z]` (and `[G92:…]`,
 //!   when present) that `$#` prints; every other line is ignored;
-//! - lines of three numbers `x y z` (what bCNC's `.probe` files hold per point, as far as
-//!   known; work coordinates);
+//! - lines of three numbers `x y z` (bCNC's `.xyz`; its `.probe` files start with a header
+//!   of three lines, skipped; work coordinates);
 //! - a filled-in `_Z.txt`: the caller reads it as today.
 
 use super::{line_origin, LIMIT, MAX_LINE};
@@ -100,9 +100,39 @@ pub fn read_measurements(
     }
     match format {
         LogFormat::LinuxCnc => columns(text, file, 9, format, diags),
-        LogFormat::Xyz => columns(text, file, 3, format, diags),
+        LogFormat::Xyz => {
+            let skip = bcnc_header_lines(text);
+            let mut m = columns(text, file, 3, format, diags);
+            m.retain(|m| m.line > skip);
+            m
+        }
         LogFormat::Grbl => grbl(text, file, diags),
         LogFormat::ZFile => Vec::new(),
+    }
+}
+
+/// 3 when `text` starts with the header of bCNC's `.probe` files, else 0. bCNC (Probe.save
+/// in CNC.py) writes `xmin xmax xn`, `ymin ymax yn`, `zmin zmax feed`, two empty lines, then
+/// the grid's `x y z` lines (an empty line after each row); its `.xyz` files are the points
+/// alone. The header is told from points by the two empty lines and the whole counts ≥ 2.
+fn bcnc_header_lines(text: &str) -> usize {
+    let lines: Vec<&str> = text.lines().take(5).collect();
+    let count = |l: &str| {
+        let w: Vec<&str> = l.split_whitespace().collect();
+        w.len() == 3
+            && w.iter().all(|x| number(x).is_some())
+            && w[2].parse::<u32>().is_ok_and(|n| n >= 2)
+    };
+    let header = lines.len() == 5
+        && count(lines[0])
+        && count(lines[1])
+        && lines[2].split_whitespace().count() == 3
+        && lines[3].trim().is_empty()
+        && lines[4].trim().is_empty();
+    if header {
+        3
+    } else {
+        0
     }
 }
 
@@ -332,6 +362,23 @@ mod tests {
         assert_eq!(f, Some(LogFormat::Xyz));
         assert!(msgs.is_empty());
         assert_eq!((m[1].line, m[1].z), (3, 3.1));
+        // bCNC's .probe: a header of three lines and two empty lines, rows of x y z
+        let probe = "0 40 2\n0 10 2\n-10 3 50\n\n\n0 0 2.9\n40 0 3\n\n0 10 3.1\n40 10 3.2\n\n";
+        let (f, m, msgs) = read(probe);
+        assert_eq!(f, Some(LogFormat::Xyz));
+        assert!(msgs.is_empty(), "{msgs:?}");
+        let got: Vec<_> = m.iter().map(|m| (m.line, m.x, m.y, m.z)).collect();
+        assert_eq!(
+            got,
+            [
+                (6, 0.0, 0.0, 2.9),
+                (7, 40.0, 0.0, 3.0),
+                (9, 0.0, 10.0, 3.1),
+                (10, 40.0, 10.0, 3.2)
+            ]
+        );
+        // points alone (.xyz), rows of three: no header
+        assert_eq!(read("0 0 1\n1 0 1\n2 0 1\n\n0 1 1\n").1.len(), 4);
         assert_eq!(
             detect("([10.000 5.000]/T=3.000) #51=2.95\n"),
             Some(LogFormat::ZFile)
