@@ -80,7 +80,32 @@ rm 2021_Milling.gcode
 expect_status 0 "$MILLPATH" adjust-z --probe-log console.log --max 0.5 2021
 cmp 2021_Milling.gcode typed_Milling.gcode || fail "the GRBL log gave another program than the typed values"
 
-# 7. refusals write nothing and name the line: a no-contact report, a point missing
+# 7. x y z lines, with bCNC's .probe header (xmin xmax xn / ymin ymax yn / zmin zmax feed,
+#    two empty lines), points in the program's coordinates as bCNC prints them (%g)
+rm 2021_Milling.gcode
+{
+  printf '5 45 2\n-7 8 2\n-10 5 50\n\n\n'
+  awk '{ printf "%g %g %g\n", $1, $2, $3 }' probes.txt
+} > 2021.probe
+expect_status 0 "$MILLPATH" adjust-z --probe-log 2021.probe --max 0.5 2021
+cmp 2021_Milling.gcode typed_Milling.gcode || fail "the .probe file gave another program than the typed values"
+
+# 8. the grbl dialect: its probing program probes at the same points, the console log gives
+#    the program of the typed values there too
+mkdir grbl && cp 2021.mpath millpath.toml console.log grbl/ && cd grbl
+expect_status 0 "$MILLPATH" compile --dialect grbl 2021.mpath
+cp 2021_Z.txt unfilled_Z.txt
+paste -d '' unfilled_Z.txt <(cut -d' ' -f3 ../probes.txt) > 2021_Z.txt
+expect_status 0 "$MILLPATH" adjust-z --max 0.5 2021
+mv 2021_Milling.gcode typed_Milling.gcode
+cp unfilled_Z.txt 2021_Z.txt
+expect_status 0 "$MILLPATH" adjust-z --probe-log console.log --max 0.5 2021
+cmp 2021_Milling.gcode typed_Milling.gcode || fail "grbl dialect: the console log gave another program"
+expect_status 0 "$MILLPATH" verify --dialect grbl 2021_Milling.gcode
+grep -q "0 error(s), 0 warning(s)" "$WORK/err" || fail "verify grbl: $(cat "$WORK/out" "$WORK/err")"
+cd ..
+
+# 9. refusals write nothing and name the line: a no-contact report, a point missing
 rm 2021_Milling.gcode
 sed '0,/:1]$/s/:1]$/:0]/' console.log > nocontact.log
 expect_status 1 "$MILLPATH" adjust-z --probe-log nocontact.log --max 0.5 2021
@@ -101,4 +126,4 @@ grep -q "differs from its nominal height 3.000 by more than --max=0.5" "$WORK/er
 expect_status 1 "$MILLPATH" adjust-z --probe-log 2021.mpath --max 0.5 2021
 grep -q "Not a probe log millpath reads" "$WORK/err" || fail "$(cat "$WORK/err")"
 [ ! -f 2021_Milling.gcode ] || fail "a milling program was written after a refusal"
-echo "ok: LinuxCNC and GRBL logs give the typed program; refusals write nothing"
+echo "ok: LinuxCNC, GRBL and bCNC logs give the typed program (linuxcnc and grbl dialects); refusals write nothing"
