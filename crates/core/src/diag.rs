@@ -361,6 +361,7 @@ messages! {
     ProbeLogProbingMismatch = "{0} probes {1} points, but {2} lists {3} probes", "{0} tastet {1} Punkte an, aber {2} nennt {3} Messpunkte";
     ProbeLogToleranceInvalid = "--tolerance value {0} must be a finite number > 0 and at most 1", "--tolerance-Wert {0} muss eine endliche Zahl > 0 und höchstens 1 sein";
     ProbeLogOneProgram = "--probe-log holds the measurements of one probing program: give one program, not {0}", "--probe-log enthält die Messungen eines Antastprogramms: ein Programm angeben, nicht {0}";
+    ProbeLogCutOff = "The log's last line has no line end: it was cut off (still being written, or copied in part); a cut number would be read as another height", "Die letzte Zeile des Protokolls hat kein Zeilenende: es ist abgeschnitten (wird noch geschrieben oder wurde nur teilweise kopiert); eine abgeschnittene Zahl würde als andere Höhe gelesen";
 }
 
 impl Msg {

@@ -486,6 +486,22 @@ mod tests {
             assert!(d.list.is_empty(), "{log}: {:?}", d.list);
             assert_eq!(out.unwrap(), typed, "{log}");
         }
+        // every cut of a log either gives the typed program or is refused with an error
+        let grbl = "[G54:-1.000,-2.000,-3.000]\n[PRB:49.000,3.000,-0.800:1]\nok\n[PRB:9.000,3.000,-0.900:1]\n";
+        for log in [
+            "10.000000 5.000000 2.100000 0 0 0 0 0 0\n50.000000 5.000000 2.200000 0 0 0 0 0 0\n",
+            grbl,
+        ] {
+            for cut in 0..log.len() {
+                for part in [&log[..cut], &log[cut..]] {
+                    let mut d = Diags::default();
+                    match with_log(part, &mut d) {
+                        Some(out) => assert_eq!(out, typed, "{part:?}"),
+                        None => assert!(d.has_errors(), "{part:?}"),
+                    }
+                }
+            }
+        }
         // unknown content, named at its first line
         let mut d = Diags::default();
         assert!(with_log("\nG38.3 Z0\n", &mut d).is_none());

@@ -98,6 +98,14 @@ pub fn read_measurements(
         diags.error(Msg::ProbeLogTooLarge, line_origin(file, 1), args![limit]);
         return Vec::new();
     }
+    // LinuxCNC and bCNC end every line: without its end, the last number may be cut short
+    // (2.15 read as 2.1); GRBL's reports carry their own end, `]`
+    let columns_format = matches!(format, LogFormat::LinuxCnc | LogFormat::Xyz);
+    if columns_format && !text.trim_end_matches([' ', '\t']).ends_with('\n') {
+        let last = text.lines().count().max(1);
+        diags.error(Msg::ProbeLogCutOff, line_origin(file, last), vec![]);
+        return Vec::new();
+    }
     match format {
         LogFormat::LinuxCnc => columns(text, file, 9, format, diags),
         LogFormat::Xyz => {
@@ -305,7 +313,7 @@ mod tests {
         assert_eq!((m[1].line, m[1].x, m[1].y, m[1].z), (2, 50.0, 5.0, 3.1));
         // a short line, a NaN
         let bad = log.replacen(" 0.000000\n", "\n", 2);
-        let (_, _, msgs) = read(&format!("{log}{}", bad.lines().nth(1).unwrap()));
+        let (_, _, msgs) = read(&format!("{log}{}\n", bad.lines().nth(1).unwrap()));
         assert_eq!(msgs, [(Msg::ProbeLogBadLine, "log:3".to_string())]);
         let (_, m, msgs) = read(&log.replace("3.100000", "nan"));
         assert_eq!(msgs, [(Msg::ProbeLogBadNumber, "log:2".to_string())]);
@@ -377,6 +385,10 @@ mod tests {
                 (10, 40.0, 10.0, 3.2)
             ]
         );
+        // a last line without its end may be a cut number
+        let (_, m, msgs) = read("10 5 2.95\n50 5 3.1");
+        assert!(m.is_empty());
+        assert_eq!(msgs, [(Msg::ProbeLogCutOff, "log:2".to_string())]);
         // points alone (.xyz), rows of three: no header
         assert_eq!(read("0 0 1\n1 0 1\n2 0 1\n\n0 1 1\n").1.len(), 4);
         assert_eq!(
