@@ -114,4 +114,13 @@ expect_status 2 "$MILLPATH" compile 1234.1P.dxf
 grep -q 'needs the linuxcnc or grbl dialect' "$WORK/err" || fail "reference: $(cat "$WORK/err")"
 grep -q 'millpath.toml' "$WORK/err" || fail "reference: not located at millpath.toml"
 ls | grep -q gcode && fail "reference: something was written"
-echo "heightmap probing: linuxcnc and grbl sets checked"
+cd ..
+
+# adjust-z cannot adjust a height map yet: a filled-in grid _Z.txt is refused with one
+# message, and no _Milling.gcode (which would mill the nominal depths) is written
+cd linuxcnc
+sed -i 's/=$/=3.05/' 1234.1P_Z.txt
+expect_status 1 "$MILLPATH" adjust-z --max 1 1234.1P
+grep -q 'points of a height map' "$WORK/err" || fail "adjust-z: $(cat "$WORK/err")"
+[ ! -e 1234.1P_Milling.gcode ] || fail "adjust-z wrote a program for a height map"
+echo "heightmap probing: linuxcnc and grbl sets checked; adjust-z refuses the grid"

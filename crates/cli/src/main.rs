@@ -98,6 +98,14 @@ enum Command {
         /// Message language (default: English)
         #[arg(long, value_enum)]
         lang: Option<LangArg>,
+        /// Read the measured heights from this log of the controller (LinuxCNC PROBEOPEN,
+        /// GRBL console with [PRB:…], x y z lines or a filled-in _Z.txt) instead of NAME_Z.txt's
+        /// values; one program only
+        #[arg(long, value_name = "FILE")]
+        probe_log: Option<String>,
+        /// With --probe-log: largest XY distance, mm, between a measurement and its probe point
+        #[arg(long, value_name = "MM", default_value_t = millpath_core::probe::adjustz::DEFAULT_TOLERANCE, requires = "probe_log")]
+        tolerance: f64,
         /// The probed programs: NAME_Clean.gcode (or NAME; NAME_Z.txt is read beside it)
         #[arg(required = true)]
         files: Vec<String>,
@@ -246,9 +254,18 @@ fn main() -> ExitCode {
             json: format == VerifyFormat::Json,
             files,
         }),
-        Command::AdjustZ { max, lang, files } => {
+        Command::AdjustZ {
+            max,
+            lang,
+            probe_log,
+            tolerance,
+            files,
+        } => {
             let lang = lang_for(lang, None, files.first().map(Path::new));
-            commands::adjust_z::run(max, None, lang, &files, false)
+            match probe_log {
+                Some(log) => commands::adjust_z::run_with_log(max, &log, tolerance, lang, &files),
+                None => commands::adjust_z::run(max, None, lang, &files, false),
+            }
         }
         Command::Dxf2text {
             file,

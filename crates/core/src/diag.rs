@@ -354,6 +354,25 @@ messages! {
     HeightmapWithDrawnProbes = "Path {0} has drawn Z probes ({1}) and millpath.toml has a [heightmap]: use one or the other (both would correct the same Z twice)", "Pfad {0} hat gezeichnete Z-Messpunkte ({1}) und millpath.toml eine [heightmap]: nur eines von beiden verwenden (beide würden dasselbe Z doppelt korrigieren)";
     HeightmapNoCuts = "Path {0} has no cutting moves: the height map has no area to cover (give heightmap.area)", "Pfad {0} hat keine Fräsbewegungen: die Höhenkarte hat keine Fläche (heightmap.area angeben)";
     HeightmapAreaTooSmall = "The cutting moves of path {0} reach {1} to {2}, outside heightmap.area [{3}, {4}, {5}, {6}]: the height map must cover every cut", "Die Fräsbewegungen von Pfad {0} reichen von {1} bis {2}, außerhalb von heightmap.area [{3}, {4}, {5}, {6}]: die Höhenkarte muss jeden Schnitt abdecken";
+    // adjust-z --probe-log: measured heights read from the controller's log (issue 21)
+    ProbeLogUnknownFormat = "Not a probe log millpath reads: expected LinuxCNC's PROBEOPEN log (nine numbers a line), GRBL reports [PRB:x,y,z:1], lines of x y z (bCNC .probe) or a filled-in _Z.txt", "Kein Antast-Protokoll, das millpath liest: erwartet werden das PROBEOPEN-Protokoll von LinuxCNC (neun Zahlen je Zeile), GRBL-Meldungen [PRB:x,y,z:1], Zeilen mit x y z (bCNC .probe) oder eine ausgefüllte _Z.txt";
+    ProbeLogBadLine = "Expected {0} numbers on this line of the {1} log, found `{2}`", "Erwartet: {0} Zahlen in dieser Zeile des {1}-Protokolls; gefunden: `{2}`";
+    ProbeLogBadNumber = "`{0}` is not a finite number within ±1000000", "`{0}` ist keine endliche Zahl innerhalb von ±1000000";
+    ProbeLogNoContact = "GRBL reports no contact here ({0}): the probe did not touch the surface; probe this point again", "GRBL meldet hier keine Berührung ({0}): der Taster hat die Oberfläche nicht erreicht; diesen Punkt neu antasten";
+    ProbeLogGrblOffset = "GRBL reports probe contacts in machine coordinates: the log must also hold the work offset [G54:x,y,z] (send $# in the same session)", "GRBL meldet Berührungen in Maschinenkoordinaten: das Protokoll muss auch den Werkstück-Nullpunkt [G54:x,y,z] enthalten (im selben Lauf $# senden)";
+    ProbeLogGrblOffsetChanged = "The work offset changes within the log ({0}, then {1}): probe again with one offset", "Der Werkstück-Nullpunkt ändert sich im Protokoll ({0}, dann {1}): mit einem Nullpunkt neu antasten";
+    ProbeLogExtra = "The measurement at X{0} Y{1} matches no probe point of {2} (within {3} mm)", "Die Messung bei X{0} Y{1} passt zu keinem Antastpunkt von {2} (auf {3} mm)";
+    ProbeLogDuplicate = "A second measurement for probe {0} at X{1} Y{2} (the first is on line {3})", "Eine zweite Messung für Messpunkt {0} bei X{1} Y{2} (die erste steht in Zeile {3})";
+    ProbeLogMissing = "No measurement in {0} for probe {1} at X{2} Y{3}", "Keine Messung in {0} für Messpunkt {1} bei X{2} Y{3}";
+    ProbeLogTooFar = "Measured height {0} for probe {1} differs from its nominal height {2} by more than --max={3}", "Gemessene Höhe {0} für Messpunkt {1} weicht von der Soll-Höhe {2} um mehr als --max={3} ab";
+    ProbeLogTooLarge = "The probe log is larger than {0}: not a probe log of one probing program", "Das Antast-Protokoll ist größer als {0}: kein Protokoll eines Antastprogramms";
+    ProbeLogNoProbing = "--probe-log needs {0}: its probe points say which probe each measurement belongs to", "--probe-log braucht {0}: seine Antastpunkte sagen, zu welchem Messpunkt jede Messung gehört";
+    ProbeLogProbingMismatch = "{0} probes {1} points, but {2} lists {3} probes", "{0} tastet {1} Punkte an, aber {2} nennt {3} Messpunkte";
+    ProbeLogToleranceInvalid = "--tolerance value {0} must be a finite number > 0 and at most 1", "--tolerance-Wert {0} muss eine endliche Zahl > 0 und höchstens 1 sein";
+    ProbeLogOneProgram = "--probe-log holds the measurements of one probing program: give one program, not {0}", "--probe-log enthält die Messungen eines Antastprogramms: ein Programm angeben, nicht {0}";
+    ProbeLogCutOff = "The log's last line has no line end: it was cut off (still being written, or copied in part); a cut number would be read as another height", "Die letzte Zeile des Protokolls hat kein Zeilenende: es ist abgeschnitten (wird noch geschrieben oder wurde nur teilweise kopiert); eine abgeschnittene Zahl würde als andere Höhe gelesen";
+    // a height map's set given to adjust-z, which does not interpolate yet (issue 21)
+    HeightMapNotAdjustable = "{0} lists the points of a height map ([heightmap]): adjust-z does not adjust height maps yet, and a plain adjust would mill the nominal depths; nothing was written (compile without [heightmap] and draw probes, or wait for the height-map adjust)", "{0} enthält die Punkte einer Höhenkarte ([heightmap]): adjust-z passt Höhenkarten noch nicht an, und eine einfache Anpassung würde die Soll-Tiefen fräsen; es wurde nichts geschrieben (ohne [heightmap] übersetzen und Messpunkte zeichnen, oder die Anpassung für Höhenkarten abwarten)";
 }
 
 impl Msg {

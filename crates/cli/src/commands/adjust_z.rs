@@ -7,6 +7,64 @@ use millpath_core::Lang;
 use std::path::{Path, PathBuf};
 
 pub fn run(max: f64, x: Option<&str>, lang: Lang, files: &[String], reference_lines: bool) -> u8 {
+    run_set(max, x, lang, files, reference_lines, None)
+}
+
+/// `adjust-z --probe-log LOG`: the measured heights of the one program come from the log.
+pub fn run_with_log(max: f64, log: &str, tolerance: f64, lang: Lang, files: &[String]) -> u8 {
+    let fail = |d: Diagnostic| {
+        eprintln!("{}", report::human(&d, lang));
+        2
+    };
+    if files.len() != 1 {
+        let d = Diagnostic::error(
+            Msg::ProbeLogOneProgram,
+            Origin::Options,
+            millpath_core::args![files.len()],
+        );
+        return fail(d);
+    }
+    if let Some(d) = adjustz::check_tolerance(tolerance, &tolerance.to_string()) {
+        return fail(d);
+    }
+    run_set(max, None, lang, files, false, Some((log, tolerance)))
+}
+
+/// A probe log, read only when it is not larger than [`adjustz::MAX_LOG_BYTES`]; bytes that
+/// are not UTF-8 (a console's odd characters) become U+FFFD.
+fn read_log(path: &str, diags: &mut Diags) -> Option<String> {
+    use std::io::Read;
+    let limit = adjustz::MAX_LOG_BYTES as u64;
+    let mut bytes = Vec::new();
+    let read = std::fs::File::open(path).and_then(|f| f.take(limit + 1).read_to_end(&mut bytes));
+    if let Err(e) = read {
+        diags.error(
+            Msg::CannotRead,
+            Origin::Input,
+            millpath_core::args![path, e],
+        );
+        return None;
+    }
+    if bytes.len() as u64 > limit {
+        let origin = Origin::FileLine {
+            file: path.to_string(),
+            line: 1,
+        };
+        let limit = format!("{} bytes", adjustz::MAX_LOG_BYTES);
+        diags.error(Msg::ProbeLogTooLarge, origin, millpath_core::args![limit]);
+        return None;
+    }
+    Some(String::from_utf8_lossy(&bytes).into_owned())
+}
+
+fn run_set(
+    max: f64,
+    x: Option<&str>,
+    lang: Lang,
+    files: &[String],
+    reference_lines: bool,
+    log: Option<(&str, f64)>,
+) -> u8 {
     let print = |d: &Diagnostic| {
         if reference_lines {
             eprintln!("{}", d.reference_line(lang));
@@ -68,14 +126,32 @@ pub fn run(max: f64, x: Option<&str>, lang: Lang, files: &[String], reference_li
         let probing_path = format!("{base}_Probing.gcode");
         let probing = std::fs::read_to_string(&probing_path).ok();
         let set = |name, text| adjustz::SetFile { name, text };
-        if let Some(content) = adjustz::adjust_set(
-            set(&clean_path, &clean),
-            set(&z_path, &z_text),
-            probing.as_deref().map(|p| set(&probing_path, p)),
-            max,
-            opt,
-            &mut diags,
-        ) {
+        let probing = probing.as_deref().map(|p| set(&probing_path, p));
+        let content = match log {
+            Some((log_path, tol)) => {
+                eprintln!("---- {} {log_path}", verb("Reading", "Einlesen von"));
+                let Some(log_text) = read_log(log_path, &mut diags) else {
+                    continue;
+                };
+                adjustz::adjust_with_log(
+                    [set(&clean_path, &clean), set(&z_path, &z_text)],
+                    probing,
+                    set(log_path, &log_text),
+                    tol,
+                    max,
+                    &mut diags,
+                )
+            }
+            None => adjustz::adjust_set(
+                set(&clean_path, &clean),
+                set(&z_path, &z_text),
+                probing,
+                max,
+                opt,
+                &mut diags,
+            ),
+        };
+        if let Some(content) = content {
             planned.push((milling, content));
         }
     }
@@ -101,7 +177,10 @@ pub fn run(max: f64, x: Option<&str>, lang: Lang, files: &[String], reference_li
     // a refusal must not leave an older _Milling.gcode looking like the result
     for (z_path, clean_path, milling) in &parts {
         if !written.contains(milling) {
-            remove_stale_milling(milling, &[clean_path, z_path], &mut diags);
+            let mut inputs = vec![clean_path, z_path];
+            let log_path = log.map(|(l, _)| l.to_string());
+            inputs.extend(log_path.as_ref());
+            remove_stale_milling(milling, &inputs, &mut diags);
         }
     }
     for d in &diags.list {

@@ -73,6 +73,7 @@ pub fn banner_with_digest(banner: &str, digest: &str) -> String {
 }
 
 /// One file of a set as adjust-z read it.
+#[derive(Clone, Copy)]
 pub struct SetFile<'a> {
     pub name: &'a str,
     pub text: &'a str,

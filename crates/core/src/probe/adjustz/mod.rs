@@ -8,6 +8,8 @@
 
 mod digest;
 mod expr;
+mod log_match;
+mod probe_log;
 mod rewrite;
 mod zfile;
 
@@ -15,6 +17,13 @@ pub use digest::{
     banner_index, banner_with_digest, check_set, set_digest, stored_digest, SetFile, SET_WORD,
 };
 pub use expr::eval;
+pub use log_match::{
+    check_tolerance, fill_z_from_log, probe_points, LogInputs, ProbePoint, DEFAULT_TOLERANCE,
+    MAX_TOLERANCE,
+};
+pub use probe_log::{
+    detect, read_measurements, LogFormat, Measurement, MAX_LOG_BYTES, MAX_LOG_LINES,
+};
 use rewrite::rewrite_program;
 pub use rewrite::{measured_values, read_clean, CleanProgram, Probe, PROBES_WORD};
 pub use zfile::{parse_z_file, ZLine};
@@ -97,6 +106,18 @@ pub fn adjust(
     adjust_set(clean, z, None, max, opt, diags)
 }
 
+/// Whether a `_Z.txt` lists the points of a height map (`[heightmap]`: `#1000` on), not
+/// drawn probes.
+fn is_height_map(lines: &[ZLine]) -> bool {
+    let grid_var = |l: &ZLine| {
+        l.name
+            .strip_prefix('#')
+            .and_then(|n| n.parse::<usize>().ok())
+            .is_some_and(|n| n >= crate::probe::heightmap::FIRST_VAR)
+    };
+    !lines.is_empty() && lines.iter().all(grid_var)
+}
+
 /// [`adjust`] with the `_Probing.gcode` beside them, when there is one: a set whose files
 /// come from different compiles is refused first ([`check_set`]), as its other errors would
 /// only be consequences of the mix.
@@ -119,6 +140,18 @@ pub fn adjust_set(
         return None;
     }
     let lines = parse_z_file(z_text, z_file, diags);
+    if is_height_map(&lines) {
+        // its clean program has no probe terms: a plain adjust would mill the nominal depths
+        diags.error(
+            Msg::HeightMapNotAdjustable,
+            Origin::FileLine {
+                file: z_file.to_string(),
+                line: 1,
+            },
+            args![z_file],
+        );
+        return None;
+    }
     let prog = read_clean(clean_text, clean_file, diags);
     if diags.error_count() > before {
         return None;
@@ -137,6 +170,61 @@ pub fn adjust_set(
         Some(_) => rewrite::record_measured(&milling, &prog, &vars),
         None => milling,
     })
+}
+
+/// [`adjust_set`] with the measured heights read from a controller's probe log instead of
+/// the values typed into `_Z.txt` (which still names each probe and its nominal height): each
+/// measurement is matched by XY, within `tol`, to a `G38` move of the probing program, which
+/// is therefore required. A filled-in `_Z.txt` as the log is read as today.
+pub fn adjust_with_log(
+    set: [SetFile; 2],
+    probing: Option<SetFile>,
+    log: SetFile,
+    tol: f64,
+    max: f64,
+    diags: &mut Diags,
+) -> Option<String> {
+    let [clean, z] = set;
+    let opt = MaxOption::Long;
+    let Some(probing) = probing else {
+        let name = format!("{}_Probing.gcode", base_path(clean.name));
+        diags.error(Msg::ProbeLogNoProbing, Origin::Input, args![name]);
+        return None;
+    };
+    if let Some(d) = check_tolerance(tol, &tol.to_string()) {
+        diags.push(d);
+        return None;
+    }
+    let format = match probe_log::detect(log.text) {
+        Some(LogFormat::ZFile) => return adjust_set(clean, log, Some(probing), max, opt, diags),
+        Some(f) => f,
+        None => {
+            let first = log.text.lines().position(|l| !l.trim().is_empty());
+            let at = line_origin(log.name, first.map_or(1, |i| i + 1));
+            diags.error(Msg::ProbeLogUnknownFormat, at, vec![]);
+            return None;
+        }
+    };
+    // a mix of compiles first: the matching's errors would only be its consequences
+    if !check_set(clean, z, Some(probing), diags) {
+        return None;
+    }
+    let before = diags.error_count();
+    let measured = read_measurements(log.text, log.name, format, diags);
+    if diags.error_count() > before {
+        return None;
+    }
+    let inputs = LogInputs {
+        probing: (probing.name, probing.text),
+        z: (z.name, z.text),
+        log: (log.name, &measured),
+    };
+    let filled = fill_z_from_log(inputs, tol, max, diags)?;
+    let z = SetFile {
+        name: z.name,
+        text: &filled,
+    };
+    adjust_set(clean, z, Some(probing), max, opt, diags)
 }
 
 #[cfg(test)]
@@ -390,5 +478,83 @@ mod tests {
         // a reference _Clean.gcode (no digest) gives the reference's output unchanged
         let plain = run(CLEAN, Z, 1.0).0.unwrap();
         assert!(!plain.contains("MILLPATH-PROBES"));
+    }
+
+    #[test]
+    fn heights_from_a_probe_log_give_the_typed_program() {
+        let probing = "%\n(b)\nG00 X0.000 Y0.000\nG00 X10.000 Y5.000\nG38.3 Z0 F50.000\nG00 X50.000 Y5.000\nG38.3 Z0 F50.000\nM30\n%\n";
+        let unfilled = "([57.358 242.020]/T=2.000) #51=\n([1.000 2.000]/L:a/T=2.000) #52=\n";
+        let set = |name, text| SetFile { name, text };
+        let with_log = |log: &str, d: &mut Diags| {
+            adjust_with_log(
+                [set("c", CLEAN), set("z", unfilled)],
+                Some(set("p", probing)),
+                SetFile {
+                    name: "log",
+                    text: log,
+                },
+                DEFAULT_TOLERANCE,
+                0.5,
+                d,
+            )
+        };
+        let typed = run(CLEAN, Z, 0.5).0.unwrap();
+        for log in [
+            "10.000000 5.000000 2.100000 0 0 0 0 0 0\n50.000000 5.000000 2.200000 0 0 0 0 0 0\n",
+            "[G54:-1.000,-2.000,-3.000]\n[PRB:49.000,3.000,-0.800:1]\nok\n[PRB:9.000,3.000,-0.900:1]\n",
+            "10 5 2.1\n50 5 2.2\n",
+            Z,
+        ] {
+            let mut d = Diags::default();
+            let out = with_log(log, &mut d);
+            assert!(d.list.is_empty(), "{log}: {:?}", d.list);
+            assert_eq!(out.unwrap(), typed, "{log}");
+        }
+        // every cut of a log either gives the typed program or is refused with an error
+        let grbl = "[G54:-1.000,-2.000,-3.000]\n[PRB:49.000,3.000,-0.800:1]\nok\n[PRB:9.000,3.000,-0.900:1]\n";
+        for log in [
+            "10.000000 5.000000 2.100000 0 0 0 0 0 0\n50.000000 5.000000 2.200000 0 0 0 0 0 0\n",
+            grbl,
+        ] {
+            for cut in 0..log.len() {
+                for part in [&log[..cut], &log[cut..]] {
+                    let mut d = Diags::default();
+                    match with_log(part, &mut d) {
+                        Some(out) => assert_eq!(out, typed, "{part:?}"),
+                        None => assert!(d.has_errors(), "{part:?}"),
+                    }
+                }
+            }
+        }
+        // unknown content, named at its first line
+        let mut d = Diags::default();
+        assert!(with_log("\nG38.3 Z0\n", &mut d).is_none());
+        assert_eq!(d.list[0].msg, Msg::ProbeLogUnknownFormat);
+        assert_eq!(d.list[0].origin.context(), "log:2");
+        assert!(d.list[0]
+            .message(crate::Lang::De)
+            .starts_with("Kein Antast-Protokoll, das millpath liest"));
+        // a NaN height and a no-contact report: refused, nothing produced
+        let mut d = Diags::default();
+        assert!(with_log("10 5 NaN\n50 5 2.2\n", &mut d).is_none());
+        assert_eq!(d.list[0].msg, Msg::ProbeLogBadNumber);
+        let mut d = Diags::default();
+        assert!(with_log("[G54:0,0,0]\n[PRB:10,5,2.1:1]\n[PRB:50,5,2.2:0]\n", &mut d).is_none());
+        assert_eq!(d.list[0].msg, Msg::ProbeLogNoContact);
+        // without the probing program there is nothing to match against
+        let mut d = Diags::default();
+        let out = adjust_with_log(
+            [set("x_Clean.gcode", CLEAN), set("z", unfilled)],
+            None,
+            set("log", "10 5 2.1\n"),
+            DEFAULT_TOLERANCE,
+            0.5,
+            &mut d,
+        );
+        assert!(out.is_none());
+        assert_eq!(
+            d.list[0].message(crate::Lang::En),
+            "--probe-log needs x_Probing.gcode: its probe points say which probe each measurement belongs to"
+        );
     }
 }

@@ -30,7 +30,7 @@ pub struct ZLine {
 /// Splits a `_Z.txt` line into T text, name and value text (empty when not filled in yet);
 /// `None` if it is not of the form `(…/T=t) #digits=value` (blanks allowed around `#`, the
 /// digits and `=`).
-fn split_z_line(line: &str) -> Option<(&str, &str, &str)> {
+pub(super) fn split_z_line(line: &str) -> Option<(&str, &str, &str)> {
     let line = line.trim();
     let rest = line.strip_prefix('(')?;
     // the comment cannot contain `)`: AsComment writes it as `]`
