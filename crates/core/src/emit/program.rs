@@ -123,15 +123,19 @@ pub fn generate_for(
     lines.extend(stats.model_line(lang).map(|l| format!("  ({l})")));
     lines.extend(ctl.epilogue(true));
     let body = join(&lines);
+    // a probing set: the Z file and both programs stamped with the set's digest
+    let set = |z_lines: &[String], probing: &[String], clean: String| {
+        let z_txt = join(z_lines);
+        let (probing, clean) = stamp_set(banner, &z_txt, join(probing), clean);
+        Output::Probing {
+            probing,
+            z_txt,
+            clean,
+        }
+    };
     if let Some(GridSet { probing, z_lines }) = grid {
-        let z_txt = join(&z_lines);
-        let (probing, clean) = stamp_set(banner, &z_txt, join(&probing), body);
         return Ok(Generated {
-            output: Output::Probing {
-                probing,
-                z_txt,
-                clean,
-            },
+            output: set(&z_lines, &probing, body),
             stats,
             line_sources,
         });
@@ -183,14 +187,8 @@ pub fn generate_for(
             format!("{} {}=", as_comment(0, &inner), p.name)
         })
         .collect();
-    let z_txt = join(&z_lines);
-    let (probing, clean) = stamp_set(banner, &z_txt, join(&pl), body);
     Ok(Generated {
-        output: Output::Probing {
-            probing,
-            z_txt,
-            clean,
-        },
+        output: set(&z_lines, &pl, body),
         stats,
         line_sources,
     })
