@@ -225,6 +225,30 @@ pub fn parse(args: &[String], tool: Tool) -> Parsed {
     p
 }
 
+/// The reference tools' answer to a command line they cannot run, printed after the
+/// banner: the option errors and the help (exit 2), or "no files" (exit 3). `None` when the
+/// command line can run.
+pub fn refused(args: &[String], parsed: &Parsed, help: &str) -> Option<u8> {
+    use millpath_core::diag::{Diagnostic, Msg, Origin};
+    let lang = parsed.settings.lang;
+    if args.is_empty() || parsed.help || !parsed.errors.is_empty() {
+        for e in &parsed.errors {
+            eprintln!("{}", e.reference_line(lang));
+        }
+        eprintln!();
+        eprintln!("{help}");
+        return Some(2);
+    }
+    if parsed.files.is_empty() {
+        eprintln!(
+            "{}",
+            Diagnostic::error(Msg::NoDxfFiles, Origin::Options, vec![]).reference_line(lang)
+        );
+        return Some(3);
+    }
+    None
+}
+
 pub fn help_dxf2gcode(lang: Lang) -> &'static str {
     match lang {
         Lang::En => {

@@ -128,6 +128,12 @@ enum Command {
     ///
     /// An existing DXF that holds anything text2dxf does not write back (other layers,
     /// dimensions, blocks) is not overwritten: use --into to keep it, or --force.
+    // the conversion options, with what two of them mean for text2dxf
+    #[command(
+        mut_arg("path_pattern", |a| a.help("Path-name pattern: which layers are path layers (their elements are written or replaced)")),
+        mut_arg("file_pattern", |a| a.help("File-name pattern (as for compile; text2dxf reads no other files, so it changes nothing)")),
+        mut_arg("extended", |a| a.help("The text came from `dxf2text --extended`: polylines and block references on the path layers were turned into elements, so --into (and the check before overwriting) replaces them too")),
+    )]
     Text2dxf {
         /// The MillPath text to convert (.mpath)
         file: PathBuf,
@@ -142,7 +148,7 @@ enum Command {
         #[arg(long, conflicts_with = "into")]
         force: bool,
         #[command(flatten)]
-        names: commands::text2dxf::Text2dxfArgs,
+        names: NameArgs,
     },
     /// Format MillPath files in place (directories: all *.mpath below)
     Fmt {

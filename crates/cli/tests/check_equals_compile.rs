@@ -7,9 +7,10 @@
 //! and a path that defines variables, which compile gives no values (it warns so) and check its
 //! check values (reference-input.md §6.2).
 
+mod common;
+
 use millpath_core::Msg;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 /// The diagnostics' first lines (`error[MP…]: …`), sorted: the severity, code and message
 /// of each. What compile says about the files it writes or removes (an older output of a
@@ -43,19 +44,9 @@ struct Run {
 }
 
 fn run(dir: &Path, args: &[&str]) -> Run {
-    let out = Command::new(env!("CARGO_BIN_EXE_millpath"))
-        .args(args)
-        .current_dir(dir)
-        .env("NO_COLOR", "1")
-        .output()
-        .unwrap();
-    let text = format!(
-        "{}\n{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let (status, text) = common::status_and_text(dir, args);
     Run {
-        status: out.status.code().unwrap_or(-1),
+        status,
         heads: heads(&text),
         checked: text
             .lines()

@@ -2,7 +2,7 @@
 
 use crate::compat;
 use crate::output::{flush_info, print_stats, write_outputs};
-use millpath_core::diag::{Diagnostic, Diags, Msg, Origin, Severity};
+use millpath_core::diag::{Diagnostic, Diags, Msg, Severity};
 use millpath_core::{compile_file, complete_input, OsFileSystem, Session};
 
 /// `millpath pathdxf2gcode …`: the reference command line.
@@ -14,20 +14,8 @@ pub fn run(args: &[String]) -> u8 {
         millpath_core::banner()
     );
     eprintln!();
-    if args.is_empty() || parsed.help || !parsed.errors.is_empty() {
-        for e in &parsed.errors {
-            eprintln!("{}", e.reference_line(lang));
-        }
-        eprintln!();
-        eprintln!("{}", compat::help_dxf2gcode(lang));
-        return 2;
-    }
-    if parsed.files.is_empty() {
-        eprintln!(
-            "{}",
-            Diagnostic::error(Msg::NoDxfFiles, Origin::Options, vec![]).reference_line(lang)
-        );
-        return 3;
+    if let Some(code) = compat::refused(args, &parsed, compat::help_dxf2gcode(lang)) {
+        return code;
     }
     let fs = OsFileSystem;
     let mut settings = parsed.settings;

@@ -2,48 +2,13 @@
 //! (`--into`). It never destroys a drawing: an existing DXF that holds anything it would not
 //! write back is overwritten only with `--force`.
 
-use crate::args::{LangArg, MachineArgs};
+use crate::args::MachineArgs;
 use crate::inputs::conversion_input;
 use crate::output::print_human;
 use crate::{report, write};
 use millpath_core::diag::FileRef;
 use millpath_core::{args, Diagnostic, InputMode, Lang, Msg, Origin};
 use std::path::{Path, PathBuf};
-
-/// The options of `text2dxf` (the name patterns decide which layers hold paths).
-#[derive(clap::Args, Default, Clone)]
-pub struct Text2dxfArgs {
-    /// Path-name pattern: which layers are path layers (their elements are written or replaced)
-    #[arg(long)]
-    pub path_pattern: Option<String>,
-    /// File-name pattern (as for compile; text2dxf reads no other files, so it changes nothing)
-    #[arg(long)]
-    pub file_pattern: Option<String>,
-    /// Message language
-    #[arg(long, value_enum)]
-    pub lang: Option<LangArg>,
-    /// Settings file (default: nearest millpath.toml above the input)
-    #[arg(long)]
-    pub config: Option<PathBuf>,
-    /// The text came from `dxf2text --extended`: polylines and block references on the path
-    /// layers were turned into elements, so --into (and the check before overwriting)
-    /// replaces them too
-    #[arg(long)]
-    pub extended: bool,
-}
-
-impl Text2dxfArgs {
-    pub fn machine(&self) -> MachineArgs {
-        MachineArgs {
-            path_pattern: self.path_pattern.clone(),
-            file_pattern: self.file_pattern.clone(),
-            lang: self.lang,
-            config: self.config.clone(),
-            extended: self.extended,
-            ..MachineArgs::default()
-        }
-    }
-}
 
 pub fn run(
     file: &Path,
