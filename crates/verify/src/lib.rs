@@ -26,6 +26,7 @@ mod finding;
 mod machine;
 mod parse;
 mod stock;
+pub mod surface;
 
 pub use adjusted::PROBES_WORD;
 pub use finding::{
