@@ -116,11 +116,87 @@ grep -q 'millpath.toml' "$WORK/err" || fail "reference: not located at millpath.
 ls | grep -q gcode && fail "reference: something was written"
 cd ..
 
-# adjust-z cannot adjust a height map yet: a filled-in grid _Z.txt is refused with one
-# message, and no _Milling.gcode (which would mill the nominal depths) is written
+# The machinist runs the probing program. LinuxCNC writes NAME_probes.txt itself (one line of
+# nine numbers per contact); here the log is what it would write over a board that rises
+# 0.5 mm along X and falls 0.2 mm along Y. adjust-z reads the log and writes a program whose
+# cuts follow the board; LinuxCNC's interpreter runs it.
+# write_log PROBING "height(x, y)" [FORMAT]: the log a controller writes at the program's G38s
+write_log() {
+  python3 - "$@" <<'PY'
+import re, sys
+probing, height = sys.argv[1], sys.argv[2]
+fmt = sys.argv[3] if len(sys.argv) > 3 else "linuxcnc"
+x = y = 0.0
+if fmt == "grbl":
+    # GRBL reports machine coordinates; the sender's console also holds the work offset ($#)
+    print("[G54:-100.000,-50.000,-20.000]")
+for l in open(probing):
+    if l.startswith("("):
+        continue
+    for letter, v in re.findall(r"([XY])(-?[0-9.]+)", l):
+        if letter == "X":
+            x = float(v)
+        else:
+            y = float(v)
+    if l.startswith("G38.2"):
+        z = eval(height)
+        if fmt == "grbl":
+            print(f"[PRB:{x - 100:.3f},{y - 50:.3f},{z - 20:.3f}:1]")
+            print("ok")
+        else:
+            print(f"{x:.6f} {y:.6f} {z:.6f} 0.000000 0.000000 0.000000 0.000000 0.000000 0.000000")
+PY
+}
 cd linuxcnc
-sed -i 's/=$/=3.05/' 1234.1P_Z.txt
-expect_status 1 "$MILLPATH" adjust-z --max 1 1234.1P
-grep -q 'points of a height map' "$WORK/err" || fail "adjust-z: $(cat "$WORK/err")"
-[ ! -e 1234.1P_Milling.gcode ] || fail "adjust-z wrote a program for a height map"
-echo "heightmap probing: linuxcnc and grbl sets checked; adjust-z refuses the grid"
+board="3 + 0.01 * x - 0.005 * y"
+write_log 1234.1P_Probing.gcode "$board" >1234.1P_probes.txt
+expect_status 0 "$MILLPATH" adjust-z --max 1 --probe-log 1234.1P_probes.txt 1234.1P_Clean.gcode
+grep -q 'moves split into' "$WORK/err" || fail "adjust-z: no split count: $(cat "$WORK/err")"
+[ -s 1234.1P_Milling.gcode ] || fail "adjust-z wrote no program"
+grep -q '^(MILLPATH-SURFACE T=3.000 ' 1234.1P_Milling.gcode || fail "no surface record"
+# the first groove (X10, Y10 → Y30 at Z1.500 nominal) now ends 0.1 mm lower than it starts
+grep -q '^G01 F300.000 X10.000 Y18.000 Z1.510$' 1234.1P_Milling.gcode \
+  || fail "the groove does not follow the board: $(grep -m3 '^G01' 1234.1P_Milling.gcode)"
+if command -v rs274 >/dev/null; then
+  status=0
+  timeout 60 rs274 -g 1234.1P_Milling.gcode </dev/null >"$WORK/canon" 2>"$WORK/rs274err" || status=$?
+  why=$(grep -v '^executing$' "$WORK/rs274err" || true)
+  [ "$status" -eq 0 ] && [ -z "$why" ] || fail "rs274 1234.1P_Milling.gcode: exit $status $why"
+  grep -q 'PROGRAM_END' "$WORK/canon" || fail "rs274: the adjusted program did not reach M30"
+fi
+good=$(cat 1234.1P_Milling.gcode)
+
+# Every broken log is refused, names what is wrong, and leaves no program behind.
+# refuse NAME PATTERN: adjust-z with bad.txt fails with PATTERN, no _Milling.gcode stays
+refuse() {
+  rm -f 1234.1P_Milling.gcode
+  expect_status 1 "$MILLPATH" adjust-z --max 1 --probe-log bad.txt 1234.1P_Clean.gcode
+  grep -q "$2" "$WORK/err" || fail "$1: $(cat "$WORK/err")"
+  [ ! -e 1234.1P_Milling.gcode ] || fail "$1: a program was written"
+}
+sed '$d' 1234.1P_probes.txt >bad.txt
+refuse "a missing point" 'No measurement in bad.txt for probe'
+{ cat 1234.1P_probes.txt; echo "500.000000 500.000000 3.000000 0 0 0 0 0 0"; } >bad.txt
+refuse "an extra point" 'matches no probe point'
+sed '3s/^\([^ ]* [^ ]*\) [^ ]*/\1 nan/' 1234.1P_probes.txt >bad.txt
+refuse "a NaN height" 'not a finite number'
+sed '3s/^\([^ ]* [^ ]*\) [^ ]*/\1 4.5/' 1234.1P_probes.txt >bad.txt
+refuse "a height beyond --max" 'by more than --max=1'
+cd ..
+
+# GRBL: the sender's console log, machine coordinates and the work offset; no contact (:0)
+# is refused
+cd grbl
+write_log 1234.1P_Probing.gcode "$board" grbl >console.txt
+expect_status 0 "$MILLPATH" adjust-z --max 1 --probe-log console.txt 1234.1P_Clean.gcode
+grep -q '^G01 F300.000 X10.000 Y18.000 Z1.510$' 1234.1P_Milling.gcode \
+  || fail "grbl: the groove does not follow the board"
+[ "$(grep -v '^%' 1234.1P_Milling.gcode | grep -c .)" -eq "$(printf '%s\n' "$good" | grep -v '^%' | grep -c .)" ] \
+  || fail "grbl and linuxcnc adjust the same moves differently"
+sed '0,/:1]/s/:1]/:0]/' console.txt >bad.txt
+rm 1234.1P_Milling.gcode
+expect_status 1 "$MILLPATH" adjust-z --max 1 --probe-log bad.txt 1234.1P_Clean.gcode
+grep -q 'GRBL reports no contact here' "$WORK/err" || fail "grbl :0: $(cat "$WORK/err")"
+[ ! -e 1234.1P_Milling.gcode ] || fail "grbl :0: a program was written"
+cd ..
+echo "heightmap probing: linuxcnc and grbl sets checked and adjusted to a probe log; 5 broken logs refused"

@@ -33,7 +33,7 @@ pub use finding::{
     AdjustedProblem, ArcProblem, Finding, FindingKind, Lang, Limit, NoFeedReason, NumberProblem,
     Severity, StockCommentProblem, StockSkip, SyntaxError,
 };
-pub use parse::MAX_MAGNITUDE;
+pub use parse::{parse_line, Block, Word, MAX_MAGNITUDE};
 
 use machine::{Machine, MoveKind, Raw};
 use stock::{GridGeom, Stock};

@@ -164,6 +164,15 @@ fn run_set(
                 verb("Writing", "Schreiben von"),
                 path.display()
             );
+            if let Some((moves, pieces)) = adjustz::split_summary(&content) {
+                eprintln!(
+                    "{}",
+                    verb(
+                        &format!("  Following the measured surface: {moves} moves split into {pieces} pieces"),
+                        &format!("  Der gemessenen Oberfläche folgen: {moves} Wege in {pieces} Teile geteilt"),
+                    )
+                );
+            }
             match write::write_atomic(&path, &content) {
                 Ok(()) => written.push(path),
                 Err(e) => diags.error(

@@ -161,7 +161,7 @@ pub fn cut_extent(items: &[Item], start: P2) -> Option<(P2, P2)> {
 
 /// The points of the circle around `c` at 0°, 90°, 180° and 270° that the arc from `a` to
 /// `b` passes (a full circle when `a` = `b`).
-fn arc_extremes(a: P2, b: P2, c: P2, ccw: bool) -> Vec<P2> {
+pub(crate) fn arc_extremes(a: P2, b: P2, c: P2, ccw: bool) -> Vec<P2> {
     use std::f64::consts::{FRAC_PI_2, TAU};
     let r = a.dist(c);
     let ang = |p: P2| (p.y - c.y).atan2(p.x - c.x);

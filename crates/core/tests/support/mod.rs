@@ -7,6 +7,8 @@ use millpath_core::{compile_file, MemFileSystem, OutputFile, Session, Settings};
 use millpath_dxf::writer::DxfWriter;
 use std::path::Path;
 
+pub mod grbl;
+
 pub type Pt = (f64, f64);
 
 /// A drawing with one or more path layers.

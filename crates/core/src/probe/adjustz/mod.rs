@@ -8,6 +8,8 @@
 
 mod digest;
 mod expr;
+mod follow;
+mod grid_set;
 mod log_match;
 mod probe_log;
 mod rewrite;
@@ -17,6 +19,7 @@ pub use digest::{
     banner_index, banner_with_digest, check_set, set_digest, stored_digest, SetFile, SET_WORD,
 };
 pub use expr::eval;
+pub use follow::{split_summary, Followed, CHORD_TOL, MAX_LINES, SPLIT_WORD};
 pub use log_match::{
     check_tolerance, fill_z_from_log, probe_points, LogInputs, ProbePoint, DEFAULT_TOLERANCE,
     MAX_TOLERANCE,
@@ -141,16 +144,12 @@ pub fn adjust_set(
     }
     let lines = parse_z_file(z_text, z_file, diags);
     if is_height_map(&lines) {
-        // its clean program has no probe terms: a plain adjust would mill the nominal depths
-        diags.error(
-            Msg::HeightMapNotAdjustable,
-            Origin::FileLine {
-                file: z_file.to_string(),
-                line: 1,
-            },
-            args![z_file],
-        );
-        return None;
+        // a grid's clean program is nominal: its moves are made to follow the surface
+        if diags.error_count() > before {
+            return None;
+        }
+        let map = grid_set::surface(z_text, z_file, &lines, max, opt, diags)?;
+        return follow::follow(clean_text, clean_file, &map, diags).map(|f| f.text);
     }
     let prog = read_clean(clean_text, clean_file, diags);
     if diags.error_count() > before {
