@@ -12,6 +12,7 @@ mod inputs;
 mod output;
 mod png;
 mod report;
+mod surface_file;
 mod workers;
 mod write;
 
@@ -86,6 +87,14 @@ enum Command {
         /// Report format: human text or json
         #[arg(long, value_enum, default_value = "human")]
         format: VerifyFormat,
+        /// Judge the programs against this surface as measured on the machine instead of their
+        /// own (MILLPATH-SURFACE …) record: a probe log (LinuxCNC PROBEOPEN, GRBL console with
+        /// [PRB:…], x y z lines), a filled-in _Z.txt or an adjusted program
+        #[arg(long, value_name = "FILE")]
+        surface: Option<String>,
+        /// With --surface: largest XY distance, mm, between measurements of one grid line
+        #[arg(long, value_name = "MM", default_value_t = millpath_core::probe::adjustz::DEFAULT_TOLERANCE, requires = "surface")]
+        tolerance: f64,
         /// G-code programs to check
         #[arg(required = true)]
         files: Vec<PathBuf>,
@@ -243,6 +252,8 @@ fn main() -> ExitCode {
             bottom,
             lang,
             format,
+            surface,
+            tolerance,
             files,
         } => verify::run(&verify::Args {
             dialect: match dialect {
@@ -258,6 +269,7 @@ fn main() -> ExitCode {
                 Lang::En => millpath_verify::Lang::En,
             },
             json: format == VerifyFormat::Json,
+            surface: surface.map(|file| (file, tolerance)),
             files,
         }),
         Command::AdjustZ {
