@@ -49,6 +49,7 @@ fn arg(cmd: &str, id: &str) -> Option<&'static str> {
         ("text2dxf", "extended") => Some("Der Text kam von `dxf2text --extended`: Polylinien und Blockreferenzen auf den Pfad-Layern wurden zu Elementen, also ersetzt --into (und die Prüfung vor dem Überschreiben) auch sie"),
         ("fmt", "paths") => Some("MillPath-Dateien (.mpath) oder Ordner"),
         ("render", "file") => Some("Die Zeichnung (.dxf oder .mpath; ein Name ohne Endung bekommt .dxf)"),
+        ("render", "surface") => Some("Die auf der Maschine gemessene Oberfläche unter den Bewegungen zeichnen: ein Antast-Protokoll (LinuxCNC PROBEOPEN, GRBL-Konsole mit [PRB:…], Zeilen x y z), eine ausgefüllte _Z.txt oder ein angepasstes Programm (NAME_Milling.gcode)"),
         _ => None,
     };
     own.or(match id {

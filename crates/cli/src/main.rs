@@ -190,6 +190,11 @@ enum Command {
         /// Write a PNG picture of the top view here (no browser needed)
         #[arg(long)]
         png: Option<PathBuf>,
+        /// Draw the surface measured on the machine under the moves: a probe log (LinuxCNC
+        /// PROBEOPEN, GRBL console with [PRB:…], x y z lines), a filled-in _Z.txt or an
+        /// adjusted program (NAME_Milling.gcode)
+        #[arg(long, value_name = "FILE")]
+        surface: Option<String>,
     },
     /// Language server over standard input and output (for editors)
     Lsp {
@@ -315,7 +320,17 @@ fn main() -> ExitCode {
             html,
             svg,
             png,
-        } => commands::render::run(&machine, &file, path.as_deref(), html, svg, png),
+            surface,
+        } => {
+            let outputs = (html, svg, png);
+            commands::render::run(
+                &machine,
+                &file,
+                path.as_deref(),
+                outputs,
+                surface.as_deref(),
+            )
+        }
         Command::Lsp { .. } => millpath_lsp::run_stdio(),
         Command::Pathdxf2gcode { args } => commands::pathdxf2gcode::run(&args),
         Command::Pathgcodeadjustz { args } => commands::pathgcodeadjustz::run(&args),

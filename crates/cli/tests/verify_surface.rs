@@ -291,3 +291,64 @@ fn bad_surface_files_are_located_errors() {
     let (status, _) = status_and_text(d, &["verify", "bare.gcode", "--tolerance", "0.1"]);
     assert_eq!(status, 2);
 }
+
+#[test]
+fn render_draws_the_measured_surface_or_the_probe_grid() {
+    let (dir, points) = compiled();
+    let d = dir.path();
+    write(d, "tilted.txt", &linuxcnc_log(&points, tilted));
+    let (status, text) = status_and_text(
+        d,
+        &[
+            "render",
+            "2001.mpath",
+            "--svg",
+            "m.svg",
+            "--html",
+            "m.html",
+            "--surface",
+            "tilted.txt",
+        ],
+    );
+    assert_eq!(status, 0, "{text}");
+    // three cells, coloured from the lowest (blue) to the highest (yellow) mean height
+    let svg = std::fs::read_to_string(d.join("m.svg")).unwrap();
+    let fills: Vec<&str> = svg
+        .lines()
+        .filter(|l| l.starts_with("<rect"))
+        .filter_map(|l| l.split("fill=\"").nth(1)?.split('"').next())
+        .collect();
+    assert_eq!(fills.len(), 3, "{svg}");
+    assert_ne!(fills[0], fills[2]);
+    let html = std::fs::read_to_string(d.join("m.html")).unwrap();
+    assert!(
+        html.contains(r#""measured":true"#),
+        "no surface in the page data"
+    );
+    // without --surface: the probe grid of [heightmap] at the nominal top
+    let (status, _) = status_and_text(d, &["render", "2001.mpath", "--svg", "g.svg"]);
+    assert_eq!(status, 0);
+    let svg = std::fs::read_to_string(d.join("g.svg")).unwrap();
+    assert_eq!(svg.matches("fill=\"#8a8f98\"").count(), 8, "{svg}");
+    // a bad file: located, nothing written
+    write(d, "junk.txt", "hello\n");
+    let (status, text) = status_and_text(
+        d,
+        &[
+            "render",
+            "2001.mpath",
+            "--svg",
+            "j.svg",
+            "--surface",
+            "junk.txt",
+            "--lang",
+            "de",
+        ],
+    );
+    assert_eq!(status, 2, "{text}");
+    assert!(
+        text.contains("junk.txt:1") && text.contains("Antast-Protokoll"),
+        "{text}"
+    );
+    assert!(!d.join("j.svg").exists());
+}
