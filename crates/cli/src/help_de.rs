@@ -32,6 +32,8 @@ fn arg(cmd: &str, id: &str) -> Option<&'static str> {
         ("verify", "files") => Some("Die zu prüfenden G-Code-Programme"),
         ("verify", "dialect") => Some("Wessen Vorschub-Regeln gelten"),
         ("verify", "format") => Some("Form des Berichts: human (Text) oder json"),
+        ("verify", "surface") => Some("Die Programme gegen diese auf der Maschine gemessene Oberfläche prüfen statt gegen ihren eigenen Eintrag (MILLPATH-SURFACE …): ein Antast-Protokoll (LinuxCNC PROBEOPEN, GRBL-Konsole mit [PRB:…], Zeilen x y z), eine ausgefüllte _Z.txt oder ein angepasstes Programm"),
+        ("verify", "tolerance") => Some("Mit --surface: größter XY-Abstand in mm zwischen Messungen derselben Rasterlinie"),
         ("verify" | "adjust-z", "lang") => Some("Sprache der Meldungen (Standard: lang aus millpath.toml, sonst Englisch)"),
         ("adjust-z", "probe_log") => Some("Die gemessenen Höhen aus diesem Protokoll der Steuerung lesen (LinuxCNC PROBEOPEN, GRBL-Konsole mit [PRB:…], Zeilen x y z oder eine ausgefüllte _Z.txt) statt aus den Werten der NAME_Z.txt; nur ein Programm"),
         ("adjust-z", "tolerance") => Some("Mit --probe-log: größter XY-Abstand in mm zwischen einer Messung und ihrem Antastpunkt"),
@@ -47,6 +49,7 @@ fn arg(cmd: &str, id: &str) -> Option<&'static str> {
         ("text2dxf", "extended") => Some("Der Text kam von `dxf2text --extended`: Polylinien und Blockreferenzen auf den Pfad-Layern wurden zu Elementen, also ersetzt --into (und die Prüfung vor dem Überschreiben) auch sie"),
         ("fmt", "paths") => Some("MillPath-Dateien (.mpath) oder Ordner"),
         ("render", "file") => Some("Die Zeichnung (.dxf oder .mpath; ein Name ohne Endung bekommt .dxf)"),
+        ("render", "surface") => Some("Die auf der Maschine gemessene Oberfläche unter den Bewegungen zeichnen: ein Antast-Protokoll (LinuxCNC PROBEOPEN, GRBL-Konsole mit [PRB:…], Zeilen x y z), eine ausgefüllte _Z.txt oder ein angepasstes Programm (NAME_Milling.gcode)"),
         _ => None,
     };
     own.or(match id {

@@ -12,6 +12,7 @@ mod inputs;
 mod output;
 mod png;
 mod report;
+mod surface_file;
 mod workers;
 mod write;
 
@@ -86,6 +87,14 @@ enum Command {
         /// Report format: human text or json
         #[arg(long, value_enum, default_value = "human")]
         format: VerifyFormat,
+        /// Judge the programs against this surface as measured on the machine instead of their
+        /// own (MILLPATH-SURFACE …) record: a probe log (LinuxCNC PROBEOPEN, GRBL console with
+        /// [PRB:…], x y z lines), a filled-in _Z.txt or an adjusted program
+        #[arg(long, value_name = "FILE")]
+        surface: Option<String>,
+        /// With --surface: largest XY distance, mm, between measurements of one grid line
+        #[arg(long, value_name = "MM", default_value_t = millpath_core::probe::adjustz::DEFAULT_TOLERANCE, requires = "surface")]
+        tolerance: f64,
         /// G-code programs to check
         #[arg(required = true)]
         files: Vec<PathBuf>,
@@ -181,6 +190,11 @@ enum Command {
         /// Write a PNG picture of the top view here (no browser needed)
         #[arg(long)]
         png: Option<PathBuf>,
+        /// Draw the surface measured on the machine under the moves: a probe log (LinuxCNC
+        /// PROBEOPEN, GRBL console with [PRB:…], x y z lines), a filled-in _Z.txt or an
+        /// adjusted program (NAME_Milling.gcode)
+        #[arg(long, value_name = "FILE")]
+        surface: Option<String>,
     },
     /// Language server over standard input and output (for editors)
     Lsp {
@@ -243,6 +257,8 @@ fn main() -> ExitCode {
             bottom,
             lang,
             format,
+            surface,
+            tolerance,
             files,
         } => verify::run(&verify::Args {
             dialect: match dialect {
@@ -258,6 +274,7 @@ fn main() -> ExitCode {
                 Lang::En => millpath_verify::Lang::En,
             },
             json: format == VerifyFormat::Json,
+            surface: surface.map(|file| (file, tolerance)),
             files,
         }),
         Command::AdjustZ {
@@ -303,7 +320,17 @@ fn main() -> ExitCode {
             html,
             svg,
             png,
-        } => commands::render::run(&machine, &file, path.as_deref(), html, svg, png),
+            surface,
+        } => {
+            let outputs = (html, svg, png);
+            commands::render::run(
+                &machine,
+                &file,
+                path.as_deref(),
+                outputs,
+                surface.as_deref(),
+            )
+        }
         Command::Lsp { .. } => millpath_lsp::run_stdio(),
         Command::Pathdxf2gcode { args } => commands::pathdxf2gcode::run(&args),
         Command::Pathgcodeadjustz { args } => commands::pathgcodeadjustz::run(&args),

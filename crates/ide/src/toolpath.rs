@@ -124,10 +124,15 @@ pub fn toolpath(
         minz = 0.0;
         maxz = 0.0;
     }
+    // `[heightmap]`: its probe points at the nominal top (not measured yet)
+    let heightmap = tp
+        .heightmap
+        .as_ref()
+        .map(|g| crate::heightmap_view::heightmap_json(&g.xs, &g.ys, None, model.params.t));
     let stats = &tp.stats;
     let mut stat_lines = tp.stats.lines(lang).to_vec();
     stat_lines.extend(stats.model_line(lang));
-    Ok(json!({
+    let mut data = json!({
         "path": name,
         "file": path.display().to_string(),
         "moves": moves,
@@ -140,7 +145,13 @@ pub fn toolpath(
         "seconds": r3((stats.mill_min + stats.drill_min + stats.sweep_min) * 60.0),
         "bounds": { "minX": r3(minx), "minY": r3(miny), "maxX": r3(maxx), "maxY": r3(maxy), "minZ": r3(minz), "maxZ": r3(maxz) },
         "warnings": errors,
-    }))
+        "heightmap": serde_json::Value::Null,
+    });
+    if let Some(hm) = heightmap {
+        crate::heightmap_view::grow_bounds(&mut data, &hm);
+        data["heightmap"] = hm;
+    }
+    Ok(data)
 }
 
 /// The toolpath view as a standalone HTML page (the page of `editors/toolpath` with the data
@@ -196,6 +207,9 @@ pub fn toolpath_svg(data: &serde_json::Value) -> String {
         r#"<g transform="scale(1,-1)" fill="none" stroke-linecap="round">"#
     );
     let stroke = (w.max(h) / 400.0).max(0.05);
+    if data["heightmap"].is_object() {
+        s.push_str(&crate::heightmap_view::svg(&data["heightmap"], stroke));
+    }
     for m in data["moves"].as_array().into_iter().flatten() {
         let kind = m["kind"].as_str().unwrap_or("");
         let (fx, fy) = (f(&m["from"][0]), f(&m["from"][1]));

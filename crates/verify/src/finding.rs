@@ -198,6 +198,9 @@ pub enum FindingKind {
     Limit(Limit),
     /// A program adjusted to a measured surface (`(==…)` lines).
     Adjusted(AdjustedProblem),
+    /// The program's `(MILLPATH-SURFACE …)` record cannot be read: its moves are judged at
+    /// their written heights.
+    Surface(crate::surface::SurfaceProblem),
 }
 
 /// Problems of a program adjusted by adjust-z.
@@ -239,6 +242,7 @@ impl FindingKind {
             FindingKind::StockComment(_) => "stock-comment",
             FindingKind::Limit(_) => "limit",
             FindingKind::Adjusted(_) => "adjusted",
+            FindingKind::Surface(_) => "surface-record",
         }
     }
 
@@ -375,6 +379,13 @@ impl FindingKind {
                     "angepasstes Programm ohne gemessene Höhen (kein Kommentar MILLPATH-PROBES): Tiefen werden nur an den gezeichneten Höhen geprüft, nicht unter der gemessenen Oberfläche".into(),
                 ),
             },
+            FindingKind::Surface(p) => {
+                let what = p.message(lang);
+                pick(
+                    format!("height map record (MILLPATH-SURFACE …): {what}; the moves are checked at their written heights, not against the measured surface"),
+                    format!("Höhenkarten-Eintrag (MILLPATH-SURFACE …): {what}; die Bewegungen werden an ihren geschriebenen Höhen geprüft, nicht gegen die gemessene Oberfläche"),
+                )
+            }
             FindingKind::AfterProgramEnd => pick(
                 "code after the program end (M2/M30) is ignored by the controller".into(),
                 "Code nach dem Programmende (M2/M30) wird von der Steuerung ignoriert".into(),
@@ -472,6 +483,41 @@ impl SyntaxError {
             SyntaxError::UnknownCode(c) => {
                 pick(format!("unknown code {c}"), format!("unbekannter Code {c}"))
             }
+        }
+    }
+}
+
+impl crate::surface::SurfaceProblem {
+    /// What keeps the heights from being a height map, in `lang`.
+    pub fn message(&self, lang: Lang) -> String {
+        use crate::surface::{SurfaceProblem as S, MAX_NODES};
+        let de = lang == Lang::De;
+        let pick = |en: String, de_text: String| if de { de_text } else { en };
+        match self {
+            S::BadNumber { text } => pick(
+                format!("'{text}' is not a sane number"),
+                format!("'{text}' ist keine brauchbare Zahl"),
+            ),
+            S::Size { nx, ny } => pick(
+                format!("{nx} × {ny} points (1 to {MAX_NODES} allowed)"),
+                format!("{nx} × {ny} Punkte (1 bis {MAX_NODES} erlaubt)"),
+            ),
+            S::NotAscending => pick(
+                "grid lines not in ascending order".into(),
+                "Rasterlinien nicht aufsteigend".into(),
+            ),
+            S::Missing { x, y } => pick(
+                format!("no height at X{} Y{}", f3(*x), f3(*y)),
+                format!("keine Höhe bei X{} Y{}", f3(*x), f3(*y)),
+            ),
+            S::Duplicate { x, y } => pick(
+                format!("two heights at X{} Y{}", f3(*x), f3(*y)),
+                format!("zwei Höhen bei X{} Y{}", f3(*x), f3(*y)),
+            ),
+            S::Malformed { text } => pick(
+                format!("unreadable: {text}"),
+                format!("nicht lesbar: {text}"),
+            ),
         }
     }
 }

@@ -27,6 +27,7 @@ mod machine;
 mod parse;
 mod stock;
 pub mod surface;
+mod surface_frame;
 
 pub use adjusted::PROBES_WORD;
 pub use finding::{
@@ -34,6 +35,8 @@ pub use finding::{
     Severity, StockCommentProblem, StockSkip, SyntaxError,
 };
 pub use parse::{parse_line, Block, Word, MAX_MAGNITUDE};
+pub use surface::{HeightMap, SurfaceProblem};
+pub use surface_frame::{ROUNDING as SURFACE_ROUNDING, SPLIT_TOLERANCE};
 
 use machine::{Machine, MoveKind, Raw};
 use stock::{GridGeom, Stock};
@@ -155,6 +158,9 @@ pub struct Report {
     pub lines: usize,
     /// Moves executed (G00/G01/G02/G03/G38.x with known start or end).
     pub moves: usize,
+    /// The measured surface the moves were judged against (given, or the program's
+    /// `(MILLPATH-SURFACE …)` record).
+    pub surface: Option<HeightMap>,
 }
 
 impl Report {
@@ -223,6 +229,29 @@ pub fn parse_stock_comment(text: &str) -> Option<Result<StockParams, StockCommen
 
 /// Checks one program.
 pub fn verify(program: &str, options: &Options) -> Report {
+    verify_on_surface(program, options, None)
+}
+
+/// The nominal top of a program: its `(MILLPATH-SURFACE T=…)` record's, else its
+/// `(MILLPATH-STOCK T=…)` comment's.
+pub fn program_top(program: &str) -> Option<f64> {
+    let lines = || program.lines().take(Limits::default().max_lines);
+    if let Some(Ok(map)) = HeightMap::read_comments(lines()) {
+        return Some(map.top());
+    }
+    lines()
+        .flat_map(|l| l.split('(').skip(1))
+        .filter_map(|c| c.split_once(')').map(|(t, _)| t))
+        .find_map(|c| parse_stock_comment(c)?.ok()?.top)
+}
+
+/// Checks one program against a measured surface: `surface` (measured on the machine)
+/// replaces the program's own `(MILLPATH-SURFACE …)` record; without either, [`verify`].
+pub fn verify_on_surface(
+    program: &str,
+    options: &Options,
+    surface_map: Option<&HeightMap>,
+) -> Report {
     let limits = options.limits;
     let mut m = Machine::new(options.dialect);
     let mut lines: Vec<&str> = Vec::new();
@@ -245,6 +274,22 @@ pub fn verify(program: &str, options: &Options) -> Report {
         });
     }
     let rise = surface.max_rise();
+    // a height map: given, or the program's own record (a broken one is an error)
+    let map: Option<HeightMap> = match surface_map {
+        Some(m) => Some(m.clone()),
+        None => match HeightMap::read_comments(body.split('\n').take(limits.max_lines)) {
+            Some(Ok(m)) => Some(m),
+            Some(Err((line, problem))) => {
+                extra.push(Raw {
+                    line: Some(line),
+                    kind: FindingKind::Surface(problem),
+                    severity: Severity::Error,
+                });
+                None
+            }
+            None => None,
+        },
+    };
     for (idx, raw) in body.split('\n').enumerate() {
         let no = idx + 1;
         if idx >= limits.max_lines {
@@ -314,10 +359,33 @@ pub fn verify(program: &str, options: &Options) -> Report {
     };
     let mut findings = std::mem::take(&mut m.findings);
     findings.extend(extra);
+    // on a height map: the moves back to the drawing's frame, within the roundings; cuts
+    // also sampled inside (a piece whose straight Z misses the surface between its ends)
+    let mut ztol = Z_TOLERANCE;
+    let mut inside: Vec<Option<(f64, f64, f64)>> = Vec::new();
+    if let Some(map) = &map {
+        let frame = surface_frame::Frame::new(map);
+        ztol += surface_frame::ROUNDING;
+        if params.bottom.is_some() {
+            inside = m.moves.iter().map(|mv| frame.lowest_inside(mv)).collect();
+        }
+        frame.to_drawing(&mut m.moves);
+    }
     if let Some(bottom) = params.bottom {
-        for mv in m.moves.iter().filter(|mv| mv.kind == MoveKind::Cut) {
-            let z = mv.from[2].min(mv.to[2]);
-            if z < bottom - Z_TOLERANCE {
+        let inside_tol = ztol + surface_frame::SPLIT_TOLERANCE;
+        for (k, mv) in m.moves.iter().enumerate() {
+            if mv.kind != MoveKind::Cut {
+                continue;
+            }
+            let ends = mv.from[2].min(mv.to[2]);
+            let low_inside = inside.get(k).copied().flatten().map(|l| l.0);
+            let below_ends = ends < bottom - ztol;
+            let below_inside = low_inside.is_some_and(|z| z < bottom - inside_tol);
+            if below_ends || below_inside {
+                let z = match low_inside {
+                    Some(z) if below_inside => z.min(ends),
+                    _ => ends,
+                };
                 findings.push(Raw {
                     line: Some(mv.line),
                     kind: FindingKind::BelowBottom { z, bottom },
@@ -330,11 +398,13 @@ pub fn verify(program: &str, options: &Options) -> Report {
         params,
         lines: lines.len(),
         moves: m.moves.len(),
+        surface: map,
         ..Default::default()
     };
     match (params.top, params.tool) {
         (Some(top), Some(tool)) => {
-            run_stock(&m.moves, top, tool, &limits, &mut findings, &mut report);
+            let stock = (top, tool, ztol);
+            run_stock(&m.moves, stock, &limits, &mut findings, &mut report);
         }
         (top, tool) => findings.push(Raw {
             line: None,
@@ -389,11 +459,11 @@ fn to_drawing_frame(
     Ok(())
 }
 
-/// The stock model over all moves: rapids checked against it, cuts lowering it.
+/// The stock model over all moves: rapids checked against it, cuts lowering it; `ztol`: how
+/// far below the stock a tool tip may pass.
 fn run_stock(
     moves: &[machine::Move],
-    top: f64,
-    tool: f64,
+    (top, tool, ztol): (f64, f64, f64),
     limits: &Limits,
     findings: &mut Vec<Raw>,
     report: &mut Report,
@@ -475,12 +545,12 @@ fn run_stock(
                 } else {
                     continue;
                 };
-                if a[2].min(b[2]) >= top - Z_TOLERANCE {
+                if a[2].min(b[2]) >= top - ztol {
                     continue;
                 }
                 let (hit, w) = stock.intrusion(a, b, r_check);
                 work += w;
-                if let Some((depth, x, y)) = hit.filter(|h| h.0 > Z_TOLERANCE) {
+                if let Some((depth, x, y)) = hit.filter(|h| h.0 > ztol) {
                     findings.push(Raw {
                         line: Some(mv.line),
                         kind: FindingKind::RapidIntoMaterial { depth, x, y },

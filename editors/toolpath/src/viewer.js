@@ -171,6 +171,48 @@ function build(data) {
     group.add(plane);
   }
 
+  // the height map: a measured surface coloured by height (colours from the data), or the
+  // probe points of a grid not measured yet at the nominal top
+  const hm = data.heightmap;
+  document.body.dataset.surface = '';
+  if (hm && Array.isArray(hm.xs) && Array.isArray(hm.ys)) {
+    const nx = hm.xs.length, ny = hm.ys.length, pos = [], col = [], hc = new THREE.Color();
+    for (let j = 0; j < ny; j++) {
+      for (let i = 0; i < nx; i++) {
+        pos.push(hm.xs[i], hm.ys[j], hm.z[j][i]);
+        hc.set(hm.colours[j][i]);
+        col.push(hc.r, hc.g, hc.b);
+      }
+    }
+    const nodes = new THREE.BufferGeometry();
+    nodes.setAttribute('position', new THREE.BufferAttribute(new Float32Array(pos), 3));
+    nodes.setAttribute('color', new THREE.BufferAttribute(new Float32Array(col), 3));
+    const points = new THREE.Points(nodes, new THREE.PointsMaterial({ vertexColors: true, size: 7, sizeAttenuation: false, depthTest: false, transparent: true }));
+    points.renderOrder = 5; // over the translucent stock top and surface
+    group.add(points);
+    if (hm.measured && nx > 1 && ny > 1) {
+      const idx = [];
+      for (let j = 0; j + 1 < ny; j++) {
+        for (let i = 0; i + 1 < nx; i++) {
+          const a = j * nx + i, b2 = a + 1, c2 = a + nx, d2 = c2 + 1;
+          idx.push(a, b2, d2, a, d2, c2);
+        }
+      }
+      const sg = new THREE.BufferGeometry();
+      sg.setAttribute('position', nodes.getAttribute('position'));
+      sg.setAttribute('color', nodes.getAttribute('color'));
+      sg.setIndex(idx);
+      // drawn first and blended without the transparent pass, so every move lies over it
+      const surface = new THREE.Mesh(sg, new THREE.MeshBasicMaterial({
+        vertexColors: true, opacity: 0.8, side: THREE.DoubleSide, depthWrite: false, depthTest: false,
+        blending: THREE.CustomBlending, blendSrc: THREE.SrcAlphaFactor, blendDst: THREE.OneMinusSrcAlphaFactor,
+      }));
+      surface.renderOrder = -1;
+      group.add(surface);
+    }
+    document.body.dataset.surface = `${hm.measured ? 'measured' : 'grid'} ${nx}x${ny}`;
+  }
+
   // start, end and turn markers, direction arrows
   const r = extent / 120;
   const marker = (p, colour, geo) => {
@@ -296,6 +338,24 @@ function legend() {
     }
     dep.append(`Z ${f3(b.maxZ)}`, cv, `${f3(b.minZ)} mm`);
     el.append(dep);
+  }
+  const hm = d.heightmap;
+  if (hm && Array.isArray(hm.xs)) {
+    const sf = document.createElement('div');
+    sf.className = 'surface';
+    const n = `${hm.xs.length}×${hm.ys.length}`;
+    if (hm.measured) {
+      const cv = document.createElement('canvas');
+      cv.width = 120; cv.height = 10;
+      const g = cv.getContext('2d'), grad = g.createLinearGradient(0, 0, 120, 0);
+      hm.legend.ramp.forEach((col, k) => grad.addColorStop(k / (hm.legend.ramp.length - 1), col));
+      g.fillStyle = grad;
+      g.fillRect(0, 0, 120, 10);
+      sf.append(`surface ${n} Z ${f3(hm.legend.min)}`, cv, `${f3(hm.legend.max)} mm`);
+    } else {
+      sf.textContent = `height map ${n} probe points at the top ${f3(hm.top)} mm (not measured)`;
+    }
+    el.append(sf);
   }
   const tool = d.tool ? `tool Ø ${f3(d.tool.diameter)} mm` : '';
   const stock = d.stock ? `stock top ${f3(d.stock.top)} mm` : '';
@@ -559,6 +619,12 @@ window.millpathToolpath = {
   duration: () => st.total,
   toolPosition: () => (st.world ? st.world.tool.position.toArray() : null),
   cameraMatrix: () => { camera.updateMatrixWorld(); return [...camera.projectionMatrix.elements, ...camera.matrixWorldInverse.elements]; },
+  /// Client coordinates of the model point `p` [x, y, z].
+  screenOfPoint: (p) => {
+    const v = new THREE.Vector3(p[0], p[1], p[2]).project(camera);
+    const rect = renderer.domElement.getBoundingClientRect();
+    return [rect.left + ((v.x + 1) / 2) * rect.width, rect.top + ((1 - v.y) / 2) * rect.height];
+  },
   /// Client coordinates of the point at fraction `f` of move `i` (for clicking it).
   screenOf: (i, f = 0.5) => {
     const p = moveAt(st.data.moves[i], f);

@@ -42,9 +42,9 @@ before(async () => {
 after(async () => { if (browser) await browser.close(); });
 
 /// Renders `file` with millpath, opens the page; returns the page and the embedded data.
-async function open(file, viewport = { width: 1000, height: 700 }) {
+async function open(file, viewport = { width: 1000, height: 700 }, extra = []) {
   const html = join(dir, `${Math.random().toString(36).slice(2)}.html`);
-  execFileSync(bin, ['render', file, '--html', html], { stdio: 'ignore' });
+  execFileSync(bin, ['render', file, '--html', html, ...extra], { stdio: 'ignore' });
   const json = /<script id="toolpath-data" type="application\/json">(.*?)<\/script>/s.exec(readFileSync(html, 'utf8'))[1];
   const data = JSON.parse(json.replace(/<\\\//g, '</'));
   const page = await browser.newPage({ viewport });
@@ -208,4 +208,74 @@ test('the title says when placeholder machine settings are in use', { skip, time
   const { page: plain } = await open(join(dir, '2040.mpath'));
   assert.doesNotMatch(await plain.locator('#title').textContent(), /⚠/);
   await plain.close();
+});
+
+test('the height map: a measured surface coloured by its heights, a grid not measured at the top', { skip, timeout: 120000 }, async () => {
+  // 2001 compiled with [heightmap]; LinuxCNC's log of a tilted board at its own probe points
+  const hdir = mkdtempSync(join(tmpdir(), 'millpath-heightmap-'));
+  writeFileSync(join(hdir, '2001.mpath'), readFileSync(join(repo, 'examples/text/2001.mpath')));
+  writeFileSync(join(hdir, 'millpath.toml'), 'dialect = "linuxcnc"\nfeed = 300\nsweep_speed = 1000\nsweep_height = 10\nprobe_feed = 50\n[heightmap]\nstep = 10\nmargin = 2\n');
+  execFileSync(bin, ['compile', '2001.mpath'], { cwd: hdir, stdio: 'ignore' });
+  let x = 0, y = 0;
+  const log = [];
+  for (const line of readFileSync(join(hdir, '2001_Probing.gcode'), 'utf8').split('\n')) {
+    if (line.startsWith('G38')) log.push(`${x} ${y} ${(3 + 0.01 * x + 0.05 * y).toFixed(6)} 0 0 0 0 0 0`);
+    else if (line.startsWith('G00')) {
+      x = Number((/X(\S+)/.exec(line) || [0, x])[1]);
+      y = Number((/Y(\S+)/.exec(line) || [0, y])[1]);
+    }
+  }
+  writeFileSync(join(hdir, '2001_probes.txt'), log.join('\n') + '\n');
+  const { page, data } = await open(join(hdir, '2001.mpath'), undefined, ['--surface', join(hdir, '2001_probes.txt')]);
+  const hm = data.heightmap;
+  assert.equal(hm.measured, true);
+  assert.equal(await page.evaluate(() => document.body.dataset.surface), `measured ${hm.xs.length}x${hm.ys.length}`);
+  assert.match(await page.locator('#legend').textContent(), new RegExp(`surface 4×2 Z ${hm.legend.min.toFixed(3)}.*${hm.legend.max.toFixed(3)} mm`));
+  await page.locator('[data-view="top"]').click();
+  await page.waitForTimeout(300);
+  // the pixel at each probe point has the colour the data gives its height
+  const pixel = (p) => page.evaluate((p) => {
+    const [cx, cy] = window.millpathToolpath.screenOfPoint(p);
+    const c = document.querySelector('#stage > canvas'), r = c.getBoundingClientRect();
+    const g = c.getContext('webgl2') || c.getContext('webgl');
+    const px = new Uint8Array(4), k = c.width / r.width;
+    g.readPixels(Math.round((cx - r.left) * k), Math.round(c.height - (cy - r.top) * k), 1, 1, g.RGBA, g.UNSIGNED_BYTE, px);
+    return [...px.slice(0, 3)];
+  }, p);
+  const hex = (h) => [1, 3, 5].map((k) => parseInt(h.slice(k, k + 2), 16));
+  const near = (a, b) => a.every((v, k) => Math.abs(v - b[k]) <= 12);
+  let lowest = null, highest = null;
+  for (let j = 0; j < hm.ys.length; j++) {
+    for (let i = 0; i < hm.xs.length; i++) {
+      const z = hm.z[j][i], got = await pixel([hm.xs[i], hm.ys[j], z]), want = hex(hm.colours[j][i]);
+      assert.ok(near(got, want), `(${hm.xs[i]}, ${hm.ys[j]}) z ${z}: ${got} vs ${want}`);
+      if (!lowest || z < lowest.z) lowest = { z, got };
+      if (!highest || z > highest.z) highest = { z, got };
+    }
+  }
+  // low is blue, high is yellow: the colours follow the heights
+  assert.ok(lowest.got[2] > lowest.got[0] + 80 && highest.got[0] > highest.got[2] + 80, `${lowest.got} / ${highest.got}`);
+  // between the points the translucent surface is drawn (not the background)
+  const bg = await pixel([hm.xs[0] - 50, hm.ys[0] - 50, 0]);
+  const inside = await pixel([(hm.xs[0] + hm.xs[1]) / 2, hm.ys[0] + (hm.ys[1] - hm.ys[0]) / 4, hm.z[0][0]]);
+  assert.ok(!near(inside, bg), `inside ${inside} vs background ${bg}`);
+  // the moves lie over it: the slot's cut keeps its own colour on the surface
+  const cut = data.moves.findIndex((m) => m.kind === 'mill' && m.from[0] !== m.to[0]);
+  const onCut = await page.evaluate((i) => window.millpathToolpath.screenOf(i, 0.3), cut);
+  const slot = await page.evaluate(([cx, cy]) => {
+    const c = document.querySelector('#stage > canvas'), r = c.getBoundingClientRect();
+    const g = c.getContext('webgl2') || c.getContext('webgl');
+    const px = new Uint8Array(4), k = c.width / r.width;
+    g.readPixels(Math.round((cx - r.left) * k), Math.round(c.height - (cy - r.top) * k), 1, 1, g.RGBA, g.UNSIGNED_BYTE, px);
+    return [...px.slice(0, 3)];
+  }, onCut);
+  assert.ok(!near(slot, inside), `the cut ${slot} is drawn over the surface ${inside}`);
+  await page.screenshot({ path: join(artifacts, 'toolpath-surface.png') });
+  await page.close();
+  // being edited, not measured: the probe points at the nominal top
+  const grid = await open(join(hdir, '2001.mpath'));
+  assert.equal(grid.data.heightmap.measured, false);
+  assert.equal(await grid.page.evaluate(() => document.body.dataset.surface), 'grid 4x2');
+  assert.match(await grid.page.locator('#legend').textContent(), /height map 4×2 probe points at the top 3\.000 mm \(not measured\)/);
+  await grid.page.close();
 });

@@ -13,9 +13,8 @@ pub fn run(
     m: &MachineArgs,
     file: &Path,
     path: Option<&str>,
-    html: Option<PathBuf>,
-    svg: Option<PathBuf>,
-    png: Option<PathBuf>,
+    (html, svg, png): (Option<PathBuf>, Option<PathBuf>, Option<PathBuf>),
+    surface: Option<&str>,
 ) -> u8 {
     let file = complete_input(&file.to_string_lossy());
     let abs = std::fs::canonicalize(&file).unwrap_or_else(|_| file.clone());
@@ -36,7 +35,7 @@ pub fn run(
         ..Default::default()
     };
     let lang = settings.lang;
-    let data = match millpath_ide::toolpath(&ws, &abs, path) {
+    let mut data = match millpath_ide::toolpath(&ws, &abs, path) {
         Ok(d) => d,
         Err(e) => {
             // say why: a missing or unreadable file, a file that is not a drawing, syntax
@@ -71,6 +70,22 @@ pub fn run(
             return 1;
         }
     };
+    // the measured surface under the moves, its heights against the drawing's top T
+    if let Some(file) = surface {
+        let top = data["stock"]["top"].as_f64().unwrap_or(0.0);
+        let tol = millpath_core::probe::adjustz::DEFAULT_TOLERANCE;
+        let map = crate::surface_file::read(file, lang)
+            .and_then(|s| s.map(top, tol, lang).map_err(|e| vec![e]));
+        match map {
+            Ok(map) => millpath_ide::with_surface(&mut data, &map),
+            Err(lines) => {
+                for l in lines {
+                    eprintln!("{l}");
+                }
+                return 2;
+            }
+        }
+    }
     let writing = match lang {
         Lang::En => "Writing",
         Lang::De => "Schreiben von",

@@ -1,6 +1,6 @@
 //! `millpath verify`: the independent G-code checker (crates/verify) over files.
 
-use millpath_verify::{verify, Dialect, Lang, Options, Report, Severity};
+use millpath_verify::{verify_on_surface, Dialect, Lang, Options, Report, Severity};
 use serde_json::json;
 use std::path::PathBuf;
 
@@ -23,7 +23,33 @@ pub struct Args {
     pub bottom: Option<f64>,
     pub lang: Lang,
     pub json: bool,
+    /// `--surface FILE` and `--tolerance`.
+    pub surface: Option<(String, f64)>,
     pub files: Vec<PathBuf>,
+}
+
+fn core_lang(lang: Lang) -> millpath_core::Lang {
+    match lang {
+        Lang::En => millpath_core::Lang::En,
+        Lang::De => millpath_core::Lang::De,
+    }
+}
+
+/// The surface of `--surface` for one program: its nominal top from its own comments, else
+/// `--top`.
+fn surface_for(
+    s: &crate::surface_file::Surface,
+    (file, tol): (&str, f64),
+    text: &str,
+    a: &Args,
+) -> Result<millpath_verify::HeightMap, String> {
+    let Some(top) = millpath_verify::program_top(text).or(a.top) else {
+        return Err(match a.lang {
+            Lang::En => format!("--surface {file}: the nominal top T the heights are measured against is unknown: the program has no (MILLPATH-SURFACE …) or (MILLPATH-STOCK …) comment; give --top"),
+            Lang::De => format!("--surface {file}: die Soll-Oberkante T, gegen die die Höhen gemessen sind, ist unbekannt: das Programm hat keinen Kommentar (MILLPATH-SURFACE …) oder (MILLPATH-STOCK …); --top angeben"),
+        });
+    };
+    s.map(top, tol, core_lang(a.lang))
 }
 
 fn read(path: &PathBuf, lang: Lang) -> Result<String, String> {
@@ -57,13 +83,23 @@ fn summary(report: &Report, lang: Lang) -> String {
         },
         None => String::new(),
     };
+    let surface = match &report.surface {
+        Some(m) => {
+            let (nx, ny) = (m.xs().len(), m.ys().len());
+            match lang {
+                Lang::En => format!("; on a height map of {nx}×{ny} points"),
+                Lang::De => format!("; auf einer Höhenkarte von {nx}×{ny} Punkten"),
+            }
+        }
+        None => String::new(),
+    };
     match lang {
         Lang::En => format!(
-            "{} lines, {} moves: {e} error(s), {w} warning(s){stock}",
+            "{} lines, {} moves: {e} error(s), {w} warning(s){stock}{surface}",
             report.lines, report.moves
         ),
         Lang::De => format!(
-            "{} Zeilen, {} Bewegungen: {e} Fehler, {w} Warnung(en){stock}",
+            "{} Zeilen, {} Bewegungen: {e} Fehler, {w} Warnung(en){stock}{surface}",
             report.lines, report.moves
         ),
     }
@@ -96,6 +132,25 @@ pub fn run(a: &Args) -> u8 {
         }
         return 2;
     }
+    let surface = match &a.surface {
+        Some((file, tol)) => {
+            if let Some(d) = millpath_core::probe::adjustz::check_tolerance(*tol, &tol.to_string())
+            {
+                eprintln!("{}", crate::report::human(&d, core_lang(a.lang)));
+                return 2;
+            }
+            match crate::surface_file::read(file, core_lang(a.lang)) {
+                Ok(s) => Some((s, (file.as_str(), *tol))),
+                Err(lines) => {
+                    for l in lines {
+                        eprintln!("{l}");
+                    }
+                    return 2;
+                }
+            }
+        }
+        None => None,
+    };
     let mut failed = false;
     let mut errors = 0;
     let mut warnings = 0;
@@ -119,7 +174,17 @@ pub fn run(a: &Args) -> u8 {
                 continue;
             }
         };
-        let report = verify(&text, &options);
+        let map = match &surface {
+            Some((s, at)) => match surface_for(s, *at, &text, a) {
+                Ok(m) => Some(m),
+                Err(e) => {
+                    eprintln!("{}", e);
+                    return 2;
+                }
+            },
+            None => None,
+        };
+        let report = verify_on_surface(&text, &options, map.as_ref());
         failed |= report.has_errors();
         errors += report.count(Severity::Error);
         warnings += report.count(Severity::Warning);
@@ -136,6 +201,10 @@ pub fn run(a: &Args) -> u8 {
                     "nx": s.nx, "ny": s.ny, "x0": s.x0, "y0": s.y0,
                 })),
                 "bottom": report.params.bottom,
+                "surface": report.surface.as_ref().map(|m| json!({
+                    "nx": m.xs().len(), "ny": m.ys().len(), "top": m.top(),
+                    "from": a.surface.as_ref().map(|s| s.0.clone()),
+                })),
                 "findings": report.findings.iter().map(|f| json!({
                     "line": f.line,
                     "severity": f.severity.word(Lang::En),

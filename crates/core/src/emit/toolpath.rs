@@ -45,6 +45,9 @@ pub struct ProbePoint {
 pub struct Toolpath {
     pub moves: Vec<Move>,
     pub probes: Vec<ProbePoint>,
+    /// The probe grid of `[heightmap]` (its points probed at the nominal top), when the
+    /// program has one.
+    pub heightmap: Option<crate::probe::heightmap::Grid>,
     /// Where the program starts (above the origin at the start height).
     pub start: P3,
     pub stats: Stats,
@@ -111,9 +114,15 @@ pub fn toolpath(
             z: p.placed.height(),
         })
         .collect();
+    // the grid as compile makes it; a refused one (check says why) is not shown
+    let heightmap = ctl.heightmap.as_ref().and_then(|hm| {
+        let drawn = &e.probes;
+        crate::emit::heightmap_program::grid_of(hm, ctl, model, &e.items, drawn).ok()
+    });
     Ok(Toolpath {
         moves,
         probes,
+        heightmap,
         start,
         stats,
     })
