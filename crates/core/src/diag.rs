@@ -382,6 +382,7 @@ messages! {
     SurfacePointTwice = "Two measured points of the height map at X{0} Y{1}", "Zwei gemessene Punkte der Höhenkarte bei X{0} Y{1}";
     SurfaceGridSize = "The height map lists {0} points, more than {1}", "Die Höhenkarte nennt {0} Punkte, mehr als {1}";
     SurfaceTooManyLines = "Following the surface would write more than {0} lines: choose a larger heightmap.step", "Der Oberfläche zu folgen würde mehr als {0} Zeilen schreiben: einen größeren heightmap.step wählen";
+    SurfaceAboveSafeHeight = "The measured surface reaches Z{0} at X{1} Y{2}, not below the safe height Z{3}: the sweeps would hit it (raise sweep_height, or check the log); nothing was written", "Die gemessene Oberfläche reicht bei X{1} Y{2} bis Z{0}, nicht unter die sichere Höhe Z{3}: die Leerfahrten würden sie treffen (sweep_height erhöhen oder das Protokoll prüfen); es wurde nichts geschrieben";
 }
 
 impl Msg {

@@ -29,29 +29,34 @@ struct Surface {
 const EXACT: f64 = 0.01;
 const STEP: f64 = 10.0;
 
-/// The surfaces over a probed box (`lo`, `hi`): features in its middle, a twist of 0.5 mm at
-/// its corners whatever its size.
+/// The surfaces over a probed box (`lo`, `hi`), scaled to it so that they stay below every
+/// drawing's sweep height: a plane tilted ±0.2 mm, a twist of 0.3 mm at the corners, and a
+/// bowl 0.2 mm below the top in the middle and 0.3 mm above it at the corners.
 fn surfaces(lo: (f64, f64), hi: (f64, f64)) -> Vec<Surface> {
     let (cx, cy) = ((lo.0 + hi.0) / 2.0, (lo.1 + hi.1) / 2.0);
-    let twist = 0.5 / (((hi.0 - lo.0) / 2.0).max(1.0) * ((hi.1 - lo.1) / 2.0).max(1.0));
-    let k = 0.0001;
+    let (w, h) = ((hi.0 - lo.0) / 2.0 + 1.0, (hi.1 - lo.1) / 2.0 + 1.0);
+    let bowl = 0.25;
+    // linear interpolation of k·x² over a step s is off by k·s²/4 at most, on each axis;
+    // plus the chord tolerance and the rounding to 0.001 of Z and heights (in EXACT)
+    let (sx, sy) = (STEP.min(hi.0 - lo.0), STEP.min(hi.1 - lo.1));
+    let bowl_error = (bowl / (w * w) * sx * sx + bowl / (h * h) * sy * sy) / 4.0;
     vec![
         Surface {
             name: "tilted plane",
-            rise: Box::new(|x, y| 0.002 * x - 0.0015 * y + 0.05),
+            rise: Box::new(move |x, y| 0.1 * (x - cx) / w - 0.1 * (y - cy) / h + 0.05),
             tolerance: EXACT,
         },
         Surface {
             name: "bilinear twist",
-            rise: Box::new(move |x, y| twist * (x - cx) * (y - cy) + 0.001 * x),
+            rise: Box::new(move |x, y| 0.3 * (x - cx) * (y - cy) / (w * h) + 0.05 * (x - cx) / w),
             tolerance: EXACT,
         },
         Surface {
             name: "bowl",
-            rise: Box::new(move |x, y| k * ((x - cx).powi(2) + (y - cy).powi(2)) - 0.1),
-            // linear interpolation of k·x² over a step h is off by k·h²/4 at most, on each
-            // axis; plus the chord tolerance and the rounding to 0.001 of Z and heights
-            tolerance: k * 2.0 * STEP * STEP / 4.0 + EXACT,
+            rise: Box::new(move |x, y| {
+                bowl * (((x - cx) / w).powi(2) + ((y - cy) / h).powi(2)) - 0.2
+            }),
+            tolerance: bowl_error + EXACT,
         },
     ]
 }
@@ -263,7 +268,9 @@ struct Counts {
     nominal_cuts: usize,
     pieces: usize,
     samples: usize,
-    worst: f64,
+    /// The largest difference per surface, and the largest allowed on the bowl.
+    worst: HashMap<&'static str, f64>,
+    bowl_bound: f64,
 }
 
 /// Checks one adjusted program against its nominal program on `surface`.
@@ -282,6 +289,17 @@ fn check_against(
         .find(|m| m.code == 0 && m.from[0].is_nan())
         .map(|m| m.to[2])
         .unwrap();
+    // controllers refuse an arc whose radii to its ends differ (verify: by more than 0.002)
+    for a in &adjusted {
+        if let Some(c) = a.centre {
+            let r0 = (a.from[0] - c.0).hypot(a.from[1] - c.1);
+            let r1 = (a.to[0] - c.0).hypot(a.to[1] - c.1);
+            assert!(
+                (r0 - r1).abs() <= 0.0015,
+                "{what}: arc radii {r0} and {r1}: {a:?}"
+            );
+        }
+    }
     let mut k = 0;
     for n in &nominal {
         // the pieces of this nominal move: as long as it, and ending where it ends (a
@@ -343,7 +361,11 @@ fn check_against(
                     // depth below the true surface = depth below the flat top
                     let err = ((top + rise - z) - (top - zn)).abs();
                     counts.samples += 1;
-                    counts.worst = counts.worst.max(err);
+                    let worst = counts.worst.entry(surface.name).or_default();
+                    *worst = worst.max(err);
+                    if surface.tolerance > EXACT {
+                        counts.bowl_bound = counts.bowl_bound.max(surface.tolerance);
+                    }
                     assert!(
                         err <= surface.tolerance,
                         "{what}: at X{x:.3} Y{y:.3} the tip is {:.4} below the surface, the nominal {:.4} below the top ({} → {:?})",
@@ -471,8 +493,8 @@ fn every_cut_keeps_its_depth_below_the_measured_surface() {
         }
     }
     eprintln!(
-        "{sets} program sets, {} adjusted programs: {} nominal cuts in {} pieces, {} samples, worst difference {:.4} mm",
-        counts.programs, counts.nominal_cuts, counts.pieces, counts.samples, counts.worst
+        "{sets} program sets, {} adjusted programs: {} nominal cuts in {} pieces, {} samples; worst difference (mm): {:?}; largest bowl bound {:.4} mm",
+        counts.programs, counts.nominal_cuts, counts.pieces, counts.samples, counts.worst, counts.bowl_bound
     );
     assert!(sets >= 4, "{sets}");
     assert!(counts.samples > 1000);

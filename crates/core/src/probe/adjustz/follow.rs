@@ -323,8 +323,12 @@ impl Writer<'_> {
                 let t = ta + (tb - ta) * k as f64 / n as f64;
                 // I, J to the true centre from where the machine is; the end on the circle
                 // the machine will take (its centre is that point plus the written I, J)
-                let (i, j) = (round3(c.x - at.x), round3(c.y - at.y));
                 let is_end = tb == 1.0 && k == n;
+                let (i, j) = if is_end {
+                    last_centre(at, p1, c)
+                } else {
+                    (round3(c.x - at.x), round3(c.y - at.y))
+                };
                 let end = if is_end {
                     p1
                 } else {
@@ -364,6 +368,34 @@ impl Writer<'_> {
             self.split_moves += 1;
         }
     }
+}
+
+/// I, J of the last piece of an arc, from `at` (where the machine is) to the arc's own end
+/// `p1` around `c`: of the written centres near the one equidistant from both ends, the one
+/// whose radii to the two ends differ least (controllers refuse more than a few µm).
+fn last_centre(at: P2, p1: P2, c: P2) -> (f64, f64) {
+    let chord = p1.sub(at);
+    let centre = if chord.len() < 1e-6 {
+        c
+    } else {
+        // the point of the ends' perpendicular bisector nearest to c
+        let mid = at.add(chord.scale(0.5));
+        let u = P2::new(-chord.y, chord.x).scale(1.0 / chord.len());
+        mid.add(u.scale(c.sub(mid).dot(u)))
+    };
+    let (i0, j0) = (round3(centre.x - at.x), round3(centre.y - at.y));
+    let mut best = (f64::INFINITY, f64::INFINITY, i0, j0);
+    for di in [-1.0, 0.0, 1.0] {
+        for dj in [-1.0, 0.0, 1.0] {
+            let (i, j) = (round3(i0 + di * 0.001), round3(j0 + dj * 0.001));
+            let mc = P2::new(at.x + i, at.y + j);
+            let key = ((at.dist(mc) - p1.dist(mc)).abs(), mc.dist(c));
+            if key < (best.0, best.1) {
+                best = (key.0, key.1, i, j);
+            }
+        }
+    }
+    (best.2, best.3)
 }
 
 /// The adjusted program of `clean` on `map`, or `None` after errors (each at its line of
@@ -427,6 +459,13 @@ pub fn follow(clean: &str, file: &str, map: &HeightMap, diags: &mut Diags) -> Op
             match (m, block.get('Z')) {
                 (Motion::Rapid, Some(z)) if !['X', 'Y', 'I', 'J'].into_iter().any(has) => {
                     w.safe = z;
+                    // sweeps stay at the safe height: the whole surface must lie below it
+                    if max_height >= z {
+                        let (x, y) = highest_point(map);
+                        let args = args![F3(max_height), F3(x), F3(y), F3(z)];
+                        diags.error(Msg::SurfaceAboveSafeHeight, at, args);
+                        return None;
+                    }
                 }
                 _ => {
                     diags.error(Msg::SurfaceNoSafeHeight, at, vec![]);
@@ -548,6 +587,19 @@ pub fn follow(clean: &str, file: &str, map: &HeightMap, diags: &mut Diags) -> Op
         split_moves: moves,
         pieces,
     })
+}
+
+/// Where the map is highest (the first such point).
+fn highest_point(map: &HeightMap) -> (f64, f64) {
+    let top = map.max_height();
+    for (j, &y) in map.ys().iter().enumerate() {
+        for (i, &x) in map.xs().iter().enumerate() {
+            if map.at(i, j) == top {
+                return (x, y);
+            }
+        }
+    }
+    (map.xs()[0], map.ys()[0])
 }
 
 fn off_map_error(map: &HeightMap, p: P2, at: Origin, diags: &mut Diags) {
@@ -701,6 +753,15 @@ mod tests {
                 d.list[0].message(crate::Lang::En)
             );
         }
+        // a surface that reaches the safe height: the sweeps would hit it
+        let mut d = Diags::default();
+        let low = PROLOGUE.replace("G00 Z5.000", "G00 Z2.200");
+        assert!(follow(&format!("{low}M30\n"), "c", &map(), &mut d).is_none());
+        assert_eq!(d.list[0].msg, Msg::SurfaceAboveSafeHeight);
+        assert_eq!(
+            d.list[0].message(crate::Lang::En),
+            "The measured surface reaches Z2.200 at X20.000 Y0.000, not below the safe height Z2.200: the sweeps would hit it (raise sweep_height, or check the log); nothing was written"
+        );
         // a move before the safe height is known
         let mut d = Diags::default();
         assert!(follow("%\nG01 X1.000 Z1.000\nM30\n", "c", &map(), &mut d).is_none());
