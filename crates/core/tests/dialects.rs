@@ -254,6 +254,43 @@ fn stock_comment_names_the_lowest_depth_including_subpaths_with_h() {
     );
 }
 
+/// In linuxcnc the probing program of drawn probes opens LinuxCNC's probe log itself, around
+/// the probes only, named after the drawing (its `R` suffix included); grbl has no such
+/// command, and the reference dialect stays PathDxf2GCode's program.
+#[test]
+fn linuxcnc_probing_program_opens_the_probe_log() {
+    let text = "path 1000.1P {
+  start (0, 0)  O2 T2 I1,2 B-0,3 S5 R_B
+  end (20, 0)
+  mill (0, 0) -> (20, 0)
+  probe (5, 5)
+  probe (15, 5)
+}
+";
+    let probing = |d: Dialect| {
+        let s = Settings {
+            probe_feed: Some(50.0),
+            ..with(d)
+        };
+        let run = compile_with(&[("1000.1P.mpath", text.into())], "1000.1P.mpath", s);
+        assert!(run.diags.is_empty(), "{:?}", run.messages());
+        run.output("_Probing.gcode").to_string()
+    };
+    let lc = probing(Dialect::LinuxCnc);
+    assert!(
+        lc.contains(
+            "G00 X0.000 Y0.000\n(PROBEOPEN 1000.1P_B_probes.txt)\nG00 X5.000 Y5.000\nG00 Z4.000\n\
+             G38.3 Z0 F50.000\nG04 P4\nG00 Z5.000\nG00 X15.000 Y5.000\nG00 Z4.000\n\
+             G38.3 Z0 F50.000\nG04 P4\nG00 Z5.000\n(PROBECLOSE)\nG00 X0.000 Y0.000\nG00 Z5.000\nM30\n"
+        ),
+        "{lc}"
+    );
+    for d in [Dialect::Grbl, Dialect::Reference] {
+        let g = probing(d);
+        assert!(!g.contains("PROBE"), "{d}: {g}");
+    }
+}
+
 #[test]
 fn probing_programs_follow_the_dialect_without_spindle() {
     let text = "path 1000.1P {

@@ -4,7 +4,7 @@
 use crate::diag::{Diagnostic, Lang, Origin};
 use crate::emit::as_comment;
 use crate::emit::dialect::Controller;
-use crate::emit::heightmap_program::{grid_of, grid_set, GridSet};
+use crate::emit::heightmap_program::{grid_of, grid_set, probe_close, probe_open, GridSet};
 use crate::emit::stats::Stats;
 use crate::emit::{emit, emit_until, Emitted};
 use crate::geom::{near, F3, P2, P3};
@@ -101,12 +101,13 @@ pub fn generate_for(
     let s = model.params.s;
 
     let stats = Stats::timed(&items, sweep_speed, start(sx), ctl.machine.as_ref());
+    // the file LinuxCNC logs the probe contacts to (PROBEOPEN), beside the set
+    let log = crate::output_prefix(std::path::Path::new(file_name), &model.params.r);
+    let log = format!("{}_probes.txt", log.display());
     // a height map's probing set needs the cutting moves before they become lines
     let grid = match &ctl.heightmap {
         Some(hm) => {
             let grid = grid_of(hm, ctl, model, &items, &probes).map_err(|e| vec![e])?;
-            let log = crate::output_prefix(std::path::Path::new(file_name), &model.params.r);
-            let log = format!("{}_probes.txt", log.display());
             Some(grid_set(hm, ctl, model, &grid, banner, file_name, &log))
         }
         None => None,
@@ -149,6 +150,7 @@ pub fn generate_for(
     }
     // probing program and Z file
     let mut pl = ctl.prologue(banner, file_name, model, s, false);
+    pl.extend(probe_open(ctl, &log));
     let mut cur = P2::default();
     for p in &probes {
         if !near(p.placed.pos.dist(cur), 0.0) {
@@ -164,6 +166,7 @@ pub fn generate_for(
         pl.push("G04 P4".into());
         pl.push(format!("G00 Z{}", F3(s)));
     }
+    pl.extend(probe_close(ctl));
     if !near(cur.dist(P2::default()), 0.0) {
         pl.push("G00 X0.000 Y0.000".into());
     }
