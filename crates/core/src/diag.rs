@@ -373,6 +373,10 @@ messages! {
     ProbeLogCutOff = "The log's last line has no line end: it was cut off (still being written, or copied in part); a cut number would be read as another height", "Die letzte Zeile des Protokolls hat kein Zeilenende: es ist abgeschnitten (wird noch geschrieben oder wurde nur teilweise kopiert); eine abgeschnittene Zahl würde als andere Höhe gelesen";
     // a height map's set given to adjust-z, which does not interpolate yet (issue 21)
     HeightMapNotAdjustable = "{0} lists the points of a height map ([heightmap]): adjust-z does not adjust height maps yet, and a plain adjust would mill the nominal depths; nothing was written (compile without [heightmap] and draw probes, or wait for the height-map adjust)", "{0} enthält die Punkte einer Höhenkarte ([heightmap]): adjust-z passt Höhenkarten noch nicht an, und eine einfache Anpassung würde die Soll-Tiefen fräsen; es wurde nichts geschrieben (ohne [heightmap] übersetzen und Messpunkte zeichnen, oder die Anpassung für Höhenkarten abwarten)";
+    // probe_split: drawn probes' correction applied along long moves (issue 21)
+    ProbeSplitTooSmall = "{0}={1} mm is below the shortest piece, {2} mm", "{0}={1} mm ist kürzer als das kürzeste Teilstück, {2} mm";
+    ProbeSplitReferenceDialect = "{0} needs the linuxcnc or grbl dialect: the reference dialect writes PathDxf2GCode's programs, which correct each move at its start only", "{0} braucht den Dialekt linuxcnc oder grbl: der Dialekt reference schreibt die Programme von PathDxf2GCode, die jede Bewegung nur an ihrem Anfang korrigieren";
+    ProbeSplitTooManyPieces = "This move is {0} mm long: in pieces of at most probe_split={1} mm it would be {2} moves, more than {3}; choose a larger probe_split", "Diese Bewegung ist {0} mm lang: in Teilstücken von höchstens probe_split={1} mm wären es {2} Bewegungen, mehr als {3}; ein größeres probe_split wählen";
 }
 
 impl Msg {

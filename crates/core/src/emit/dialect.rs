@@ -67,6 +67,9 @@ pub struct Controller {
     pub machine: Option<Machine>,
     /// `[heightmap]`: the probing set is a grid over the cuts (its probe feed resolved).
     pub heightmap: Option<Heightmap>,
+    /// `probe_split` (mm): with drawn probes, cutting moves are written in pieces of at most
+    /// this length, each corrected at its own start (`emit/probe_split.rs`).
+    pub probe_split: Option<f64>,
 }
 
 impl Default for Controller {
@@ -85,6 +88,7 @@ impl Controller {
             spindle_dwell: DEFAULT_SPINDLE_DWELL,
             machine: None,
             heightmap: None,
+            probe_split: None,
         }
     }
 
@@ -99,6 +103,7 @@ impl Controller {
                 probe_feed: Some(h.probe_feed.unwrap_or(s.probe_feed())),
                 ..h
             }),
+            probe_split: s.probe_split,
         }
     }
 

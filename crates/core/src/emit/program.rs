@@ -56,12 +56,9 @@ pub fn check_until(
     if let Some(hm) = &ctl.heightmap {
         grid_of(hm, ctl, model, &e.items, &e.probes).map_err(|d| vec![d])?;
     }
-    Ok(Stats::timed(
-        &e.items,
-        sweep_speed,
-        start(e.sx),
-        ctl.machine.as_ref(),
-    ))
+    let mut stats = Stats::timed(&e.items, sweep_speed, start(e.sx), ctl.machine.as_ref());
+    stats.split = e.split;
+    Ok(stats)
 }
 
 /// Generates the G-code of a top-level model as the reference does. `Err` holds the errors
@@ -97,10 +94,12 @@ pub fn generate_for(
         probes,
         sx,
         sources,
+        split,
     } = emit(model, false, ctl)?;
     let s = model.params.s;
 
-    let stats = Stats::timed(&items, sweep_speed, start(sx), ctl.machine.as_ref());
+    let mut stats = Stats::timed(&items, sweep_speed, start(sx), ctl.machine.as_ref());
+    stats.split = split;
     // the file LinuxCNC logs the probe contacts to (PROBEOPEN), beside the set
     let log = crate::output_prefix(std::path::Path::new(file_name), &model.params.r);
     let log = format!("{}_probes.txt", log.display());
@@ -122,6 +121,7 @@ pub fn generate_for(
     lines.extend(items.into_iter().map(|i| i.text));
     lines.extend(stats.lines(lang).iter().map(|l| format!("  ({l})")));
     lines.extend(stats.model_line(lang).map(|l| format!("  ({l})")));
+    lines.extend(stats.split_line(lang).map(|l| format!("  ({l})")));
     lines.extend(ctl.epilogue(true));
     let body = join(&lines);
     // a probing set: the Z file and both programs stamped with the set's digest
