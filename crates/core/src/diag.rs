@@ -377,6 +377,8 @@ messages! {
     ProbeSplitTooSmall = "{0}={1} mm is below the shortest piece, {2} mm", "{0}={1} mm ist kürzer als das kürzeste Teilstück, {2} mm";
     ProbeSplitReferenceDialect = "{0} needs the linuxcnc or grbl dialect: the reference dialect writes PathDxf2GCode's programs, which correct each move at its start only", "{0} braucht den Dialekt linuxcnc oder grbl: der Dialekt reference schreibt die Programme von PathDxf2GCode, die jede Bewegung nur an ihrem Anfang korrigieren";
     ProbeSplitTooManyPieces = "This move is {0} mm long: in pieces of at most probe_split={1} mm it would be {2} moves, more than {3}; choose a larger probe_split", "Diese Bewegung ist {0} mm lang: in Teilstücken von höchstens probe_split={1} mm wären es {2} Bewegungen, mehr als {3}; ein größeres probe_split wählen";
+    // a height map said in the drawing: K at the path start (issue 21)
+    HeightmapKeyBad = "K{0} is no height map: write K<step> or K<step>+<margin> in mm (e.g. K10+2), step at least {1} mm, margin at least 0", "K{0} ist keine Höhenkarte: K<Abstand> oder K<Abstand>+<Rand> in mm schreiben (z. B. K10+2), Abstand mindestens {1} mm, Rand mindestens 0";
 }
 
 impl Msg {

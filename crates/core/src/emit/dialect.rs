@@ -107,6 +107,30 @@ impl Controller {
         }
     }
 
+    /// [`Controller::of`] for a compiled model: a height map said in its drawing (`K`) over
+    /// the `[heightmap]` of millpath.toml, and `--heightmap-step`/`--heightmap-margin` over
+    /// both. The drawing is the part's own truth; the file gives what `K` cannot say (area,
+    /// probe feed and depth) and a margin `K` leaves out; an option is this run's choice.
+    pub fn for_model(s: &Settings, model: &Model) -> Controller {
+        let mut c = Controller::of(s);
+        if let Some(k) = model.params.heightmap {
+            let base = c.heightmap.unwrap_or(Heightmap {
+                probe_feed: Some(s.probe_feed()),
+                ..Heightmap::with_step(k.step)
+            });
+            let (step_option, margin_option) = s.heightmap_options;
+            c.heightmap = Some(Heightmap {
+                step: if step_option { base.step } else { k.step },
+                margin: match (margin_option, k.margin) {
+                    (false, Some(m)) => m,
+                    _ => base.margin,
+                },
+                ..base
+            });
+        }
+        c
+    }
+
     /// The feed written on a plunge of an element milled at `element_feed`: `None` in the
     /// reference dialect (no F word, the modal feed applies); else `plunge_feed`, but never
     /// faster than the element's own feed, or — without `plunge_feed` — half the element's
