@@ -80,4 +80,39 @@ grep -q "probe_split needs the linuxcnc or grbl dialect" "$WORK/err" || fail "$(
 grep -q "millpath.toml" "$WORK/err" || fail "not located at millpath.toml: $(cat "$WORK/err")"
 expect_status 2 "$MILLPATH" compile --probe-split 0.1 2023.mpath
 grep -q -- "--probe-split=0.1 mm is below the shortest piece, 0.5 mm" "$WORK/err" || fail "$(cat "$WORK/err")"
-echo "ok: the groove follows the board in 12 pieces; rs274 and verify accept it"
+# 6. arcs (sub-arcs on the same circle) and support bars (ramps) in pieces of 2 mm, in
+#    linuxcnc and grbl: rs274 accepts the adjusted linuxcnc program, verify both
+mkdir arcs && cd arcs
+cat > 2025.mpath <<'EOF'
+path 2025.1P {
+  start (0, 0)  M10x3 O2 T3 I1,5 B-0,2 D1 P4 U20
+  end (60, 0)
+  mill (0, 0) -> (30, 0) ccw around (15, 0)
+  bars (30, 0) -> (60, 0)
+  probe (0, 5)
+  probe (60, 5)
+  probe (15, -20)
+}
+EOF
+for d in linuxcnc grbl; do
+  mkdir "$d" && cp 2025.mpath "$d/"
+  sed "s/^dialect = .*/dialect = \"$d\"/" ../millpath.toml > "$d/millpath.toml"
+  (cd "$d" && expect_status 0 "$MILLPATH" compile --probe-split 2 2025.mpath)
+  grep -q "Split for probes: [0-9]* moves into [0-9]* pieces" "$WORK/err" || fail "$d: no split"
+  sed -e 's/#51=$/#51=3.050/' -e 's/#52=$/#52=2.900/' -e 's/#53=$/#53=3.100/' "$d/2025_Z.txt" > filled
+  mv filled "$d/2025_Z.txt"
+  (cd "$d" && expect_status 0 "$MILLPATH" adjust-z --max 0.5 2025_Clean.gcode)
+  arcs=$(grep -c '^G0[23] ' "$d/2025_Milling.gcode")
+  [ "$arcs" -ge 24 ] || fail "$d: the half circle (47 mm, 2 passes) is not in sub-arcs: $arcs"
+  (cd "$d" && expect_status 0 "$MILLPATH" verify --dialect "$d" 2025_Milling.gcode)
+  grep -q "0 error(s), 0 warning(s)" "$WORK/err" || fail "verify $d: $(cat "$WORK/out" "$WORK/err")"
+done
+if command -v rs274 >/dev/null; then
+  status=0
+  err=$(cd linuxcnc && timeout 60 rs274 -g 2025_Milling.gcode </dev/null 2>&1 >/dev/null) || status=$?
+  why=$(printf '%s\n' "$err" | grep -v '^executing$' || true)
+  [ "$status" -eq 0 ] && [ -z "$why" ] || fail "rs274 rejects the sub-arcs: $why"
+  echo "rs274 runs the sub-arcs and bar ramps"
+fi
+cd ..
+echo "ok: the groove follows the board in 12 pieces, arcs and bars in sub-arcs and ramps; rs274 and verify accept them"

@@ -379,6 +379,7 @@ messages! {
     ProbeSplitTooManyPieces = "This move is {0} mm long: in pieces of at most probe_split={1} mm it would be {2} moves, more than {3}; choose a larger probe_split", "Diese Bewegung ist {0} mm lang: in Teilstücken von höchstens probe_split={1} mm wären es {2} Bewegungen, mehr als {3}; ein größeres probe_split wählen";
     // a height map said in the drawing: K at the path start (issue 21)
     HeightmapKeyBad = "K{0} is no height map: write K<step> or K<step>+<margin> in mm (e.g. K10+2), step at least {1} mm, margin at least 0", "K{0} ist keine Höhenkarte: K<Abstand> oder K<Abstand>+<Rand> in mm schreiben (z. B. K10+2), Abstand mindestens {1} mm, Rand mindestens 0";
+    HeightmapKWithDrawnProbes = "Path {0} has drawn Z probes ({1}) and a height map in its start text (K): use one or the other (both would correct the same Z twice)", "Pfad {0} hat gezeichnete Z-Messpunkte ({1}) und eine Höhenkarte in seinem Starttext (K): nur eines von beiden verwenden (beide würden dasselbe Z doppelt korrigieren)";
 }
 
 impl Msg {

@@ -291,6 +291,34 @@ fn linuxcnc_probing_program_opens_the_probe_log() {
     }
 }
 
+/// `probe_split` pieces (lines and sub-arcs) in grbl use only what GRBL 1.1 accepts.
+#[test]
+fn split_moves_in_grbl_use_only_words_grbl_accepts() {
+    let text = "path 1000.1P {
+  start (0, 0)  O2 T2 I1,2 B-0,3 S5
+  end (40, 0)
+  mill (0, 0) -> (20, 0) ccw around (10, 0)
+  mill (20, 0) -> (40, 0)
+  probe (5, 5)
+  probe (35, 5)
+}
+";
+    let s = Settings {
+        probe_feed: Some(50.0),
+        probe_split: Some(3.0),
+        ..with(Dialect::Grbl)
+    };
+    let run = compile_with(&[("1000.1P.mpath", text.into())], "1000.1P.mpath", s);
+    assert!(run.diags.is_empty(), "{:?}", run.messages());
+    let clean = run.output("_Clean.gcode");
+    // the half circle (31.4 mm) in 11 sub-arcs, forth (G03) and back (G02)
+    let arcs = |g: &str| clean.lines().filter(|l| l.starts_with(g)).count();
+    assert_eq!((arcs("G03 "), arcs("G02 ")), (11, 11), "{clean}");
+    if let Err(e) = grbl::check_program(clean) {
+        panic!("{e}\n{clean}");
+    }
+}
+
 #[test]
 fn probing_programs_follow_the_dialect_without_spindle() {
     let text = "path 1000.1P {

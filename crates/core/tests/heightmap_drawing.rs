@@ -175,7 +175,7 @@ fn only_the_compiled_paths_k_counts_and_drawn_probes_are_refused_beside_it() {
     let r = run(&probed, linuxcnc());
     assert_eq!(
         r.errors(),
-        [Msg::HeightmapWithDrawnProbes],
+        [Msg::HeightmapKWithDrawnProbes],
         "{:?}",
         r.messages()
     );

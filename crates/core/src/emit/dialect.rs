@@ -70,6 +70,8 @@ pub struct Controller {
     /// `probe_split` (mm): with drawn probes, cutting moves are written in pieces of at most
     /// this length, each corrected at its own start (`emit/probe_split.rs`).
     pub probe_split: Option<f64>,
+    /// The height map is the drawing's own (`K`), for the messages that name where it came from.
+    pub heightmap_in_drawing: bool,
 }
 
 impl Default for Controller {
@@ -89,6 +91,7 @@ impl Controller {
             machine: None,
             heightmap: None,
             probe_split: None,
+            heightmap_in_drawing: false,
         }
     }
 
@@ -104,6 +107,7 @@ impl Controller {
                 ..h
             }),
             probe_split: s.probe_split,
+            heightmap_in_drawing: false,
         }
     }
 
@@ -127,6 +131,7 @@ impl Controller {
                 },
                 ..base
             });
+            c.heightmap_in_drawing = true;
         }
         c
     }

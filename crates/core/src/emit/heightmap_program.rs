@@ -39,8 +39,13 @@ pub(crate) fn grid_of(
     }
     if !drawn.is_empty() {
         let names: Vec<&str> = drawn.iter().map(|p| p.name.as_str()).collect();
+        let msg = if ctl.heightmap_in_drawing {
+            Msg::HeightmapKWithDrawnProbes
+        } else {
+            Msg::HeightmapWithDrawnProbes
+        };
         return Err(Diagnostic::error(
-            Msg::HeightmapWithDrawnProbes,
+            msg,
             origin,
             crate::args![model.name(), names.join(", ")],
         ));
