@@ -47,14 +47,14 @@ grep -q "MILLPATH-PROBES #51=" 2021_Milling.gcode || fail "no measured heights f
 expect_status 0 "$MILLPATH" verify 2021_Milling.gcode
 grep -q "0 error(s), 0 warning(s)" "$WORK/err" || fail "verify: $(cat "$WORK/out" "$WORK/err")"
 
-# 5. the probing program with PROBEOPEN added as the manual says: the set is still one
-#    (the digest does not cover the probing program's body), and LinuxCNC's interpreter
-#    accepts it and the adjusted program (tests/rs274.sh installs it)
-sed -i -e '/^T1$/a (PROBEOPEN 2021_probes.txt)' -e 's/^M30$/(PROBECLOSE)\nM30/' 2021_Probing.gcode
-grep -q '^(PROBECLOSE)$' 2021_Probing.gcode || fail "PROBECLOSE not added"
+# 5. the linuxcnc probing program opens the log itself (PROBEOPEN 2021_probes.txt, the name
+#    LinuxCNC writes it under), and LinuxCNC's interpreter accepts it and the adjusted
+#    program (tests/rs274.sh installs it)
+grep -q '^(PROBEOPEN 2021_probes.txt)$' 2021_Probing.gcode || fail "no PROBEOPEN"
+grep -q '^(PROBECLOSE)$' 2021_Probing.gcode || fail "no PROBECLOSE"
 cp probes.txt 2021_probes.txt
 expect_status 0 "$MILLPATH" adjust-z --probe-log 2021_probes.txt --max 0.5 2021
-cmp 2021_Milling.gcode typed_Milling.gcode || fail "another program after adding PROBEOPEN"
+cmp 2021_Milling.gcode typed_Milling.gcode || fail "another program from 2021_probes.txt"
 if command -v rs274 >/dev/null; then
   status=0
   err=$(timeout 60 rs274 -g 2021_Probing.gcode </dev/null 2>&1 >/dev/null) || status=$?

@@ -64,6 +64,10 @@ pub struct MachineArgs {
     /// default 0)
     #[arg(long, value_name = "MM")]
     pub heightmap_margin: Option<f64>,
+    /// With drawn probes, mill moves longer than L mm in pieces, each corrected at its own
+    /// start (or `probe_split`; linuxcnc and grbl)
+    #[arg(long, value_name = "L")]
+    pub probe_split: Option<f64>,
 }
 
 /// The settings the conversions use: path and file names, the message language.
@@ -166,7 +170,10 @@ pub fn settings_for(
         let cfg = config::load_in(&p, lang)?;
         cfg.apply(&mut s, &mut have);
         if cfg.heightmap.is_some() {
-            s.heightmap_file = Some(p);
+            s.heightmap_file = Some(p.clone());
+        }
+        if cfg.probe_split.is_some() {
+            s.probe_split_file = Some(p);
         }
     }
     heightmap_options(m, &mut s, de)?;
@@ -184,6 +191,10 @@ pub fn settings_for(
     }
     if m.probe_feed.is_some() {
         s.probe_feed = m.probe_feed;
+    }
+    if m.probe_split.is_some() {
+        s.probe_split = m.probe_split;
+        s.probe_split_file = None;
     }
     s.search_dirs.extend(m.search_dirs.iter().cloned());
     if let Some(p) = &m.path_pattern {

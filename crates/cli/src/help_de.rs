@@ -70,6 +70,7 @@ fn arg(cmd: &str, id: &str) -> Option<&'static str> {
         "spindle_dwell" => Some("Sekunden Wartezeit nach dem Spindelstart (oder `spindle_dwell`; Standard 2)"),
         "heightmap_step" => Some("Ein Raster über den Fräsbewegungen antasten, Punkte alle STEP mm (oder `step` in `[heightmap]`; linuxcnc und grbl)"),
         "heightmap_margin" => Some("Rand um die Fräsbewegungen für die Höhenkarte, mm (oder `margin` in `[heightmap]`; Standard 0)"),
+        "probe_split" => Some("Bei gezeichneten Messpunkten Bewegungen länger als L mm in Teilstücken fräsen, jedes an seinem eigenen Anfang korrigiert (oder `probe_split`; linuxcnc und grbl)"),
         "extended" => Some("Polylinien, Blöcke, Linientyp-Namen anderer CAD-Programme und $INSUNITS lesen (oder `input = \"extended\"`; Standard: wie PathDxf2GCode, mit einer Warnung für das Ignorierte)"),
         "quiet" => Some("Nur den Bericht ausgeben: keine Fortschrittszeilen, kein Fortschrittsbalken"),
         "top" => Some("Materialoberkante T, mm (Standard: der Kommentar (MILLPATH-STOCK …) des Programms)"),

@@ -148,6 +148,9 @@ pub fn print_stats(outcome: &millpath_core::FileOutcome, lang: Lang) {
         if let Some(m) = s.model_line(lang) {
             eprintln!("  {m}");
         }
+        if let Some(m) = s.split_line(lang) {
+            eprintln!("  {m}");
+        }
     }
 }
 

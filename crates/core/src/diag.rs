@@ -383,6 +383,13 @@ messages! {
     SurfaceGridSize = "The height map lists {0} points, more than {1}", "Die Höhenkarte nennt {0} Punkte, mehr als {1}";
     SurfaceTooManyLines = "Following the surface would write more than {0} lines: choose a larger heightmap.step", "Der Oberfläche zu folgen würde mehr als {0} Zeilen schreiben: einen größeren heightmap.step wählen";
     SurfaceAboveSafeHeight = "The measured surface reaches Z{0} at X{1} Y{2}, not below the safe height Z{3}: the sweeps would hit it (raise sweep_height, or check the log); nothing was written", "Die gemessene Oberfläche reicht bei X{1} Y{2} bis Z{0}, nicht unter die sichere Höhe Z{3}: die Leerfahrten würden sie treffen (sweep_height erhöhen oder das Protokoll prüfen); es wurde nichts geschrieben";
+    // probe_split: drawn probes' correction applied along long moves (issue 21)
+    ProbeSplitTooSmall = "{0}={1} mm is below the shortest piece, {2} mm", "{0}={1} mm ist kürzer als das kürzeste Teilstück, {2} mm";
+    ProbeSplitReferenceDialect = "{0} needs the linuxcnc or grbl dialect: the reference dialect writes PathDxf2GCode's programs, which correct each move at its start only", "{0} braucht den Dialekt linuxcnc oder grbl: der Dialekt reference schreibt die Programme von PathDxf2GCode, die jede Bewegung nur an ihrem Anfang korrigieren";
+    ProbeSplitTooManyPieces = "This move is {0} mm long: in pieces of at most probe_split={1} mm it would be {2} moves, more than {3}; choose a larger probe_split", "Diese Bewegung ist {0} mm lang: in Teilstücken von höchstens probe_split={1} mm wären es {2} Bewegungen, mehr als {3}; ein größeres probe_split wählen";
+    // a height map said in the drawing: K at the path start (issue 21)
+    HeightmapKeyBad = "K{0} is no height map: write K<step> or K<step>+<margin> in mm (e.g. K10+2), step at least {1} mm, margin at least 0", "K{0} ist keine Höhenkarte: K<Abstand> oder K<Abstand>+<Rand> in mm schreiben (z. B. K10+2), Abstand mindestens {1} mm, Rand mindestens 0";
+    HeightmapKWithDrawnProbes = "Path {0} has drawn Z probes ({1}) and a height map in its start text (K): use one or the other (both would correct the same Z twice)", "Pfad {0} hat gezeichnete Z-Messpunkte ({1}) und eine Höhenkarte in seinem Starttext (K): nur eines von beiden verwenden (beide würden dasselbe Z doppelt korrigieren)";
 }
 
 impl Msg {

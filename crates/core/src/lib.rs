@@ -170,7 +170,7 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
                 match emit::check_until(
                     &model,
                     session.settings.sweep_speed,
-                    &Controller::of(&session.settings),
+                    &Controller::for_model(&session.settings, &model),
                     session.stop,
                 ) {
                     Ok(stats) => outcome.stats.push((model.name().to_string(), stats)),
@@ -264,7 +264,7 @@ fn generate_and_review(
         banner,
         session.settings.sweep_speed,
         session.lang(),
-        &Controller::of(&session.settings),
+        &Controller::for_model(&session.settings, model),
     ) {
         Ok(g) => g,
         Err(errs) => {

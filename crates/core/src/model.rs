@@ -29,6 +29,17 @@ pub struct PathParams {
     pub m: Option<String>,
     pub e: Option<String>,
     pub r: String,
+    /// `K`: a height map said in the drawing (linuxcnc, grbl); only the compiled path's
+    /// counts (a subpath's is not its project's).
+    pub heightmap: Option<DrawnHeightmap>,
+}
+
+/// `K<step>` or `K<step>+<margin>` of a path start text (mm), checked: step at least
+/// `probe::heightmap::MIN_STEP`, margin ≥ 0.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DrawnHeightmap {
+    pub step: f64,
+    pub margin: Option<f64>,
 }
 
 #[derive(Debug, Clone, PartialEq)]

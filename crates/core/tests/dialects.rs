@@ -255,6 +255,71 @@ fn stock_comment_names_the_lowest_depth_including_subpaths_with_h() {
     );
 }
 
+/// In linuxcnc the probing program of drawn probes opens LinuxCNC's probe log itself, around
+/// the probes only, named after the drawing (its `R` suffix included); grbl has no such
+/// command, and the reference dialect stays PathDxf2GCode's program.
+#[test]
+fn linuxcnc_probing_program_opens_the_probe_log() {
+    let text = "path 1000.1P {
+  start (0, 0)  O2 T2 I1,2 B-0,3 S5 R_B
+  end (20, 0)
+  mill (0, 0) -> (20, 0)
+  probe (5, 5)
+  probe (15, 5)
+}
+";
+    let probing = |d: Dialect| {
+        let s = Settings {
+            probe_feed: Some(50.0),
+            ..with(d)
+        };
+        let run = compile_with(&[("1000.1P.mpath", text.into())], "1000.1P.mpath", s);
+        assert!(run.diags.is_empty(), "{:?}", run.messages());
+        run.output("_Probing.gcode").to_string()
+    };
+    let lc = probing(Dialect::LinuxCnc);
+    assert!(
+        lc.contains(
+            "G00 X0.000 Y0.000\n(PROBEOPEN 1000.1P_B_probes.txt)\nG00 X5.000 Y5.000\nG00 Z4.000\n\
+             G38.3 Z0 F50.000\nG04 P4\nG00 Z5.000\nG00 X15.000 Y5.000\nG00 Z4.000\n\
+             G38.3 Z0 F50.000\nG04 P4\nG00 Z5.000\n(PROBECLOSE)\nG00 X0.000 Y0.000\nG00 Z5.000\nM30\n"
+        ),
+        "{lc}"
+    );
+    for d in [Dialect::Grbl, Dialect::Reference] {
+        let g = probing(d);
+        assert!(!g.contains("PROBE"), "{d}: {g}");
+    }
+}
+
+/// `probe_split` pieces (lines and sub-arcs) in grbl use only what GRBL 1.1 accepts.
+#[test]
+fn split_moves_in_grbl_use_only_words_grbl_accepts() {
+    let text = "path 1000.1P {
+  start (0, 0)  O2 T2 I1,2 B-0,3 S5
+  end (40, 0)
+  mill (0, 0) -> (20, 0) ccw around (10, 0)
+  mill (20, 0) -> (40, 0)
+  probe (5, 5)
+  probe (35, 5)
+}
+";
+    let s = Settings {
+        probe_feed: Some(50.0),
+        probe_split: Some(3.0),
+        ..with(Dialect::Grbl)
+    };
+    let run = compile_with(&[("1000.1P.mpath", text.into())], "1000.1P.mpath", s);
+    assert!(run.diags.is_empty(), "{:?}", run.messages());
+    let clean = run.output("_Clean.gcode");
+    // the half circle (31.4 mm) in 11 sub-arcs, forth (G03) and back (G02)
+    let arcs = |g: &str| clean.lines().filter(|l| l.starts_with(g)).count();
+    assert_eq!((arcs("G03 "), arcs("G02 ")), (11, 11), "{clean}");
+    if let Err(e) = grbl::check_program(clean) {
+        panic!("{e}\n{clean}");
+    }
+}
+
 #[test]
 fn probing_programs_follow_the_dialect_without_spindle() {
     let text = "path 1000.1P {

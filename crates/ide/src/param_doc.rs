@@ -1,6 +1,6 @@
 //! Meaning, unit, default and allowed places of each parameter letter.
 
-use millpath_core::front::drawing::{SegKind, Style as CoreStyle, PATH_KEYS, PROBE_KEYS};
+use millpath_core::front::drawing::{SegKind, Style as CoreStyle, PATH_KEYS_HEIGHTMAP, PROBE_KEYS};
 use millpath_syntax::Kind;
 use millpath_syntax::Style;
 
@@ -34,6 +34,11 @@ pub fn param_doc(key: char, german: bool) -> Option<(&'static str, &'static str,
             "infeed per pass; helix pitch",
             "mm",
             "inherited from the path start",
+        ),
+        'K' => (
+            "height map: probe a grid every <step> mm over the cuts, K<step> or K<step>+<margin> (linuxcnc, grbl)",
+            "mm",
+            "none ([heightmap] of millpath.toml)",
         ),
         'L' => ("z-probe label", "", "none"),
         'M' => (
@@ -108,6 +113,11 @@ pub fn param_doc(key: char, german: bool) -> Option<(&'static str, &'static str,
             "mm",
             "vom Pfadanfang geerbt",
         ),
+        'K' => (
+            "Höhenkarte: ein Raster alle <Abstand> mm über den Fräsbewegungen antasten, K<Abstand> oder K<Abstand>+<Rand> (linuxcnc, grbl)",
+            "mm",
+            "keine ([heightmap] der millpath.toml)",
+        ),
         'L' => ("Name des Fühlpunkts", "", "keiner"),
         'M' => (
             "Material (muss bei Projekt und Teilpfad gleich sein)",
@@ -166,7 +176,7 @@ pub fn param_doc(key: char, german: bool) -> Option<(&'static str, &'static str,
 /// Where a key is allowed, as element kinds.
 pub(crate) fn allowed_in(key: char) -> Vec<&'static str> {
     let mut v = Vec::new();
-    if PATH_KEYS.contains(key) || key == '@' {
+    if PATH_KEYS_HEIGHTMAP.contains(key) || key == '@' {
         v.push("start");
     }
     for (name, kind) in [
@@ -192,7 +202,7 @@ pub(crate) fn allowed_in(key: char) -> Vec<&'static str> {
 /// The keys that make sense on an element of this kind.
 pub(crate) fn keys_for(kind: &Kind) -> &'static str {
     match kind {
-        Kind::Start => "ABCDEFIMOPRSTUWZ@:",
+        Kind::Start => "ABCDEFIKMOPRSTUWZ@:",
         Kind::Mill | Kind::Mark | Kind::Bars => "BCDFINPQSUW",
         Kind::Sweep => "NS",
         Kind::Sub => "HMNOT>:",

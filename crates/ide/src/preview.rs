@@ -38,7 +38,6 @@ pub(crate) fn top_model(
     let missing = ds.missing_message();
     let lang = ds.settings.lang;
     let sweep_speed = ds.settings.sweep_speed;
-    let controller = Controller::of(&ds.settings);
     let fs = ws.fs();
     let joined = |e: &[millpath_core::Diagnostic]| {
         e.iter()
@@ -57,10 +56,11 @@ pub(crate) fn top_model(
     };
     match session.build_top(&name) {
         Ok(Some(model)) => Ok(TopModel {
+            // the drawing's own height map (K) as compile takes it
+            controller: Controller::for_model(&session.settings, &model),
             model,
             lang,
             sweep_speed,
-            controller,
             // not silent: `millpath compile` would refuse without them
             errors: missing
                 .into_iter()

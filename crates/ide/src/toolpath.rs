@@ -132,6 +132,7 @@ pub fn toolpath(
     let stats = &tp.stats;
     let mut stat_lines = tp.stats.lines(lang).to_vec();
     stat_lines.extend(stats.model_line(lang));
+    stat_lines.extend(stats.split_line(lang));
     let mut data = json!({
         "path": name,
         "file": path.display().to_string(),

@@ -551,3 +551,36 @@ fn files_with_a_bom_or_in_utf16_read_as_plain_text() {
     };
     assert_eq!((&a.src[*start..*end], *line, *col), ("mil", 5, 3));
 }
+
+/// A height map said in the drawing (`K`): hover explains it, completion offers it at the
+/// path start, and the preview (linuxcnc) is the grid set compile writes.
+#[test]
+fn a_height_map_in_the_start_text() {
+    let (dir, mut ws) = setup();
+    std::fs::write(
+        dir.path().join("millpath.toml"),
+        "feed = 300\nsweep_speed = 1000\nsweep_height = 10\ndialect = \"linuxcnc\"\n",
+    )
+    .unwrap();
+    let path = p(dir.path(), "2001.mpath");
+    let src = PART.replace("B-0,2\n", "B-0,2 K10+2\n");
+    ws.overlays.insert(path.clone(), src.clone());
+    let a = analyze(&ws, &path);
+    let h = hover(&a, &ws, at(&src, "K10+2")).unwrap();
+    assert!(
+        h.markdown.starts_with("**K** — height map"),
+        "{}",
+        h.markdown
+    );
+    let pv = preview(&ws, &path, None).unwrap();
+    assert!(pv.errors.is_empty(), "{:?}", pv.errors);
+    let probing = pv.probing.expect("a probing set");
+    assert!(probing.contains("STEP=10.000)"), "{probing}");
+    assert!(pv.z_txt.is_some_and(|z| z.contains("#1000=")));
+    // completion at the start text offers K
+    let src2 = PART.replace("B-0,2\n", "B-0,2 \n");
+    ws.overlays.insert(path.clone(), src2.clone());
+    let a = analyze(&ws, &path);
+    let items = completion(&a, &ws, at(&src2, "B-0,2 ") + "B-0,2 ".len());
+    assert!(items.iter().any(|c| c.label == "K"), "{items:?}");
+}

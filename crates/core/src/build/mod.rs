@@ -13,7 +13,9 @@ use crate::args;
 use crate::build::bars::support_bars;
 use crate::build::traverse::{traverse, turn_back_kind};
 use crate::diag::{Diagnostic, Msg, Origin};
-use crate::front::drawing::{RawPath, SegKind, Shape, Style, SweepKind, PATH_KEYS, PROBE_KEYS};
+use crate::front::drawing::{
+    RawPath, SegKind, Shape, Style, SweepKind, PATH_KEYS, PATH_KEYS_HEIGHTMAP, PROBE_KEYS,
+};
 use crate::geom::{absnear, f3, gt, le, Geom, Transform, P2};
 use crate::load::session::{Abort, Session};
 use crate::model::*;
@@ -138,7 +140,12 @@ impl Session<'_> {
         let params = self.path_params(&raw, &ev, cx);
         let path_text = raw.start_text.as_ref();
         if let Some(t) = path_text {
-            self.check_text(t, PATH_KEYS, &raw.start_origin(), &ev);
+            let keys = if self.settings.dialect == crate::Dialect::Reference {
+                PATH_KEYS
+            } else {
+                PATH_KEYS_HEIGHTMAP
+            };
+            self.check_text(t, keys, &raw.start_origin(), &ev);
         }
         self.validate(&raw.start_origin(), &params, path_text, &ev, true);
 

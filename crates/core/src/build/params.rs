@@ -4,11 +4,12 @@ use crate::args;
 use crate::build::bars::support_bars;
 use crate::build::{BuildCtx, Eval};
 use crate::diag::{Diagnostic, Diags, Msg, Origin};
-use crate::front::drawing::{RawPath, RawSegment, Style, CHAIN_KEYS};
+use crate::front::drawing::{RawPath, RawSegment, Style, CHAIN_KEYS, HEIGHTMAP_KEY, PATH_KEYS};
 use crate::geom::{le, Geom};
 use crate::load::session::{Abort, Session};
 use crate::model::*;
 use crate::params::{fmt_num, parse_number_checked, NumberError, ParamText, MAX_MAGNITUDE};
+use crate::probe::heightmap::MIN_STEP;
 
 impl Session<'_> {
     pub(crate) fn path_params(&mut self, raw: &RawPath, ev: &Eval, cx: &BuildCtx) -> PathParams {
@@ -50,7 +51,27 @@ impl Session<'_> {
             m: ev.string(t_, 'M'),
             e: ev.string(t_, 'E'),
             r: ev.string(t_, 'R').unwrap_or_default(),
+            heightmap: self.drawn_heightmap(raw, ev),
         }
+    }
+
+    /// `K` of the start text (not in the reference dialect, where it is unsupported):
+    /// `K<step>` or `K<step>+<margin>`, decimal commas allowed; anything else an error at
+    /// the start text.
+    fn drawn_heightmap(&mut self, raw: &RawPath, ev: &Eval) -> Option<DrawnHeightmap> {
+        if self.settings.dialect == crate::Dialect::Reference {
+            return None;
+        }
+        let v = ev.string(raw.start_text.as_ref(), HEIGHTMAP_KEY)?;
+        let parsed = parse_drawn_heightmap(&v);
+        if parsed.is_none() {
+            self.diags.error(
+                Msg::HeightmapKeyBad,
+                raw.start_origin(),
+                args![v, fmt_num(MIN_STEP)],
+            );
+        }
+        parsed
     }
 
     pub(crate) fn chain_params(
@@ -182,6 +203,22 @@ impl Session<'_> {
     }
 }
 
+/// `<step>` or `<step>+<margin>` (mm, decimal comma allowed): finite, step ≥ `MIN_STEP`,
+/// margin ≥ 0; `None` otherwise.
+pub(crate) fn parse_drawn_heightmap(v: &str) -> Option<DrawnHeightmap> {
+    let (step, margin) = match v.split_once('+') {
+        Some((s, m)) => (s, Some(m)),
+        None => (v, None),
+    };
+    let num = |s: &str| parse_number_checked(s).ok();
+    let step = num(step).filter(|s| *s >= MIN_STEP)?;
+    let margin = match margin {
+        Some(m) => Some(num(m).filter(|m| *m >= 0.0)?),
+        None => None,
+    };
+    Some(DrawnHeightmap { step, margin })
+}
+
 /// `<CODE> @ [x y]` of a text, used in "Unsupported" messages.
 pub(crate) fn text_context(t: &ParamText) -> String {
     match &t.origin {
@@ -201,7 +238,14 @@ fn unsupported(
 ) -> Diagnostic {
     let upper = k.to_uppercase().next().unwrap_or(k);
     let de = lang == crate::Lang::De;
-    let hint = if upper != k && allowed.contains(upper) {
+    let hint = if k == HEIGHTMAP_KEY && allowed == PATH_KEYS {
+        // the key exists, but not in PathDxf2GCode's programs
+        if de {
+            "K (eine Höhenkarte) braucht den Dialekt linuxcnc oder grbl".to_string()
+        } else {
+            "K (a height map) needs the linuxcnc or grbl dialect".to_string()
+        }
+    } else if upper != k && allowed.contains(upper) {
         if de {
             format!("{upper} gemeint? (Schlüssel sind Großbuchstaben)")
         } else {

@@ -67,6 +67,11 @@ pub struct Controller {
     pub machine: Option<Machine>,
     /// `[heightmap]`: the probing set is a grid over the cuts (its probe feed resolved).
     pub heightmap: Option<Heightmap>,
+    /// `probe_split` (mm): with drawn probes, cutting moves are written in pieces of at most
+    /// this length, each corrected at its own start (`emit/probe_split.rs`).
+    pub probe_split: Option<f64>,
+    /// The height map is the drawing's own (`K`), for the messages that name where it came from.
+    pub heightmap_in_drawing: bool,
 }
 
 impl Default for Controller {
@@ -85,6 +90,8 @@ impl Controller {
             spindle_dwell: DEFAULT_SPINDLE_DWELL,
             machine: None,
             heightmap: None,
+            probe_split: None,
+            heightmap_in_drawing: false,
         }
     }
 
@@ -99,7 +106,34 @@ impl Controller {
                 probe_feed: Some(h.probe_feed.unwrap_or(s.probe_feed())),
                 ..h
             }),
+            probe_split: s.probe_split,
+            heightmap_in_drawing: false,
         }
+    }
+
+    /// [`Controller::of`] for a compiled model: a height map said in its drawing (`K`) over
+    /// the `[heightmap]` of millpath.toml, and `--heightmap-step`/`--heightmap-margin` over
+    /// both. The drawing is the part's own truth; the file gives what `K` cannot say (area,
+    /// probe feed and depth) and a margin `K` leaves out; an option is this run's choice.
+    pub fn for_model(s: &Settings, model: &Model) -> Controller {
+        let mut c = Controller::of(s);
+        if let Some(k) = model.params.heightmap {
+            let base = c.heightmap.unwrap_or(Heightmap {
+                probe_feed: Some(s.probe_feed()),
+                ..Heightmap::with_step(k.step)
+            });
+            let (step_option, margin_option) = s.heightmap_options;
+            c.heightmap = Some(Heightmap {
+                step: if step_option { base.step } else { k.step },
+                margin: match (margin_option, k.margin) {
+                    (false, Some(m)) => m,
+                    _ => base.margin,
+                },
+                ..base
+            });
+            c.heightmap_in_drawing = true;
+        }
+        c
     }
 
     /// The feed written on a plunge of an element milled at `element_feed`: `None` in the

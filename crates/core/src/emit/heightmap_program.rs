@@ -39,14 +39,36 @@ pub(crate) fn grid_of(
     }
     if !drawn.is_empty() {
         let names: Vec<&str> = drawn.iter().map(|p| p.name.as_str()).collect();
+        let msg = if ctl.heightmap_in_drawing {
+            Msg::HeightmapKWithDrawnProbes
+        } else {
+            Msg::HeightmapWithDrawnProbes
+        };
         return Err(Diagnostic::error(
-            Msg::HeightmapWithDrawnProbes,
+            msg,
             origin,
             crate::args![model.name(), names.join(", ")],
         ));
     }
     let extent = cut_extent(items, P2::default());
     Grid::of_program(hm, extent, model.name(), &origin)
+}
+
+/// `(PROBEOPEN log_name)` in linuxcnc, where LinuxCNC writes each probe contact to the
+/// file itself (nothing elsewhere: GRBL and the reference have no such command). Drawn
+/// probes and height maps both open their log this way.
+pub(crate) fn probe_open(ctl: &Controller, log_name: &str) -> Option<String> {
+    (ctl.dialect == Dialect::LinuxCnc).then(|| {
+        // the name made safe as comment text, then the active word LinuxCNC acts on
+        let safe = comment_line(ctl.dialect, 0, log_name);
+        let safe = safe.trim_start_matches('(').trim_end_matches(')');
+        format!("(PROBEOPEN {safe})")
+    })
+}
+
+/// `(PROBECLOSE)` where [`probe_open`] opened a log.
+pub(crate) fn probe_close(ctl: &Controller) -> Option<String> {
+    (ctl.dialect == Dialect::LinuxCnc).then(|| "(PROBECLOSE)".to_string())
 }
 
 /// The probing set of a height map's `grid`. `log_name` is the file LinuxCNC writes the
@@ -84,12 +106,7 @@ pub(crate) fn grid_set(
         grid.ys.len(),
         f3(hm.step)
     ));
-    if ctl.dialect == Dialect::LinuxCnc {
-        // the name made safe as comment text, then the active word LinuxCNC acts on
-        let safe = comment_line(ctl.dialect, 0, log_name);
-        let safe = safe.trim_start_matches('(').trim_end_matches(')');
-        pl.push(format!("(PROBEOPEN {safe})"));
-    }
+    pl.extend(probe_open(ctl, log_name));
     let mut cur = P2::default();
     for p in &points {
         if p.dist(cur) > 0.0 {
@@ -100,9 +117,7 @@ pub(crate) fn grid_set(
         pl.push(format!("G38.2 Z{} F{}", F3(t - hm.probe_depth), F3(feed)));
         pl.push(format!("G00 Z{}", F3(s)));
     }
-    if ctl.dialect == Dialect::LinuxCnc {
-        pl.push("(PROBECLOSE)".into());
-    }
+    pl.extend(probe_close(ctl));
     if cur.dist(P2::default()) > 0.0 {
         pl.push("G00 X0.000 Y0.000".into());
     }

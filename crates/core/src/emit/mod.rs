@@ -22,6 +22,7 @@ pub mod heightmap_program;
 pub mod helix;
 pub mod motion;
 pub mod optimize;
+pub mod probe_split;
 pub mod program;
 pub mod stats;
 pub mod timing;
@@ -190,6 +191,8 @@ pub(crate) struct Emitter<'a> {
     pub(crate) stop: Option<&'a dyn Fn() -> bool>,
     pub(crate) stopped: bool,
     pub(crate) until_stop_check: usize,
+    /// `probe_split`: moves split, and the pieces they became.
+    pub(crate) split: (usize, usize),
 }
 
 /// Elements or passes between two questions to [`Emitter::stop`].
@@ -447,6 +450,7 @@ pub(crate) fn emit_until(
         stop,
         stopped: false,
         until_stop_check: 1,
+        split: (0, 0),
     };
     em.comment(2, || format!("Model {}", model.label()));
     em.emit_model(Frame {
@@ -498,11 +502,13 @@ pub(crate) fn emit_until(
     }
     let mut items = em.items;
     optimize(&mut items);
+    let split = em.split;
     Ok(Emitted {
         items,
         sources: em.sources,
         probes,
         sx,
+        split,
     })
 }
 
@@ -526,6 +532,8 @@ pub(crate) struct Emitted {
     pub(crate) sources: Vec<Origin>,
     pub(crate) probes: Vec<NamedProbe>,
     pub(crate) sx: f64,
+    /// `probe_split`: moves split, and the pieces they became.
+    pub(crate) split: (usize, usize),
 }
 
 #[cfg(test)]

@@ -1,7 +1,10 @@
 //! Motion primitives (reference-output.md §5): DrillOrPullZ, sweeps, SafeSweep, MillLine and MillArc, and the probe-weighted Z expressions (§12.4).
 
-use crate::emit::{bt, Emitter, Kind, NamedProbe, Target};
+use crate::args;
+use crate::diag::{Diagnostic, Msg, Origin};
+use crate::emit::{bt, probe_split, Dialect, Emitter, Kind, NamedProbe, Target};
 use crate::geom::{near, Geom, F3, P2, P3};
+use crate::params::fmt_num;
 use std::fmt;
 
 impl Emitter<'_> {
@@ -98,6 +101,48 @@ impl Emitter<'_> {
                         bt(backtrack)
                     )
                 });
+            }
+            Geom::Arc { c, r, a0, a1, .. } => {
+                self.comment(2, || {
+                    format!(
+                        "MillArc l={c} r={} a0={} a1={} fr={} to={} p0={a} p1={b} bt={}",
+                        F3(r),
+                        F3(a0),
+                        F3(a1),
+                        F3(from_z),
+                        F3(to_z),
+                        bt(backtrack)
+                    )
+                });
+            }
+        }
+        let n = self.split_count(g);
+        if n <= 1 {
+            self.mill_piece(g, to_z, feed);
+        } else {
+            // Z along the move as the whole move ramps it, each piece corrected at its start
+            for (k, piece) in probe_split::pieces(g, n).iter().enumerate() {
+                if self.full {
+                    break;
+                }
+                let z = if k + 1 == n {
+                    to_z
+                } else {
+                    from_z + (to_z - from_z) * (k + 1) as f64 / n as f64
+                };
+                self.mill_piece(piece, z, feed);
+            }
+            self.split.0 += 1;
+            self.split.1 += n;
+        }
+        self.pos = b.with_z(to_z);
+    }
+
+    /// One `G01`/`G02`/`G03` along `g` to `to_z`, its Z corrected at `g`'s start (§12.4).
+    fn mill_piece(&mut self, g: &Geom, to_z: f64, feed: f64) {
+        let (a, b) = (g.start(), g.end());
+        match *g {
+            Geom::Line { .. } => {
                 let t = |e: &Emitter| {
                     format!(
                         "G01 F{} X{} Y{} Z{}",
@@ -110,18 +155,7 @@ impl Emitter<'_> {
                 self.push(Kind::Mill, t, a.dist(b), feed);
                 self.to(Target::xyz(b, to_z));
             }
-            Geom::Arc { c, r, a0, a1, ccw } => {
-                self.comment(2, || {
-                    format!(
-                        "MillArc l={c} r={} a0={} a1={} fr={} to={} p0={a} p1={b} bt={}",
-                        F3(r),
-                        F3(a0),
-                        F3(a1),
-                        F3(from_z),
-                        F3(to_z),
-                        bt(backtrack)
-                    )
-                });
+            Geom::Arc { c, ccw, .. } => {
                 let t = |e: &Emitter| {
                     format!(
                         "{} F{} I{} J{} X{} Y{} Z{}",
@@ -138,7 +172,39 @@ impl Emitter<'_> {
                 self.to(Target::arc(b, to_z, c, ccw));
             }
         }
-        self.pos = b.with_z(to_z);
+    }
+
+    /// Pieces `g` is milled in: more than one only with drawn probes and `probe_split`
+    /// outside the reference dialect. A move that would need more than
+    /// [`probe_split::MAX_PIECES`] is an error at its element (and milled whole).
+    fn split_count(&mut self, g: &Geom) -> usize {
+        let Some(l) = self.ctl.probe_split else {
+            return 1;
+        };
+        if self.probes.is_empty() || self.ctl.dialect == Dialect::Reference {
+            return 1;
+        }
+        match probe_split::piece_count(g.length(), l) {
+            Ok(n) => n,
+            Err(n) => {
+                let origin = self
+                    .source
+                    .and_then(|i| self.sources.get(i as usize).cloned())
+                    .unwrap_or(Origin::Options);
+                self.errors.push(Diagnostic::error(
+                    Msg::ProbeSplitTooManyPieces,
+                    origin,
+                    args![
+                        F3(g.length()),
+                        fmt_num(l),
+                        fmt_num(n),
+                        probe_split::MAX_PIECES
+                    ],
+                ));
+                self.lost = true;
+                1
+            }
+        }
     }
 }
 

@@ -4,7 +4,7 @@
 use crate::diag::{Diagnostic, Lang, Origin};
 use crate::emit::as_comment;
 use crate::emit::dialect::Controller;
-use crate::emit::heightmap_program::{grid_of, grid_set, GridSet};
+use crate::emit::heightmap_program::{grid_of, grid_set, probe_close, probe_open, GridSet};
 use crate::emit::stats::Stats;
 use crate::emit::{emit, emit_until, Emitted};
 use crate::geom::{near, F3, P2, P3};
@@ -56,12 +56,9 @@ pub fn check_until(
     if let Some(hm) = &ctl.heightmap {
         grid_of(hm, ctl, model, &e.items, &e.probes).map_err(|d| vec![d])?;
     }
-    Ok(Stats::timed(
-        &e.items,
-        sweep_speed,
-        start(e.sx),
-        ctl.machine.as_ref(),
-    ))
+    let mut stats = Stats::timed(&e.items, sweep_speed, start(e.sx), ctl.machine.as_ref());
+    stats.split = e.split;
+    Ok(stats)
 }
 
 /// Generates the G-code of a top-level model as the reference does. `Err` holds the errors
@@ -97,16 +94,19 @@ pub fn generate_for(
         probes,
         sx,
         sources,
+        split,
     } = emit(model, false, ctl)?;
     let s = model.params.s;
 
-    let stats = Stats::timed(&items, sweep_speed, start(sx), ctl.machine.as_ref());
+    let mut stats = Stats::timed(&items, sweep_speed, start(sx), ctl.machine.as_ref());
+    stats.split = split;
+    // the file LinuxCNC logs the probe contacts to (PROBEOPEN), beside the set
+    let log = crate::output_prefix(std::path::Path::new(file_name), &model.params.r);
+    let log = format!("{}_probes.txt", log.display());
     // a height map's probing set needs the cutting moves before they become lines
     let grid = match &ctl.heightmap {
         Some(hm) => {
             let grid = grid_of(hm, ctl, model, &items, &probes).map_err(|e| vec![e])?;
-            let log = crate::output_prefix(std::path::Path::new(file_name), &model.params.r);
-            let log = format!("{}_probes.txt", log.display());
             Some(grid_set(hm, ctl, model, &grid, banner, file_name, &log))
         }
         None => None,
@@ -121,6 +121,7 @@ pub fn generate_for(
     lines.extend(items.into_iter().map(|i| i.text));
     lines.extend(stats.lines(lang).iter().map(|l| format!("  ({l})")));
     lines.extend(stats.model_line(lang).map(|l| format!("  ({l})")));
+    lines.extend(stats.split_line(lang).map(|l| format!("  ({l})")));
     lines.extend(ctl.epilogue(true));
     let body = join(&lines);
     // a probing set: the Z file and both programs stamped with the set's digest
@@ -149,6 +150,7 @@ pub fn generate_for(
     }
     // probing program and Z file
     let mut pl = ctl.prologue(banner, file_name, model, s, false);
+    pl.extend(probe_open(ctl, &log));
     let mut cur = P2::default();
     for p in &probes {
         if !near(p.placed.pos.dist(cur), 0.0) {
@@ -164,6 +166,7 @@ pub fn generate_for(
         pl.push("G04 P4".into());
         pl.push(format!("G00 Z{}", F3(s)));
     }
+    pl.extend(probe_close(ctl));
     if !near(cur.dist(P2::default()), 0.0) {
         pl.push("G00 X0.000 Y0.000".into());
     }

@@ -19,6 +19,9 @@ pub struct Stats {
     pub count: usize,
     /// The machine limits the times were estimated with; `None`: the reference's model.
     pub machine: Option<Machine>,
+    /// `probe_split`: cutting moves split for the probes, and the pieces they became (each
+    /// piece is one command of `count`).
+    pub split: (usize, usize),
 }
 
 const TICKS_PER_MINUTE: f64 = 600_000_000.0;
@@ -84,6 +87,16 @@ impl Stats {
         ))
     }
 
+    /// The line after the others when `probe_split` split moves, e.g. `Split for probes: 4
+    /// moves into 26 pieces`; `None` otherwise (the reference's five lines stay five).
+    pub fn split_line(&self, lang: Lang) -> Option<String> {
+        let (moves, pieces) = self.split;
+        (moves > 0).then(|| match lang {
+            Lang::En => format!("Split for probes: {moves} moves into {pieces} pieces"),
+            Lang::De => format!("Für Messpunkte geteilt: {moves} Bewegungen in {pieces} Stücke"),
+        })
+    }
+
     /// The five statistics texts, e.g. `Fräslänge:     115 mm   ca.  2 min`.
     pub fn lines(&self, lang: Lang) -> [String; 5] {
         let labels = match lang {
@@ -137,7 +150,21 @@ mod tests {
             sweep_min: 65.99 / 500.0 * 1.4,
             count: 8,
             machine: None,
+            split: (0, 0),
         };
+        assert_eq!(s.split_line(Lang::En), None, "the reference's five lines");
+        let split = Stats {
+            split: (4, 26),
+            ..s.clone()
+        };
+        assert_eq!(
+            split.split_line(Lang::En).as_deref(),
+            Some("Split for probes: 4 moves into 26 pieces")
+        );
+        assert_eq!(
+            split.split_line(Lang::De).as_deref(),
+            Some("Für Messpunkte geteilt: 4 Bewegungen in 26 Stücke")
+        );
         let de = s.lines(Lang::De);
         assert_eq!(de[0], "Fräslänge:     115 mm   ca.  2 min");
         assert_eq!(de[4], "Befehlszahl: 8");

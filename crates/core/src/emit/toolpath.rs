@@ -66,7 +66,8 @@ pub fn toolpath(
         y: 0.0,
         z: e.sx,
     };
-    let stats = Stats::timed(&e.items, sweep_speed, start, ctl.machine.as_ref());
+    let mut stats = Stats::timed(&e.items, sweep_speed, start, ctl.machine.as_ref());
+    stats.split = e.split;
     let planned = ctl.machine.as_ref().map(|m| item_times(&e.items, start, m));
     // the body follows the prologue line for line (one line per item, as `generate` writes)
     let first_line = ctl.prologue("", "", model, e.sx, true).len() + 1;

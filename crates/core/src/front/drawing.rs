@@ -69,6 +69,12 @@ impl SegKind {
 /// Keys accepted in a path start text.
 /// (`@` is not among them: a resolved start text no longer has it, an unresolved one reports it.)
 pub const PATH_KEYS: &str = "ABCDEFIMOPRSTUWZ";
+/// A path start text in the `linuxcnc` and `grbl` dialects: also `K`, the height map said in
+/// the drawing (`K<step>` or `K<step>+<margin>`, mm). The reference knows no `K`: in the
+/// reference dialect it stays "Unsupported", as PathDxf2GCode reports it.
+pub const PATH_KEYS_HEIGHTMAP: &str = "ABCDEFIKMOPRSTUWZ";
+/// The height-map key of a path start text.
+pub const HEIGHTMAP_KEY: char = 'K';
 /// Keys the chain level accepts from its first segment (P and U missing is a reference quirk).
 pub const CHAIN_KEYS: &str = "NICWFBSQD";
 /// Keys accepted at a z-probe.

@@ -37,6 +37,9 @@ pub struct FileConfig {
     pub input: Option<crate::InputMode>,
     /// `[heightmap]`: probe a grid over the cuts (linuxcnc and grbl).
     pub heightmap: Option<HeightmapConfig>,
+    /// With drawn probes, moves longer than this (mm) are milled in pieces, each corrected
+    /// at its own start (linuxcnc and grbl).
+    pub probe_split: Option<f64>,
 }
 
 /// `[heightmap]`: `step` (mm, required), `margin` (mm, default 0), `area = [xmin, ymin,
@@ -150,6 +153,9 @@ impl FileConfig {
         }
         if let Some(h) = &self.heightmap {
             s.heightmap = Some(h.heightmap());
+        }
+        if self.probe_split.is_some() {
+            s.probe_split = self.probe_split;
         }
         if let Some(m) = &self.machine {
             if let Some(v) = m.max_velocity {

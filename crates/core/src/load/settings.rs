@@ -9,6 +9,10 @@ use crate::params::MAX_MAGNITUDE;
 use crate::probe::heightmap::Heightmap;
 use std::path::PathBuf;
 
+/// The shortest `probe_split` (mm): shorter pieces would not follow a board any better
+/// (probes are millimetres apart) and only multiply the program's lines.
+pub const MIN_PROBE_SPLIT: f64 = 0.5;
+
 /// Machine settings and options of a run.
 #[derive(Debug, Clone)]
 pub struct Settings {
@@ -69,6 +73,11 @@ pub struct Settings {
     pub heightmap_file: Option<PathBuf>,
     /// `--heightmap-step` / `--heightmap-margin` given on the command line.
     pub heightmap_options: (bool, bool),
+    /// `probe_split` (mm): with drawn probes, cutting moves longer than this are written in
+    /// pieces, each with the probe correction of its own start (linuxcnc and grbl).
+    pub probe_split: Option<f64>,
+    /// Where `probe_split` was given (its errors are located there); `None`: `--probe-split`.
+    pub probe_split_file: Option<PathBuf>,
 }
 
 impl Default for Settings {
@@ -99,6 +108,8 @@ impl Default for Settings {
             heightmap: None,
             heightmap_file: None,
             heightmap_options: (false, false),
+            probe_split: None,
+            probe_split_file: None,
         }
     }
 }
@@ -166,6 +177,7 @@ impl Settings {
             ));
         }
         errors.extend(self.heightmap_errors());
+        errors.extend(self.probe_split_errors());
         if self.max_velocity.is_some() && self.max_acceleration.is_none() {
             errors.push(Diagnostic::error(
                 Msg::MachineNeedsAcceleration,
@@ -205,6 +217,53 @@ impl Settings {
                 Msg::HeightmapReferenceDialect,
                 file(),
                 vec![],
+            ));
+        }
+        errors
+    }
+
+    /// `probe_split` not finite, below [`MIN_PROBE_SPLIT`], or in the reference dialect
+    /// (refused, not ignored: the run was asked to follow the surface and would not),
+    /// located at the settings file or the option.
+    fn probe_split_errors(&self) -> Vec<Diagnostic> {
+        let Some(v) = self.probe_split else {
+            return Vec::new();
+        };
+        let (name, origin) = match &self.probe_split_file {
+            Some(p) => (
+                "probe_split",
+                Origin::File(crate::diag::FileRef::new(p.clone())),
+            ),
+            None => ("--probe-split", Origin::Options),
+        };
+        let mut errors = Vec::new();
+        if !(v.is_finite() && v.abs() <= MAX_MAGNITUDE) {
+            let shown = if v.is_finite() {
+                format!("{v:e}")
+            } else {
+                v.to_string()
+            };
+            errors.push(Diagnostic::error(
+                Msg::SettingNotFinite,
+                origin.clone(),
+                args![name, shown, MAX_MAGNITUDE],
+            ));
+        } else if v < MIN_PROBE_SPLIT {
+            errors.push(Diagnostic::error(
+                Msg::ProbeSplitTooSmall,
+                origin.clone(),
+                args![
+                    name,
+                    crate::params::fmt_num(v),
+                    crate::params::fmt_num(MIN_PROBE_SPLIT)
+                ],
+            ));
+        }
+        if self.dialect == Dialect::Reference {
+            errors.push(Diagnostic::error(
+                Msg::ProbeSplitReferenceDialect,
+                origin,
+                args![name],
             ));
         }
         errors
