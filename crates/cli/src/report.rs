@@ -355,7 +355,8 @@ fn has_drive(s: &str) -> bool {
 /// repository, as for GitHub annotations), files outside it as `file:///` URIs.
 fn artifact_location(file: &str) -> serde_json::Value {
     let rel = repo_path(Path::new(file));
-    if rel.starts_with('/') || has_drive(&rel) {
+    // (a drive only on Windows: `a:b.mpath` is a file name on Unix)
+    if rel.starts_with('/') || (cfg!(windows) && has_drive(&rel)) {
         return json!({ "uri": file_uri(Path::new(&rel)) });
     }
     json!({ "uri": percent_encode_path(&rel), "uriBaseId": "%SRCROOT%" })
