@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 /// The nearest `millpath.toml` at or above the directory of `input`.
 pub fn find(input: &Path) -> Option<PathBuf> {
-    let abs = std::fs::canonicalize(input)
+    let abs = dunce::canonicalize(input)
         .ok()
         .or_else(|| std::env::current_dir().ok().map(|d| d.join(input)))?;
     let mut dir = abs.parent();

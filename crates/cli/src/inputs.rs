@@ -56,7 +56,7 @@ fn walk(
     seen: &mut Seen,
     depth: usize,
 ) {
-    let canonical = std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf());
+    let canonical = dunce::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf());
     if depth > MAX_DEPTH || !seen.dirs.insert(canonical) {
         return;
     }
@@ -66,7 +66,7 @@ fn walk(
     entries.sort();
     let (dirs, files): (Vec<PathBuf>, Vec<PathBuf>) = entries.into_iter().partition(|e| e.is_dir());
     for f in files.into_iter().filter(|f| accept(f)) {
-        let key = std::fs::canonicalize(&f).unwrap_or_else(|_| f.clone());
+        let key = dunce::canonicalize(&f).unwrap_or_else(|_| f.clone());
         if seen.files.insert(key) {
             out.push(f);
         }

@@ -315,9 +315,18 @@ pub fn percent_encode_path(p: &str) -> String {
     out
 }
 
-/// A file path as a `file:///…` URI (absolute paths; `\` of Windows paths as `/`).
+/// A file path as a `file:///…` URI (absolute paths). Windows paths by their text, on every
+/// platform: `\\` as `/`, a drive letter kept as it is (`C:\a` → `file:///C:/a`, as
+/// VS Code and GitHub write it), `\\?\` prefixes dropped, UNC shares as the URI's host
+/// (`\\server\share\a` → `file://server/share/a`).
 pub fn file_uri(p: &std::path::Path) -> String {
-    let s = p.to_string_lossy().replace('\\', "/");
+    let s = slashed(&p.to_string_lossy());
+    if let Some(unc) = s.strip_prefix("//") {
+        return format!("file://{}", percent_encode_path(unc));
+    }
+    if has_drive(&s) {
+        return format!("file:///{}:{}", &s[..1], percent_encode_path(&s[2..]));
+    }
     let s = if s.starts_with('/') {
         s
     } else {
@@ -326,11 +335,28 @@ pub fn file_uri(p: &std::path::Path) -> String {
     format!("file://{}", percent_encode_path(&s))
 }
 
+/// A Windows path's text with `/` between parts and without a `\\?\` prefix
+/// (`\\?\UNC\server\share` → `//server/share`).
+fn slashed(text: &str) -> String {
+    let text = match text.strip_prefix(r"\\?\UNC\") {
+        Some(unc) => format!(r"\\{unc}"),
+        None => text.strip_prefix(r"\\?\").unwrap_or(text).to_string(),
+    };
+    text.replace('\\', "/")
+}
+
+/// Whether a path's text starts with a drive letter (`C:`).
+fn has_drive(s: &str) -> bool {
+    let b = s.as_bytes();
+    b.len() >= 2 && b[0].is_ascii_alphabetic() && b[1] == b':'
+}
+
 /// The SARIF artifact location of a file: relative to `%SRCROOT%` (the workspace or
 /// repository, as for GitHub annotations), files outside it as `file:///` URIs.
 fn artifact_location(file: &str) -> serde_json::Value {
     let rel = repo_path(Path::new(file));
-    if rel.starts_with('/') {
+    // (a drive only on Windows: `a:b.mpath` is a file name on Unix)
+    if rel.starts_with('/') || (cfg!(windows) && has_drive(&rel)) {
         return json!({ "uri": file_uri(Path::new(&rel)) });
     }
     json!({ "uri": percent_encode_path(&rel), "uriBaseId": "%SRCROOT%" })
@@ -442,7 +468,7 @@ fn ci_root() -> &'static (PathBuf, PathBuf) {
             .filter(|w| !w.is_empty())
             .map(|w| {
                 let w = PathBuf::from(w);
-                std::fs::canonicalize(&w).unwrap_or(w)
+                dunce::canonicalize(&w).unwrap_or(w)
             });
         let repo = || {
             cwd.ancestors()
@@ -482,6 +508,11 @@ pub fn ci_path(file: &Path, cwd: &Path, root: &Path) -> String {
         }
     }
     let shown = abs.strip_prefix(root).unwrap_or(&abs);
+    // Windows: the drive (`C:`) or share of a file outside the root, `\\?\` dropped
+    let prefix = shown.components().find_map(|c| match c {
+        Component::Prefix(p) => Some(slashed(&p.as_os_str().to_string_lossy())),
+        _ => None,
+    });
     let parts: Vec<String> = shown
         .components()
         .filter_map(|c| match c {
@@ -490,7 +521,9 @@ pub fn ci_path(file: &Path, cwd: &Path, root: &Path) -> String {
         })
         .collect();
     let rel = parts.join("/");
-    if shown.is_absolute() {
+    if let Some(prefix) = prefix {
+        format!("{prefix}/{rel}")
+    } else if shown.is_absolute() {
         format!("/{rel}")
     } else {
         rel
@@ -564,6 +597,23 @@ fn escape_prop(s: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn windows_paths_become_file_uris_with_their_drive() {
+        let uri = |s: &str| file_uri(Path::new(s));
+        assert_eq!(
+            uri(r"C:\Users\Jörg\a b.dxf"),
+            "file:///C:/Users/J%C3%B6rg/a%20b.dxf"
+        );
+        assert_eq!(uri(r"\\?\D:\cnc\x.mpath"), "file:///D:/cnc/x.mpath");
+        assert_eq!(uri(r"\\server\share\x.dxf"), "file://server/share/x.dxf");
+        assert_eq!(
+            uri(r"\\?\UNC\server\share\x.dxf"),
+            "file://server/share/x.dxf"
+        );
+        assert_eq!(uri("C:/w/"), "file:///C:/w/");
+        assert_eq!(uri("/home/a:b/x.dxf"), "file:///home/a%3Ab/x.dxf");
+    }
     use millpath_core::diag::{EntityOrigin, FileRef};
     use millpath_core::geom::P2;
     use millpath_core::Msg;

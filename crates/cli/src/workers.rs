@@ -59,12 +59,12 @@ mod placement {
     fn set_affinity<T>(handle: &std::thread::JoinHandle<T>, set: &libc::cpu_set_t) -> bool {
         // SAFETY: the set is ours and its size is passed; the thread is alive while we hold
         // its JoinHandle, so its pthread_t is valid.
+        // (std's pthread handle is an integer; musl's pthread_t a pointer: the static Linux
+        // release build)
+        #[allow(clippy::unnecessary_cast, trivial_numeric_casts)]
+        let thread = handle.as_pthread_t() as libc::pthread_t;
         unsafe {
-            libc::pthread_setaffinity_np(
-                handle.as_pthread_t(),
-                std::mem::size_of::<libc::cpu_set_t>(),
-                set,
-            ) == 0
+            libc::pthread_setaffinity_np(thread, std::mem::size_of::<libc::cpu_set_t>(), set) == 0
         }
     }
 

@@ -2,6 +2,64 @@
 
 use std::io::Write;
 use std::path::Path;
+use std::time::Duration;
+
+/// What a rename answers when another program holds the file open: on Windows a G-code
+/// sender or an editor keeps the program open without letting others delete it, and a
+/// rename onto it or away from it fails. Shown in `Cannot write FILE: …` (German in
+/// `diag::os_error_text`).
+pub const HELD_OPEN: &str =
+    "another program has the file open (a G-code sender or an editor?): close it there and run again";
+
+/// Whether `e` says that another program holds the file open (Windows: sharing or lock
+/// violation; access denied on an existing plain file that is not read-only).
+fn held_open(e: &std::io::Error, target: &Path) -> bool {
+    const SHARING_VIOLATION: i32 = 32;
+    const LOCK_VIOLATION: i32 = 33;
+    const ACCESS_DENIED: i32 = 5;
+    if !cfg!(windows) {
+        return false;
+    }
+    match e.raw_os_error() {
+        Some(SHARING_VIOLATION | LOCK_VIOLATION) => true,
+        Some(ACCESS_DENIED) => std::fs::metadata(target)
+            .map(|m| m.is_file() && !m.permissions().readonly())
+            .unwrap_or(false),
+        _ => false,
+    }
+}
+
+/// `std::fs::rename`, tried again a few times (a second in all) while the user's `file` is
+/// held open: virus scanners and indexers hold a file for a moment. A program that keeps it
+/// open gets [`HELD_OPEN`] naming the reason, the OS error kept in the text.
+fn rename(from: &Path, to: &Path, file: &Path) -> std::io::Result<()> {
+    rename_with(from, to, file, held_open, Duration::from_millis(100))
+}
+
+/// [`rename`] with the test for a held file and the pause as parameters (unit tests).
+fn rename_with(
+    from: &Path,
+    to: &Path,
+    file: &Path,
+    is_held: fn(&std::io::Error, &Path) -> bool,
+    pause: Duration,
+) -> std::io::Result<()> {
+    const TRIES: u32 = 10;
+    let mut tries = 0;
+    loop {
+        match std::fs::rename(from, to) {
+            Ok(()) => return Ok(()),
+            Err(e) if is_held(&e, file) => {
+                tries += 1;
+                if tries >= TRIES {
+                    return Err(std::io::Error::new(e.kind(), format!("{HELD_OPEN} ({e})")));
+                }
+                std::thread::sleep(pause);
+            }
+            Err(e) => return Err(e),
+        }
+    }
+}
 
 /// Writes `content` to a temporary file beside `path` and renames it into place.
 pub fn write_atomic(path: &Path, content: &str) -> std::io::Result<()> {
@@ -15,7 +73,7 @@ pub fn write_atomic_bytes(path: &Path, content: &[u8]) -> std::io::Result<()> {
         let mut f = std::fs::File::create(&tmp)?;
         f.write_all(content)?;
         f.sync_all()?;
-        std::fs::rename(&tmp, path)
+        rename(&tmp, path, path)
     })();
     if result.is_err() {
         let _ = std::fs::remove_file(&tmp);
@@ -73,7 +131,7 @@ pub fn write_set(files: &[(&Path, &str)]) -> Result<(), (std::path::PathBuf, std
                     "is a directory",
                 ))
             } else {
-                std::fs::rename(path, &old)
+                rename(path, &old, path)
             };
             if let Err(e) = moved {
                 failure = Some((path.to_path_buf(), e));
@@ -84,7 +142,7 @@ pub fn write_set(files: &[(&Path, &str)]) -> Result<(), (std::path::PathBuf, std
             None
         };
         done.push((path, kept, false));
-        if let Err(e) = std::fs::rename(tmp, path) {
+        if let Err(e) = rename(tmp, path, path) {
             failure = Some((path.to_path_buf(), e));
             break;
         }
@@ -108,7 +166,7 @@ pub fn write_set(files: &[(&Path, &str)]) -> Result<(), (std::path::PathBuf, std
                     let _ = std::fs::remove_file(path);
                 }
                 if let Some(old) = kept {
-                    let _ = std::fs::rename(old, path);
+                    let _ = rename(old, path, path);
                 }
             }
             cleanup(&temps);
@@ -138,6 +196,23 @@ mod tests {
             .collect();
         v.sort();
         v
+    }
+
+    #[test]
+    fn a_file_that_stays_held_gives_the_reason_after_the_retries() {
+        // Wine shows the real case (tests/windows/cli.sh holds a file open with a Windows
+        // program); here the retry loop and its message, with every failure taken as held
+        let dir = tempfile::tempdir().unwrap();
+        let (from, to) = (dir.path().join("missing.tmp"), dir.path().join("x.gcode"));
+        let start = std::time::Instant::now();
+        let err = rename_with(&from, &to, &to, |_, _| true, Duration::from_millis(5)).unwrap_err();
+        assert!(start.elapsed() >= Duration::from_millis(45), "no retries");
+        let text = err.to_string();
+        assert!(text.starts_with(HELD_OPEN), "{text}");
+        assert!(text.contains("os error 2"), "{text}");
+        // an error that is not a held file comes back at once, as it is
+        let err = rename_with(&from, &to, &to, |_, _| false, Duration::from_secs(60)).unwrap_err();
+        assert_eq!(err.kind(), std::io::ErrorKind::NotFound);
     }
 
     #[test]

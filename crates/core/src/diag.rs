@@ -457,6 +457,11 @@ pub fn os_error_text(text: &str, lang: Lang) -> String {
             "stream did not contain valid UTF-8",
             "Datei ist kein gültiges UTF-8",
         ),
+        // cli/src/write.rs: a file another program holds open (Windows)
+        (
+            "another program has the file open (a G-code sender or an editor?): close it there and run again",
+            "ein anderes Programm hat die Datei geöffnet (ein G-Code-Sender oder ein Editor?): dort schließen und noch einmal ausführen",
+        ),
         ("os error", "OS-Fehler"),
     ];
     let mut out = text.to_string();

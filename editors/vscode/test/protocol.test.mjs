@@ -14,6 +14,9 @@ const logic = require('../dist/logic.js');
 
 const repo = join(dirname(fileURLToPath(import.meta.url)), '../../..');
 const bin = process.env.MILLPATH_BIN || join(repo, 'target/release/millpath');
+// under Wine (tests/windows.sh: MILLPATH_WINE=1) the server is a Windows program, which
+// knows files by drive letter: Wine's drive Z: is the Unix root
+const fileUri = (p) => (process.env.MILLPATH_WINE ? `file:///Z:${pathToFileURL(p).pathname}` : pathToFileURL(p).href);
 
 test('initialize with the extension options, preview and toolpath', async () => {
   const dir = mkdtempSync(join(tmpdir(), 'millpath-vscode-'));
@@ -27,15 +30,15 @@ test('initialize with the extension options, preview and toolpath', async () => 
   const settings = { feed: 300, sweepSpeed: 1000, sweepHeight: 10, probeFeed: 50, language: 'en' };
   const init = await conn.sendRequest('initialize', {
     processId: process.pid,
-    rootUri: pathToFileURL(dir).href,
+    rootUri: fileUri(dir),
     capabilities: {},
     initializationOptions: logic.initializationOptions(settings),
-    workspaceFolders: [{ uri: pathToFileURL(dir).href, name: 'ws' }],
+    workspaceFolders: [{ uri: fileUri(dir), name: 'ws' }],
   });
   assert.equal(init.serverInfo.name, 'millpath');
   assert.ok(init.capabilities.hoverProvider);
   await conn.sendNotification('initialized', {});
-  const uri = pathToFileURL(file).href;
+  const uri = fileUri(file);
   await conn.sendNotification('textDocument/didOpen', { textDocument: { uri, languageId: 'millpath', version: 1, text } });
   const d = await diagnostics;
   assert.deepEqual(d.diagnostics, []);

@@ -17,7 +17,7 @@ pub fn run(
     surface: Option<&str>,
 ) -> u8 {
     let file = complete_input(&file.to_string_lossy());
-    let abs = std::fs::canonicalize(&file).unwrap_or_else(|_| file.clone());
+    let abs = dunce::canonicalize(&file).unwrap_or_else(|_| file.clone());
     // like `compile`: options over millpath.toml (or --config), no drawing with placeholder
     // machine settings
     let settings = match settings_for(m, Some(&file), true) {

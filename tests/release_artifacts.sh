@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# Builds the release artefacts (scripts/release.sh) and checks them as a user gets them: the
+# Linux binary is static and passes the conformance cases and the README's command, the .exe
+# is a Windows x64 program and passes the conformance cases under Wine, each .vsix holds the
+# server of its platform, SHA256SUMS matches. Not part of .ci/run: two more release builds
+# (musl, Windows) cost CI about 10 minutes on two cores; run it before a release.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/release.sh
+a=target/release-artifacts
+passed=0
+failed=0
+check() {
+  local name=$1
+  shift
+  if "$@" >/tmp/millpath-release-check.log 2>&1; then
+    echo "ok - $name"; passed=$((passed + 1))
+  else
+    echo "not ok - $name"; sed 's/^/    /' /tmp/millpath-release-check.log | head -30; failed=$((failed + 1))
+  fi
+}
+static() { file "$a/millpath-linux-x64" | grep -q 'statically linked\|static-pie linked' && ! ldd "$a/millpath-linux-x64" 2>/dev/null | grep -q '=>'; }
+check "millpath-linux-x64 is static (file, ldd)" static
+check "millpath.exe is a Windows x64 program" bash -c "file '$a/millpath.exe' | grep -q 'PE32+ executable.*x86-64'"
+check "SHA256SUMS matches" bash -c "cd '$a' && sha256sum -c SHA256SUMS"
+readme() {
+  local d
+  d=$(mktemp -d)
+  cp examples/plate/1234.1P.dxf examples/plate/millpath.toml "$d/"
+  (cd "$d" && "$OLDPWD/$a/millpath-linux-x64" compile 1234.1P.dxf) && test -s "$d/1234.1P_Milling.gcode"
+}
+check "the README's command with the static binary" readme
+if [ -f ../shared/conformance/run.py ]; then
+  check "conformance with the static binary" python3 ../shared/conformance/run.py --bin "$a/millpath-linux-x64"
+else
+  echo "skipped: ../shared/conformance is not there"
+fi
+vsix_server() { # VSIX FILE PATTERN: the .vsix holds extension/server/FILE of that kind
+  local d
+  d=$(mktemp -d)
+  python3 -c "import zipfile,sys; zipfile.ZipFile(sys.argv[1]).extractall(sys.argv[2])" "$1" "$d"
+  file "$d/extension/server/$2" | grep -q "$3" && [ "$(ls "$d/extension/server")" = "$2" ]
+}
+check "millpath-win32-x64.vsix: server/millpath.exe, a Windows x64 program" \
+  vsix_server "$a/millpath-win32-x64.vsix" millpath.exe 'PE32+ executable.*x86-64'
+check "millpath-linux-x64.vsix: server/millpath, a static Linux program" \
+  vsix_server "$a/millpath-linux-x64.vsix" millpath 'ELF 64-bit.*static'
+# the .exe of the release under Wine: conformance, command line, language server
+check "the release millpath.exe under Wine (tests/windows.sh)" \
+  env MILLPATH_WINE_EXE="$PWD/$a/millpath.exe" bash tests/windows.sh
+ls -l "$a"
+echo "release artefacts: $passed passed, $failed failed"
+[ "$failed" -eq 0 ]
