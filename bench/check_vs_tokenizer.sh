@@ -19,7 +19,7 @@ if [ ! -d "$shared/conformance/fixtures" ] || [ ! -d "$shared/samples" ]; then
   exit 0
 fi
 python3 -c "import ezdxf" 2>/dev/null || python3 -m pip install -q ezdxf
-cargo build --release --quiet -p millpath-cli -p millpath-dxf -p millpath-core \
+cargo build --release --quiet -p millpath -p millpath-dxf -p millpath-core \
   --bin millpath --example tokenize --example gen_drawings
 target=${CARGO_TARGET_DIR:-$PWD/target}
 bin=$target/release/millpath

@@ -23,7 +23,7 @@ done
 
 build() { # TARGET: the release build of the millpath binary for TARGET
   local t0=$SECONDS
-  cargo build --release --locked --target "$1" -p millpath-cli --bin millpath
+  cargo build --release --locked --target "$1" -p millpath --bin millpath
   echo "release: $1 built in $((SECONDS - t0)) s"
 }
 build x86_64-unknown-linux-musl

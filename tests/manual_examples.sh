@@ -21,7 +21,7 @@ cd "$(dirname "$0")/.."
 target="${CARGO_TARGET_DIR:-target}"
 bin="$target/release/millpath"
 if [ ! -x "$bin" ]; then
-  cargo build --release --quiet -p millpath-cli || exit 1
+  cargo build --release --quiet -p millpath || exit 1
 fi
 bin="$(cd "$(dirname "$bin")" && pwd)/millpath"
 work="$(mktemp -d)"

@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 repo="$PWD"
 target="${CARGO_TARGET_DIR:-target}"
 if [ ! -x "$target/release/millpath" ]; then
-  cargo build --release --quiet -p millpath-cli || exit 1
+  cargo build --release --quiet -p millpath || exit 1
 fi
 export PATH="$(cd "$target/release" && pwd):$PATH"
 work="$(mktemp -d)"

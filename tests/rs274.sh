@@ -12,7 +12,7 @@ if ! command -v rs274 >/dev/null; then
   apt-get update -q && DEBIAN_FRONTEND=noninteractive apt-get install -y -q linuxcnc-uspace >/dev/null
 fi
 if [ -z "${MILLPATH_BIN:-}" ]; then
-  cargo build --release --quiet -p millpath-cli || exit 1
+  cargo build --release --quiet -p millpath || exit 1
 fi
 BIN=${MILLPATH_BIN:-${CARGO_TARGET_DIR:-$PWD/target}/release/millpath}
 tmp=$(mktemp -d)

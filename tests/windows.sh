@@ -24,14 +24,14 @@ if [ ${#pkgs[@]} -gt 0 ]; then
 fi
 rustup target list --installed | grep -qx x86_64-pc-windows-gnu || rustup target add x86_64-pc-windows-gnu
 
-# --- the binaries: the .exe (profile `wine`: the release profile at opt-level 1, see
+# --- the binaries: the .exe (profile `cross`: the release profile at opt-level 1, see
 # Cargo.toml) and the Linux release build whose outputs the .exe must match
 t0=$SECONDS
 if [ -z "${MILLPATH_WINE_EXE:-}" ]; then
-  cargo build --quiet --profile wine --target x86_64-pc-windows-gnu -p millpath-cli --bin millpath
-  MILLPATH_WINE_EXE=$ROOT/target/x86_64-pc-windows-gnu/wine/millpath.exe
+  cargo build --quiet --profile cross --target x86_64-pc-windows-gnu -p millpath --bin millpath
+  MILLPATH_WINE_EXE=$ROOT/target/x86_64-pc-windows-gnu/cross/millpath.exe
 fi
-cargo build --quiet --release -p millpath-cli --bin millpath
+cargo build --quiet --release -p millpath --bin millpath
 echo "windows: builds took $((SECONDS - t0)) s"
 
 # --- the Wine prefix (kept in the cache: its first start takes a while)

@@ -3,9 +3,9 @@
 //! users run — reading, all paths checked, files in parallel — plus one process start.
 //!
 //! ```sh
-//! cargo bench -p millpath-cli --bench check                 # everything
-//! cargo bench -p millpath-cli --bench check -- shared       # only the 38 shared drawings
-//! cargo bench -p millpath-cli --bench check -- 'chain_20000|short_chains'
+//! cargo bench -p millpath --bench check                 # everything
+//! cargo bench -p millpath --bench check -- shared       # only the 38 shared drawings
+//! cargo bench -p millpath --bench check -- 'chain_20000|short_chains'
 //! ```
 //!
 //! Cases: the shared drawings (`../shared/conformance/fixtures` and `../shared/samples`,

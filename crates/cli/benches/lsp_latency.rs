@@ -1,5 +1,5 @@
 //! Bench script (release build): latencies of the language server as an editor sees them.
-//! Run with `cargo bench -p millpath-cli --bench lsp_latency`. Measures, on generated files
+//! Run with `cargo bench -p millpath --bench lsp_latency`. Measures, on generated files
 //! of 2,000 and 20,000 elements, with short chains (three mill lines, one sweep) and one
 //! long chain (mill lines only):
 //!

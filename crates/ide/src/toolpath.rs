@@ -158,7 +158,7 @@ pub fn toolpath(
 /// The toolpath view as a standalone HTML page (the page of `editors/toolpath` with the data
 /// embedded).
 pub fn toolpath_html(data: &serde_json::Value) -> String {
-    const PAGE: &str = include_str!("../../../editors/toolpath/toolpath.html");
+    const PAGE: &str = include_str!("../assets/toolpath.html");
     const SLOT: &str = r#"<script id="toolpath-data" type="application/json">null</script>"#;
     let json = data.to_string().replace("</", "<\\/");
     PAGE.replacen(
