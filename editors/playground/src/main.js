@@ -303,7 +303,7 @@ async function shareUrl() {
 }
 $('share').addEventListener('click', async () => {
   const url = await shareUrl();
-  history.replaceState(null, '', url);
+  window.history.replaceState(null, '', url); // `history` is CodeMirror's here
   $('share-url').value = url;
   $('share-box').classList.add('on');
   $('share-url').select();
