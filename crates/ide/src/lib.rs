@@ -74,6 +74,9 @@ pub struct Workspace {
     /// Settings fixed by the caller for every file (`millpath render`: its options over
     /// `millpath.toml`, read as every command reads them); `None` in the editor.
     pub fixed: Option<Settings>,
+    /// Files held in memory instead of the disk (the browser playground: there is no disk);
+    /// the overlays still win over them.
+    pub memory: Option<Arc<millpath_core::MemFileSystem>>,
 }
 
 /// The file system as the editor sees it: open text buffers over the disk. A DXF drawing is
@@ -81,11 +84,19 @@ pub struct Workspace {
 /// longer the drawing's bytes).
 pub struct WorkspaceFs<'a> {
     overlays: &'a HashMap<PathBuf, String>,
+    memory: Option<&'a millpath_core::MemFileSystem>,
 }
 
 impl WorkspaceFs<'_> {
     fn overlay(&self, path: &Path) -> Option<&String> {
         self.overlays.get(path).filter(|_| is_text_file(path))
+    }
+    /// What is under the overlays: the memory files, else the disk.
+    fn base(&self) -> &dyn FileSystem {
+        match self.memory {
+            Some(m) => m,
+            None => &millpath_core::OsFileSystem,
+        }
     }
 }
 
@@ -93,13 +104,11 @@ impl FileSystem for WorkspaceFs<'_> {
     fn read(&self, path: &Path) -> std::io::Result<Vec<u8>> {
         match self.overlay(path) {
             Some(t) => Ok(t.clone().into_bytes()),
-            None => millpath_core::OsFileSystem.read(path),
+            None => self.base().read(path),
         }
     }
     fn list_dir(&self, dir: &Path) -> std::io::Result<Vec<PathBuf>> {
-        let mut v = millpath_core::OsFileSystem
-            .list_dir(dir)
-            .unwrap_or_default();
+        let mut v = self.base().list_dir(dir).unwrap_or_default();
         for p in self.overlays.keys() {
             if p.parent() == Some(dir) && !v.contains(p) {
                 v.push(p.clone());
@@ -108,13 +117,14 @@ impl FileSystem for WorkspaceFs<'_> {
         Ok(v)
     }
     fn is_dir(&self, dir: &Path) -> bool {
-        dir.is_dir() || self.overlays.keys().any(|p| p.parent() == Some(dir))
+        self.base().is_dir(dir) || self.overlays.keys().any(|p| p.parent() == Some(dir))
     }
     fn stamp(&self, path: &Path) -> Option<millpath_core::load::parse_cache::FileStamp> {
         use millpath_core::load::parse_cache::FileStamp;
-        match self.overlay(path) {
-            Some(t) => Some(FileStamp::of_contents(t.as_bytes())),
-            None => FileStamp::of_disk_file(path),
+        match (self.overlay(path), self.memory) {
+            (Some(t), _) => Some(FileStamp::of_contents(t.as_bytes())),
+            (None, Some(m)) => m.files.get(path).map(|b| FileStamp::of_contents(b)),
+            (None, None) => FileStamp::of_disk_file(path),
         }
     }
 }
@@ -164,6 +174,7 @@ impl Workspace {
     pub fn fs(&self) -> WorkspaceFs<'_> {
         WorkspaceFs {
             overlays: &self.overlays,
+            memory: self.memory.as_deref(),
         }
     }
 
@@ -178,7 +189,7 @@ impl Workspace {
             .cloned()
             // decoded as the compiler reads it: BOM dropped, UTF-16 decoded
             .or_else(|| {
-                let bytes = std::fs::read(path).ok()?;
+                let bytes = self.fs().base().read(path).ok()?;
                 let decoded = millpath_core::load::text_file::decode(&bytes).ok()?;
                 Some(decoded.text.into_owned())
             })
