@@ -33,6 +33,8 @@ fn arg(cmd: &str, id: &str) -> Option<&'static str> {
         ("verify", "dialect") => Some("Wessen Vorschub-Regeln gelten"),
         ("verify", "format") => Some("Form des Berichts: human (Text) oder json"),
         ("verify", "surface") => Some("Die Programme gegen diese auf der Maschine gemessene Oberfläche prüfen statt gegen ihren eigenen Eintrag (MILLPATH-SURFACE …): ein Antast-Protokoll (LinuxCNC PROBEOPEN, GRBL-Konsole mit [PRB:…], Zeilen x y z), eine ausgefüllte _Z.txt oder ein angepasstes Programm"),
+        ("verify", "clamp") => Some("Ein Sperrbereich (Quader), den das Werkzeug nie berühren darf, in mm (mehrfach möglich); ohne --clamp und --config: die [[clamp]]-Quader der nächsten millpath.toml über jedem Programm"),
+        ("verify", "config") => Some("Die [[clamp]]-Quader aus dieser millpath.toml lesen"),
         ("verify", "tolerance") => Some("Mit --surface: größter XY-Abstand in mm zwischen Messungen derselben Rasterlinie"),
         ("verify" | "adjust-z", "lang") => Some("Sprache der Meldungen (Standard: lang aus millpath.toml, sonst Englisch)"),
         ("adjust-z", "probe_log") => Some("Die gemessenen Höhen aus diesem Protokoll der Steuerung lesen (LinuxCNC PROBEOPEN, GRBL-Konsole mit [PRB:…], Zeilen x y z oder eine ausgefüllte _Z.txt) statt aus den Werten der NAME_Z.txt; nur ein Programm"),

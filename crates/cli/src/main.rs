@@ -13,6 +13,7 @@ mod output;
 mod png;
 mod report;
 mod surface_file;
+mod verify_clamps;
 mod workers;
 mod write;
 
@@ -95,6 +96,17 @@ enum Command {
         /// With --surface: largest XY distance, mm, between measurements of one grid line
         #[arg(long, value_name = "MM", default_value_t = millpath_core::probe::adjustz::DEFAULT_TOLERANCE, requires = "surface")]
         tolerance: f64,
+        /// A keep-out box the tool must never touch, mm (repeatable); without --clamp and
+        /// --config: the [[clamp]] boxes of the millpath.toml nearest each program
+        #[arg(
+            long,
+            value_name = "NAME,XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX",
+            allow_hyphen_values = true
+        )]
+        clamp: Vec<String>,
+        /// Read the [[clamp]] boxes from this millpath.toml
+        #[arg(long, value_name = "FILE")]
+        config: Option<PathBuf>,
         /// G-code programs to check
         #[arg(required = true)]
         files: Vec<PathBuf>,
@@ -259,6 +271,8 @@ fn main() -> ExitCode {
             format,
             surface,
             tolerance,
+            clamp,
+            config,
             files,
         } => verify::run(&verify::Args {
             dialect: match dialect {
@@ -275,6 +289,8 @@ fn main() -> ExitCode {
             },
             json: format == VerifyFormat::Json,
             surface: surface.map(|file| (file, tolerance)),
+            clamps: clamp,
+            config,
             files,
         }),
         Command::AdjustZ {

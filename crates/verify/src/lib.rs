@@ -10,6 +10,8 @@
 //! * rapid moves (G00) through stock higher than the tool tip, and G00 plunges into stock;
 //! * cutting moves without a positive feed rate, by the rules of the chosen [`Dialect`];
 //! * cuts below the deepest drawn depth (when known);
+//! * moves whose tool (diameter O, from the tip upward) touches a keep-out box
+//!   ([`Options::clamps`], `clamps.rs`);
 //! * arcs whose start and end radius differ by more than 0.002 mm, arcs outside G17;
 //! * non-finite or absurd numbers (|v| > 1e6), unknown codes, syntax errors, a missing
 //!   program end (a truncated file).
@@ -22,6 +24,7 @@
 //! [`Limits::max_work`] cell visits (each with a finding saying so).
 
 mod adjusted;
+mod clamps;
 mod finding;
 mod machine;
 mod parse;
@@ -30,6 +33,7 @@ pub mod surface;
 mod surface_frame;
 
 pub use adjusted::PROBES_WORD;
+pub use clamps::{Clamp, MAX_CLAMPS};
 pub use finding::{
     AdjustedProblem, ArcProblem, Finding, FindingKind, Lang, Limit, NoFeedReason, NumberProblem,
     Severity, StockCommentProblem, StockSkip, SyntaxError,
@@ -121,13 +125,17 @@ impl Default for Limits {
 }
 
 /// What to check against. `top`/`tool`/`bottom` override a `(MILLPATH-STOCK …)` comment.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct Options {
     pub dialect: Dialect,
     pub top: Option<f64>,
     pub tool: Option<f64>,
     pub bottom: Option<f64>,
     pub limits: Limits,
+    /// Keep-out boxes in machine coordinates: every move is checked against them.
+    pub clamps: Vec<Clamp>,
+    /// Leave the stock model out (a quick check of the clamps and the program's words).
+    pub skip_stock: bool,
 }
 
 /// The grid the stock model used.
@@ -361,6 +369,7 @@ pub fn verify_on_surface(
     findings.extend(extra);
     // on a height map: the moves back to the drawing's frame, within the roundings; cuts
     // also sampled inside (a piece whose straight Z misses the surface between its ends)
+    check_clamps(&m.moves, options, params.tool, &mut findings);
     let mut ztol = Z_TOLERANCE;
     let mut inside: Vec<Option<(f64, f64, f64)>> = Vec::new();
     if let Some(map) = &map {
@@ -402,6 +411,7 @@ pub fn verify_on_surface(
         ..Default::default()
     };
     match (params.top, params.tool) {
+        _ if options.skip_stock => {}
         (Some(top), Some(tool)) => {
             let stock = (top, tool, ztol);
             run_stock(&m.moves, stock, &limits, &mut findings, &mut report);
@@ -439,6 +449,47 @@ pub fn verify_on_surface(
         })
         .collect();
     report
+}
+
+/// Every move against the keep-out boxes (machine coordinates: before a height map's frame),
+/// one finding per move and box it touches.
+fn check_clamps(
+    moves: &[machine::Move],
+    options: &Options,
+    tool: Option<f64>,
+    findings: &mut Vec<Raw>,
+) {
+    let clamps = &options.clamps[..options.clamps.len().min(MAX_CLAMPS)];
+    if clamps.is_empty() {
+        return;
+    }
+    if tool.is_none() {
+        findings.push(Raw {
+            line: None,
+            kind: FindingKind::ClampsWithoutTool,
+            severity: Severity::Warning,
+        });
+    }
+    let radius = tool.unwrap_or(0.0) / 2.0;
+    for mv in moves {
+        for c in clamps {
+            if clamps::hit(mv, radius, std::slice::from_ref(c)).is_some() {
+                findings.push(Raw {
+                    line: Some(mv.line),
+                    kind: FindingKind::ClampHit {
+                        name: c.name.clone(),
+                        min: c.min,
+                        max: c.max,
+                        radius,
+                    },
+                    severity: Severity::Error,
+                });
+            }
+        }
+        if findings.len() > options.limits.max_findings {
+            break;
+        }
+    }
 }
 
 /// Moves the Z of a line of an adjusted program to the drawing's frame ([`adjusted`]).

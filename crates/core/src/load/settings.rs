@@ -78,6 +78,10 @@ pub struct Settings {
     pub probe_split: Option<f64>,
     /// Where `probe_split` was given (its errors are located there); `None`: `--probe-split`.
     pub probe_split_file: Option<PathBuf>,
+    /// `[[clamp]]`: keep-out boxes; every written program is checked against them.
+    pub clamps: Vec<millpath_verify::Clamp>,
+    /// Where the clamps were given (their errors are located there).
+    pub clamps_file: Option<PathBuf>,
 }
 
 impl Default for Settings {
@@ -110,6 +114,8 @@ impl Default for Settings {
             heightmap_options: (false, false),
             probe_split: None,
             probe_split_file: None,
+            clamps: Vec::new(),
+            clamps_file: None,
         }
     }
 }
@@ -178,6 +184,10 @@ impl Settings {
         }
         errors.extend(self.heightmap_errors());
         errors.extend(self.probe_split_errors());
+        errors.extend(crate::load::clamps::errors(
+            &self.clamps,
+            self.clamps_file.as_ref(),
+        ));
         if self.max_velocity.is_some() && self.max_acceleration.is_none() {
             errors.push(Diagnostic::error(
                 Msg::MachineNeedsAcceleration,
