@@ -50,6 +50,8 @@ fn arg(cmd: &str, id: &str) -> Option<&'static str> {
         ("text2dxf", "file_pattern") => Some("Dateinamen-Muster (wie bei compile; text2dxf liest keine anderen Dateien, es ändert hier also nichts)"),
         ("text2dxf", "extended") => Some("Der Text kam von `dxf2text --extended`: Polylinien und Blockreferenzen auf den Pfad-Layern wurden zu Elementen, also ersetzt --into (und die Prüfung vor dem Überschreiben) auch sie"),
         ("fmt", "paths") => Some("MillPath-Dateien (.mpath) oder Ordner"),
+        ("render", "cut") => Some("Das gefräste Teil (das Material nach dem Programm, nach Tiefe gefärbt) auch ins SVG und PNG zeichnen (die HTML-Seite hat es immer)"),
+        ("render", "cut_cell") => Some("Zellgröße des gefrästen Teils in mm (Standard: cut_cell aus millpath.toml, sonst die der Prüfung, O/8 wo die Fläche es erlaubt)"),
         ("render", "file") => Some("Die Zeichnung (.dxf oder .mpath; ein Name ohne Endung bekommt .dxf)"),
         ("render", "surface") => Some("Die auf der Maschine gemessene Oberfläche unter den Bewegungen zeichnen: ein Antast-Protokoll (LinuxCNC PROBEOPEN, GRBL-Konsole mit [PRB:…], Zeilen x y z), eine ausgefüllte _Z.txt oder ein angepasstes Programm (NAME_Milling.gcode)"),
         _ => None,

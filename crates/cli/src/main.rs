@@ -207,6 +207,14 @@ enum Command {
         /// adjusted program (NAME_Milling.gcode)
         #[arg(long, value_name = "FILE")]
         surface: Option<String>,
+        /// Draw the cut part (the stock after the program, coloured by depth) in the SVG and
+        /// PNG too (the HTML page always has it)
+        #[arg(long)]
+        cut: bool,
+        /// Cell edge of the cut part, mm (default: cut_cell of millpath.toml, else the
+        /// checker's, O/8 where the area allows)
+        #[arg(long, value_name = "MM")]
+        cut_cell: Option<f64>,
     },
     /// Language server over standard input and output (for editors)
     Lsp {
@@ -337,6 +345,8 @@ fn main() -> ExitCode {
             svg,
             png,
             surface,
+            cut,
+            cut_cell,
         } => {
             let outputs = (html, svg, png);
             commands::render::run(
@@ -345,6 +355,7 @@ fn main() -> ExitCode {
                 path.as_deref(),
                 outputs,
                 surface.as_deref(),
+                (cut, cut_cell),
             )
         }
         Command::Lsp { .. } => millpath_lsp::run_stdio(),

@@ -7,6 +7,7 @@ mod code_actions;
 mod code_lens;
 mod common;
 mod completion;
+mod cut_view;
 mod diagnostic_range;
 mod document_links;
 mod folding;

@@ -29,6 +29,7 @@ mod finding;
 mod machine;
 mod parse;
 mod stock;
+mod stock_view;
 pub mod surface;
 mod surface_frame;
 
@@ -39,6 +40,7 @@ pub use finding::{
     Severity, StockCommentProblem, StockSkip, SyntaxError,
 };
 pub use parse::{parse_line, Block, Word, MAX_MAGNITUDE};
+pub use stock_view::{StockView, ViewRequest};
 pub use surface::{HeightMap, SurfaceProblem};
 pub use surface_frame::{ROUNDING as SURFACE_ROUNDING, SPLIT_TOLERANCE};
 
@@ -136,6 +138,8 @@ pub struct Options {
     pub clamps: Vec<Clamp>,
     /// Leave the stock model out (a quick check of the clamps and the program's words).
     pub skip_stock: bool,
+    /// Export the stock's height field for a viewer ([`Report::view`]).
+    pub view: Option<ViewRequest>,
 }
 
 /// The grid the stock model used.
@@ -169,6 +173,8 @@ pub struct Report {
     /// The measured surface the moves were judged against (given, or the program's
     /// `(MILLPATH-SURFACE …)` record).
     pub surface: Option<HeightMap>,
+    /// The stock after the program and its lowerings, when [`Options::view`] asked for it.
+    pub view: Option<StockView>,
 }
 
 impl Report {
@@ -426,6 +432,10 @@ pub fn verify_on_surface(
         }),
     }
 
+    if let (Some(req), Some(top), Some(tool)) = (&options.view, params.top, params.tool) {
+        let cell = report.stock.map(|s| s.cell);
+        report.view = stock_view::stock_view(&m.moves, top, tool, cell, req);
+    }
     findings.sort_by_key(|f| f.line.unwrap_or(0));
     if findings.len() > limits.max_findings {
         findings.truncate(limits.max_findings);

@@ -82,6 +82,9 @@ pub struct Settings {
     pub clamps: Vec<millpath_verify::Clamp>,
     /// Where the clamps were given (their errors are located there).
     pub clamps_file: Option<PathBuf>,
+    /// The toolpath view's cut part: cell edge in mm (`cut_cell`, `render --cut-cell`);
+    /// `None`: the checker's.
+    pub cut_cell: Option<f64>,
 }
 
 impl Default for Settings {
@@ -116,6 +119,7 @@ impl Default for Settings {
             probe_split_file: None,
             clamps: Vec::new(),
             clamps_file: None,
+            cut_cell: None,
         }
     }
 }
@@ -133,6 +137,7 @@ impl Settings {
         values.extend(self.plunge_feed.map(|v| ("plunge_feed", v)));
         values.extend(self.spindle_rpm.map(|v| ("spindle_rpm", v)));
         values.push(("spindle_dwell", self.spindle_dwell));
+        values.extend(self.cut_cell.map(|v| ("cut_cell", v)));
         let machine = self.machine_values();
         values.extend(machine.iter().cloned());
         let finite = |v: f64| v.is_finite() && v.abs() <= MAX_MAGNITUDE;
@@ -157,6 +162,7 @@ impl Settings {
         let mut positive = vec![
             ("plunge_feed", self.plunge_feed),
             ("spindle_rpm", self.spindle_rpm),
+            ("cut_cell", self.cut_cell),
         ];
         positive.extend(machine.iter().map(|(name, v)| (*name, Some(*v))));
         for (name, v) in positive {
