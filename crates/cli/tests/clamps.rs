@@ -245,6 +245,113 @@ fn cut_ends(program: &str) -> Vec<[f64; 3]> {
     ends
 }
 
+/// The tool's path through a program, sampled: (1-based line, x, y, z) every `step` mm or
+/// less along each G00/G01/G02/G03 (arcs by I/J from the start, Z linear) — a plain second
+/// reading of the G-code, independent of the checker's exact geometry.
+fn samples(program: &str, step: f64) -> Vec<(usize, [f64; 3])> {
+    let mut pos = [f64::NAN; 3];
+    let mut motion = 0;
+    let mut out = Vec::new();
+    for (n, l) in program.lines().enumerate() {
+        // comments: `(…)` and everything after `;`
+        let code = l.split([';', '(']).next().unwrap_or("");
+        let word = |c: char| {
+            code.split_whitespace()
+                .find_map(|w| w.strip_prefix(c)?.parse::<f64>().ok())
+        };
+        for w in code.split_whitespace() {
+            match w {
+                "G00" | "G0" => motion = 0,
+                "G01" | "G1" => motion = 1,
+                "G02" | "G2" => motion = 2,
+                "G03" | "G3" => motion = 3,
+                _ => {}
+            }
+        }
+        let mut to = pos;
+        for (k, c) in ['X', 'Y', 'Z'].into_iter().enumerate() {
+            if let Some(v) = word(c) {
+                to[k] = v;
+            }
+        }
+        // a line without axis words does not move (a repeated position does: the tool is there)
+        let moves = ['X', 'Y', 'Z'].into_iter().any(|c| word(c).is_some());
+        if !moves || to.iter().any(|v| v.is_nan()) {
+            pos = to;
+            continue;
+        }
+        let from = if pos.iter().any(|v| v.is_nan()) {
+            to
+        } else {
+            pos
+        };
+        let lerp = |t: f64| [0, 1, 2].map(|k| from[k] + t * (to[k] - from[k]));
+        if motion >= 2 {
+            let (cx, cy) = (
+                from[0] + word('I').unwrap_or(0.0),
+                from[1] + word('J').unwrap_or(0.0),
+            );
+            let r = (from[0] - cx).hypot(from[1] - cy);
+            let a0 = (from[1] - cy).atan2(from[0] - cx);
+            let a1 = (to[1] - cy).atan2(to[0] - cx);
+            let tau = std::f64::consts::TAU;
+            let mut sweep = if motion == 3 { a1 - a0 } else { a0 - a1 }.rem_euclid(tau);
+            if sweep < 1e-9 {
+                sweep = tau;
+            }
+            let pieces = ((r * sweep / step).ceil() as usize).max(1);
+            for k in 0..=pieces {
+                let t = k as f64 / pieces as f64;
+                let a = if motion == 3 {
+                    a0 + t * sweep
+                } else {
+                    a0 - t * sweep
+                };
+                out.push((
+                    n + 1,
+                    [
+                        cx + r * a.cos(),
+                        cy + r * a.sin(),
+                        from[2] + t * (to[2] - from[2]),
+                    ],
+                ));
+            }
+        } else {
+            let len = (0..3)
+                .map(|k| (to[k] - from[k]).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            let pieces = ((len / step).ceil() as usize).max(1);
+            for k in 0..=pieces {
+                out.push((n + 1, lerp(k as f64 / pieces as f64)));
+            }
+        }
+        pos = to;
+    }
+    out
+}
+
+/// (line, clamp) where a sample of the tool (radius `r`) is within `r + grow` of the box in
+/// XY with its tip at most `grow` above the box's top.
+fn sampled_hits(
+    samples: &[(usize, [f64; 3])],
+    clamps: &[(String, [f64; 3], [f64; 3])],
+    r: f64,
+    grow: f64,
+) -> BTreeSet<(usize, String)> {
+    let mut hits = BTreeSet::new();
+    for (line, p) in samples {
+        for (name, min, max) in clamps {
+            let dx = (min[0] - p[0]).max(p[0] - max[0]).max(0.0);
+            let dy = (min[1] - p[1]).max(p[1] - max[1]).max(0.0);
+            if dx.hypot(dy) <= r + grow && p[2] <= max[2] + grow {
+                hits.insert((*line, name.clone()));
+            }
+        }
+    }
+    hits
+}
+
 /// (G-code line, clamp name) of compile's clamp errors (`check --format json`).
 fn compile_hits(json: &str) -> BTreeSet<(usize, String)> {
     let v: serde_json::Value = serde_json::from_str(json).unwrap();
@@ -306,13 +413,15 @@ fn verify_finds_the_same_hits_as_compile_on_every_shared_drawing() {
         .filter(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("dxf")))
         .collect();
     drawings.sort();
-    let (mut programs, mut boxes, mut hits, mut hit_boxes) = (0, 0, 0, 0);
-    for drawing in &drawings {
+    let (mut programs, mut boxes, mut hits, mut hit_boxes, mut sampled) = (0, 0, 0, 0, 0);
+    // the dialects whose programs carry O in their (MILLPATH-STOCK …) comment
+    for (drawing, dialect) in drawings.iter().flat_map(|d| [(d, "linuxcnc"), (d, "grbl")]) {
         let dir = tempfile::tempdir().unwrap();
         let name = drawing.file_name().unwrap().to_string_lossy().into_owned();
         std::fs::copy(drawing, dir.path().join(&name)).unwrap();
-        let settings = "feed = 150\nsweep_speed = 500\nsweep_height = 15\ndialect = \"linuxcnc\"\n";
-        std::fs::write(dir.path().join("millpath.toml"), settings).unwrap();
+        let settings =
+            format!("feed = 150\nsweep_speed = 500\nsweep_height = 15\ndialect = \"{dialect}\"\n");
+        std::fs::write(dir.path().join("millpath.toml"), &settings).unwrap();
         // drawings the compiler refuses (several paths, errors) have no program
         millpath(dir.path(), &["compile", &name]);
         let Some(program) = std::fs::read_dir(dir.path())
@@ -334,6 +443,7 @@ fn verify_finds_the_same_hits_as_compile_on_every_shared_drawing() {
         // boxes on the toolpath and high above it (hits: the holder and spindle stand above
         // the tip), and beside it (some hit by other moves, some not)
         let mut toml = settings.to_string();
+        let mut boxes_here = Vec::new();
         let step = (ends.len() / 5).max(1);
         let placed = ends.iter().step_by(step).take(5).count();
         for (k, p) in ends.iter().step_by(step).take(5).enumerate() {
@@ -356,6 +466,7 @@ fn verify_finds_the_same_hits_as_compile_on_every_shared_drawing() {
                 ),
             ] {
                 boxes += 1;
+                boxes_here.push((format!("{kind} {k}"), min, max));
                 toml.push_str(&format!(
                     "[[clamp]]\nname = \"{kind} {k}\"\nmin = {min:?}\nmax = {max:?}\n"
                 ));
@@ -367,17 +478,37 @@ fn verify_finds_the_same_hits_as_compile_on_every_shared_drawing() {
         let gcode = program.file_name().unwrap().to_string_lossy().into_owned();
         let o = millpath(
             dir.path(),
-            &[
-                "verify",
-                "--dialect",
-                "linuxcnc",
-                "--format",
-                "json",
-                &gcode,
-            ],
+            &["verify", "--dialect", dialect, "--format", "json", &gcode],
         );
         let from_verify = verify_hits(&String::from_utf8_lossy(&o.stdout));
-        assert_eq!(from_compile, from_verify, "{name}");
+        assert_eq!(from_compile, from_verify, "{name} {dialect}");
+        // a sampled second reading of the program: every sampled hit is found, and every hit
+        // found is one when the tool is taken 0.05 mm wider and higher (the samples' spacing)
+        let tool = text
+            .lines()
+            .find_map(|l| {
+                l.split("O=")
+                    .nth(1)?
+                    .split([' ', ')'])
+                    .next()?
+                    .parse::<f64>()
+                    .ok()
+            })
+            .expect("MILLPATH-STOCK comment");
+        let path = samples(&text, 0.01);
+        let strict = sampled_hits(&path, &boxes_here, tool / 2.0, 0.0);
+        let loose = sampled_hits(&path, &boxes_here, tool / 2.0, 0.05);
+        assert!(
+            strict.is_subset(&from_verify),
+            "{name}: missed {:?}",
+            strict.difference(&from_verify).collect::<Vec<_>>()
+        );
+        assert!(
+            from_verify.is_subset(&loose),
+            "{name}: not hits {:?}",
+            from_verify.difference(&loose).collect::<Vec<_>>()
+        );
+        sampled += strict.len();
         // every box placed on a cut's end or high above it is hit
         for k in 0..placed {
             for box_name in [format!("on {k}"), format!("above {k}")] {
@@ -393,7 +524,7 @@ fn verify_finds_the_same_hits_as_compile_on_every_shared_drawing() {
             .len();
     }
     eprintln!(
-        "{} drawings, {programs} programs, {boxes} boxes: {hit_boxes} boxes hit, {hits} (line, box) hits, compile = verify",
+        "{} drawings in linuxcnc and grbl, {programs} programs, {boxes} boxes: {hit_boxes} boxes hit, {hits} (line, box) hits, compile = verify; {sampled} of them also by sampling every 0.01 mm",
         drawings.len()
     );
 }
