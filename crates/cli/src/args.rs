@@ -172,6 +172,9 @@ pub fn settings_for(
         if cfg.heightmap.is_some() {
             s.heightmap_file = Some(p.clone());
         }
+        if !cfg.clamp.is_empty() {
+            s.clamps_file = Some(p.clone());
+        }
         if cfg.probe_split.is_some() {
             s.probe_split_file = Some(p);
         }

@@ -13,6 +13,7 @@ mod output;
 mod png;
 mod report;
 mod surface_file;
+mod verify_clamps;
 mod workers;
 mod write;
 
@@ -95,6 +96,17 @@ enum Command {
         /// With --surface: largest XY distance, mm, between measurements of one grid line
         #[arg(long, value_name = "MM", default_value_t = millpath_core::probe::adjustz::DEFAULT_TOLERANCE, requires = "surface")]
         tolerance: f64,
+        /// A keep-out box the tool must never touch, mm (repeatable); without --clamp and
+        /// --config: the [[clamp]] boxes of the millpath.toml nearest each program
+        #[arg(
+            long,
+            value_name = "NAME,XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX",
+            allow_hyphen_values = true
+        )]
+        clamp: Vec<String>,
+        /// Read the [[clamp]] boxes from this millpath.toml
+        #[arg(long, value_name = "FILE")]
+        config: Option<PathBuf>,
         /// G-code programs to check
         #[arg(required = true)]
         files: Vec<PathBuf>,
@@ -195,6 +207,14 @@ enum Command {
         /// adjusted program (NAME_Milling.gcode)
         #[arg(long, value_name = "FILE")]
         surface: Option<String>,
+        /// Draw the cut part (the stock after the program, coloured by depth) in the SVG and
+        /// PNG too (the HTML page always has it)
+        #[arg(long)]
+        cut: bool,
+        /// Cell edge of the cut part, mm (default: cut_cell of millpath.toml, else the
+        /// checker's, O/8 where the area allows)
+        #[arg(long, value_name = "MM")]
+        cut_cell: Option<f64>,
     },
     /// Language server over standard input and output (for editors)
     Lsp {
@@ -259,6 +279,8 @@ fn main() -> ExitCode {
             format,
             surface,
             tolerance,
+            clamp,
+            config,
             files,
         } => verify::run(&verify::Args {
             dialect: match dialect {
@@ -275,6 +297,8 @@ fn main() -> ExitCode {
             },
             json: format == VerifyFormat::Json,
             surface: surface.map(|file| (file, tolerance)),
+            clamps: clamp,
+            config,
             files,
         }),
         Command::AdjustZ {
@@ -321,6 +345,8 @@ fn main() -> ExitCode {
             svg,
             png,
             surface,
+            cut,
+            cut_cell,
         } => {
             let outputs = (html, svg, png);
             commands::render::run(
@@ -329,6 +355,7 @@ fn main() -> ExitCode {
                 path.as_deref(),
                 outputs,
                 surface.as_deref(),
+                (cut, cut_cell),
             )
         }
         Command::Lsp { .. } => millpath_lsp::run_stdio(),

@@ -132,3 +132,33 @@ fn every_argument_of_every_command_has_a_description() {
         }
     }
 }
+
+#[test]
+fn render_draws_the_cut_part_in_svg_and_png_when_asked() {
+    let dir = tempfile::tempdir().unwrap();
+    for f in ["2001.mpath", "2010.mpath", "millpath.toml"] {
+        std::fs::copy(examples().join(f), dir.path().join(f)).unwrap();
+    }
+    let plain = svg_of(dir.path(), &[]);
+    assert!(!plain.contains("#e8dcc4"), "no cut part unless asked");
+    let cut = svg_of(dir.path(), &["--cut"]);
+    // the uncut stock and depth levels of the cut cells under the moves
+    assert!(cut.contains(r##"fill="#e8dcc4""##), "{}", &cut[..400]);
+    assert!(cut.matches("fill=\"hsl(").count() >= 2);
+    // a coarser grid: fewer, larger cells
+    let coarse = svg_of(dir.path(), &["--cut", "--cut-cell", "1"]);
+    assert!(coarse.len() < cut.len());
+    let o = millpath(
+        dir.path(),
+        &["render", "--cut", "--png", "t.png", "2010.mpath"],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(std::fs::read(dir.path().join("t.png"))
+        .unwrap()
+        .starts_with(b"\x89PNG"));
+    let o = millpath(
+        dir.path(),
+        &["render", "--cut-cell", "-1", "--svg", "t.svg", "2010.mpath"],
+    );
+    assert!(!o.status.success());
+}

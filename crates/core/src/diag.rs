@@ -390,6 +390,10 @@ messages! {
     // a height map said in the drawing: K at the path start (issue 21)
     HeightmapKeyBad = "K{0} is no height map: write K<step> or K<step>+<margin> in mm (e.g. K10+2), step at least {1} mm, margin at least 0", "K{0} ist keine Höhenkarte: K<Abstand> oder K<Abstand>+<Rand> in mm schreiben (z. B. K10+2), Abstand mindestens {1} mm, Rand mindestens 0";
     HeightmapKWithDrawnProbes = "Path {0} has drawn Z probes ({1}) and a height map in its start text (K): use one or the other (both would correct the same Z twice)", "Pfad {0} hat gezeichnete Z-Messpunkte ({1}) und eine Höhenkarte in seinem Starttext (K): nur eines von beiden verwenden (beide würden dasselbe Z doppelt korrigieren)";
+    // clamps and fixtures: keep-out boxes of millpath.toml (issue 24)
+    ClampHit = "The tool (diameter {3} mm, from its tip upward) runs into clamp '{0}' at G-code line {1} '{2}'", "Das Werkzeug (Durchmesser {3} mm, von der Spitze aufwärts) fährt in die Spannpratze '{0}' bei G-Code-Zeile {1} '{2}'";
+    ClampTooMany = "millpath.toml declares {0} clamps, more than {1}", "millpath.toml gibt {0} Spannpratzen an, mehr als {1}";
+    ClampEmpty = "Clamp '{0}': min must be below max on {1} (min {2}, max {3})", "Spannpratze '{0}': min muss auf {1} unter max liegen (min {2}, max {3})";
 }
 
 impl Msg {

@@ -173,7 +173,13 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
                     &Controller::for_model(&session.settings, &model),
                     session.stop,
                 ) {
-                    Ok(stats) => outcome.stats.push((model.name().to_string(), stats)),
+                    Ok(stats) => {
+                        outcome.stats.push((model.name().to_string(), stats));
+                        // the clamps are checked as you type (on the program compile writes)
+                        if !reference_check && !session.settings.clamps.is_empty() {
+                            generate_and_review_as(session, &model, &file_name, banner, true);
+                        }
+                    }
                     Err(errs) => errs.into_iter().for_each(|e| session.diags.push(e)),
                 }
             } else if let Some(g) = generate_and_review(session, &model, &file_name, banner) {
@@ -258,6 +264,17 @@ fn generate_and_review(
     file_name: &str,
     banner: &str,
 ) -> Option<(emit::Generated, Option<f64>)> {
+    generate_and_review_as(session, model, file_name, banner, false)
+}
+
+/// [`generate_and_review`]; `clamps_only`: without the stock model, only the clamps' findings.
+fn generate_and_review_as(
+    session: &mut Session,
+    model: &model::Model,
+    file_name: &str,
+    banner: &str,
+    clamps_only: bool,
+) -> Option<(emit::Generated, Option<f64>)> {
     let generated = match generate_for(
         model,
         file_name,
@@ -282,6 +299,8 @@ fn generate_and_review(
         &generated.line_sources,
         session.lang(),
         session.settings.dialect,
+        &session.settings.clamps,
+        clamps_only,
     );
     for d in review.diagnostics {
         session.diags.push(d);

@@ -6,7 +6,7 @@ use crate::args;
 use crate::diag::{Diagnostic, Lang, Msg, Origin};
 use crate::emit::dialect::lowest_depth;
 use crate::model::{Element, Model};
-use millpath_verify::{verify, Dialect, Options, Severity};
+use millpath_verify::{verify, Clamp, Dialect, FindingKind, Options, Severity};
 
 /// The material top, tool diameter and deepest drawn depth the checker needs. Subpaths raised
 /// by H lift the top: the stock's top is the highest of them (nothing above it is material).
@@ -32,13 +32,17 @@ pub fn stock_of(model: &Model) -> (f64, f64, Option<f64>) {
 
 /// Checks one written program; findings become diagnostics at the element of their line. In
 /// the reference dialect they are warnings (its output must stay byte-identical to the
-/// reference tool's); for a real controller an error stops the write.
+/// reference tool's); for a real controller an error stops the write. A move into a clamp
+/// is an error in every dialect (no program may run into a fixture). `clamps_only`: the
+/// editor's quick check, without the stock model, reports the clamps alone.
 pub fn review(
     program: &str,
     model: &Model,
     line_sources: &[Option<Origin>],
     lang: Lang,
     dialect: crate::emit::dialect::Dialect,
+    clamps: &[Clamp],
+    clamps_only: bool,
 ) -> Review {
     use crate::emit::dialect::Dialect as Ours;
     let (checked_as, strict) = match dialect {
@@ -54,6 +58,8 @@ pub fn review(
             top: Some(top),
             tool: Some(tool),
             bottom,
+            clamps: clamps.to_vec(),
+            skip_stock: clamps_only,
             ..Options::default()
         },
     );
@@ -65,11 +71,21 @@ pub fn review(
         .findings
         .iter()
         .filter(|f| f.severity != Severity::Note)
+        .filter(|f| !clamps_only || matches!(f.kind, FindingKind::ClampHit { .. }))
         .map(|f| {
             let origin = f
                 .line
                 .and_then(|l| line_sources.get(l.wrapping_sub(1)).cloned().flatten())
                 .unwrap_or_else(|| model.raw.start_origin());
+            if let FindingKind::ClampHit { name, .. } = &f.kind {
+                let at = args![
+                    name,
+                    f.line.unwrap_or(0),
+                    f.text,
+                    crate::params::fmt_num(tool)
+                ];
+                return Diagnostic::error(Msg::ClampHit, origin, at);
+            }
             let args = args![f.line.unwrap_or(0), f.text, f.message(vlang)];
             if strict && f.severity == Severity::Error {
                 Diagnostic::error(Msg::SecondOpinion, origin, args)
@@ -90,4 +106,45 @@ pub struct Review {
     pub diagnostics: Vec<Diagnostic>,
     /// Material the program removes, mm³, by the checker's stock model.
     pub removed_volume: Option<f64>,
+}
+
+/// The moves of a written program that touch a clamp: (G-code line, index of the clamp),
+/// by the independent checker (for the toolpath view's red marks).
+pub fn clamp_hits(
+    program: &str,
+    model: &Model,
+    dialect: crate::emit::dialect::Dialect,
+    clamps: &[Clamp],
+) -> Vec<(usize, usize)> {
+    use crate::emit::dialect::Dialect as Ours;
+    if clamps.is_empty() {
+        return Vec::new();
+    }
+    let report = verify(
+        program,
+        &Options {
+            dialect: match dialect {
+                Ours::Reference => Dialect::Reference,
+                Ours::LinuxCnc => Dialect::LinuxCnc,
+                Ours::Grbl => Dialect::Grbl,
+            },
+            tool: Some(model.params.o),
+            clamps: clamps.to_vec(),
+            skip_stock: true,
+            ..Options::default()
+        },
+    );
+    report
+        .findings
+        .iter()
+        .filter_map(|f| match &f.kind {
+            FindingKind::ClampHit { name, min, max, .. } => {
+                let k = clamps
+                    .iter()
+                    .position(|c| c.name == *name && c.min == *min && c.max == *max)?;
+                Some((f.line?, k))
+            }
+            _ => None,
+        })
+        .collect()
 }

@@ -7,6 +7,7 @@ mod code_actions;
 mod code_lens;
 mod common;
 mod completion;
+mod cut_view;
 mod diagnostic_range;
 mod document_links;
 mod folding;
@@ -225,6 +226,9 @@ impl Workspace {
                 match config::parse(&String::from_utf8_lossy(&bytes), d) {
                     Ok(cfg) => {
                         cfg.apply(&mut s, &mut have);
+                        if !cfg.clamp.is_empty() {
+                            s.clamps_file = Some(candidate.clone());
+                        }
                         let src = SettingSource::File(candidate.clone());
                         if cfg.feed.is_some() {
                             ds.feed = src.clone();

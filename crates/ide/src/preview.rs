@@ -26,6 +26,10 @@ pub(crate) struct TopModel {
     pub sweep_speed: f64,
     pub controller: Controller,
     pub errors: Vec<String>,
+    /// `[[clamp]]` boxes of the settings (drawn by the toolpath view).
+    pub clamps: Vec<millpath_verify::Clamp>,
+    /// The cut part's cell edge (mm) asked for.
+    pub cut_cell: Option<f64>,
 }
 
 /// Builds `name` (default: the first path of the file) with the file's settings.
@@ -58,6 +62,8 @@ pub(crate) fn top_model(
         Ok(Some(model)) => Ok(TopModel {
             // the drawing's own height map (K) as compile takes it
             controller: Controller::for_model(&session.settings, &model),
+            clamps: session.settings.clamps.clone(),
+            cut_cell: session.settings.cut_cell,
             model,
             lang,
             sweep_speed,
@@ -118,6 +124,7 @@ pub fn preview(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<Previe
         sweep_speed,
         controller,
         errors,
+        ..
     } = match top_model(ws, path, name) {
         Ok(t) => t,
         Err(e) => return Ok(refused(vec![e])),

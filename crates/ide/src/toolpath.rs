@@ -32,6 +32,8 @@ pub fn toolpath(
         errors,
         sweep_speed,
         controller,
+        clamps,
+        cut_cell,
         ..
     } = top_model(ws, path, name)?;
     let name = model.name().to_string();
@@ -41,6 +43,13 @@ pub fn toolpath(
             .collect::<Vec<_>>()
             .join("; ")
     })?;
+    // the written program: its moves against the clamps, its stock for the cut part
+    let program = written(&model, path, &controller, sweep_speed, lang);
+    let hits = clamp_hits(program.as_deref(), &model, &controller, &clamps);
+    let cut = program.as_deref().and_then(|p| {
+        let (top, tool) = (model.params.t, model.params.o);
+        crate::cut_view::cut_json(p, controller.dialect, top, tool, cut_cell)
+    });
     // each file's line index and lines, made once (a program has many elements per file)
     let mut texts: std::collections::HashMap<PathBuf, (crate::LineIndex, Vec<String>)> =
         std::collections::HashMap::new();
@@ -102,7 +111,7 @@ pub fn toolpath(
                     sources.len() - 1
                 })
             });
-            json!({
+            let mut v = json!({
                 "kind": m.kind,
                 "from": xyz(m.from),
                 "to": xyz(m.to),
@@ -112,7 +121,12 @@ pub fn toolpath(
                 "gcode": m.gcode,
                 "feed": r3(m.feed),
                 "t": r3(m.seconds),
-            })
+            });
+            // the clamps this move runs into (only on such moves: large programs stay small)
+            if let Some(h) = hits.get(&m.line) {
+                v["hits"] = json!(h);
+            }
+            v
         })
         .collect();
     let probes: Vec<serde_json::Value> = tp
@@ -147,12 +161,63 @@ pub fn toolpath(
         "bounds": { "minX": r3(minx), "minY": r3(miny), "maxX": r3(maxx), "maxY": r3(maxy), "minZ": r3(minz), "maxZ": r3(maxz) },
         "warnings": errors,
         "heightmap": serde_json::Value::Null,
+        "cut": cut,
+        "clamps": clamps.iter().map(|c| json!({ "name": c.name, "min": c.min, "max": c.max })).collect::<Vec<_>>(),
     });
     if let Some(hm) = heightmap {
         crate::heightmap_view::grow_bounds(&mut data, &hm);
         data["heightmap"] = hm;
     }
     Ok(data)
+}
+
+/// The program compile writes (the clean program when there are probes); `None` when it
+/// cannot be written.
+fn written(
+    model: &millpath_core::model::Model,
+    path: &Path,
+    controller: &millpath_core::emit::Controller,
+    sweep_speed: f64,
+    lang: millpath_core::Lang,
+) -> Option<String> {
+    let file_name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let banner = millpath_core::banner();
+    let g = millpath_core::emit::generate_for(
+        model,
+        &file_name,
+        &banner,
+        sweep_speed,
+        lang,
+        controller,
+    )
+    .ok()?;
+    Some(match g.output {
+        millpath_core::emit::Output::Milling(p) => p,
+        millpath_core::emit::Output::Probing { clean, .. } => clean,
+    })
+}
+
+/// The clamps each G-code line's move touches (indexes into `clamps`), by the same check as
+/// compile's on the program compile writes; empty without clamps.
+fn clamp_hits(
+    program: Option<&str>,
+    model: &millpath_core::model::Model,
+    controller: &millpath_core::emit::Controller,
+    clamps: &[millpath_verify::Clamp],
+) -> std::collections::HashMap<usize, Vec<usize>> {
+    let mut by_line: std::collections::HashMap<usize, Vec<usize>> = Default::default();
+    let Some(program) = program.filter(|_| !clamps.is_empty()) else {
+        return by_line;
+    };
+    let found =
+        millpath_core::second_opinion::clamp_hits(program, model, controller.dialect, clamps);
+    for (line, k) in found {
+        by_line.entry(line).or_default().push(k);
+    }
+    by_line
 }
 
 /// The toolpath view as a standalone HTML page (the page of `editors/toolpath` with the data
@@ -169,8 +234,8 @@ pub fn toolpath_html(data: &serde_json::Value) -> String {
 }
 
 /// The toolpath as a standalone SVG (top view; cuts coloured by depth, rapid moves dashed,
-/// probes as circles).
-pub fn toolpath_svg(data: &serde_json::Value) -> String {
+/// probes as circles); `cut`: the cut part under the moves.
+pub fn toolpath_svg(data: &serde_json::Value, cut: bool) -> String {
     use std::fmt::Write;
     let b = &data["bounds"];
     let f = |v: &serde_json::Value| v.as_f64().unwrap_or(0.0);
@@ -208,6 +273,9 @@ pub fn toolpath_svg(data: &serde_json::Value) -> String {
         r#"<g transform="scale(1,-1)" fill="none" stroke-linecap="round">"#
     );
     let stroke = (w.max(h) / 400.0).max(0.05);
+    if cut && data["cut"].is_object() {
+        s.push_str(&crate::cut_view::cut_svg(&data["cut"]));
+    }
     if data["heightmap"].is_object() {
         s.push_str(&crate::heightmap_view::svg(&data["heightmap"], stroke));
     }

@@ -191,6 +191,16 @@ pub enum FindingKind {
     },
     /// No M2/M30 and no closing `%`: the program is probably truncated.
     MissingProgramEnd,
+    /// The tool (a cylinder of diameter O from its tip upward) touches a keep-out box.
+    ClampHit {
+        name: String,
+        min: [f64; 3],
+        max: [f64; 3],
+        /// The tool radius the move was judged with.
+        radius: f64,
+    },
+    /// Clamps are given but the tool diameter is not: only the tool's axis is checked.
+    ClampsWithoutTool,
     /// Code after M2/M30: the controller ignores it.
     AfterProgramEnd,
     StockSkipped(StockSkip),
@@ -237,6 +247,8 @@ impl FindingKind {
             FindingKind::ArcInvalid(_) => "arc-invalid",
             FindingKind::UnknownPosition { .. } => "unknown-position",
             FindingKind::MissingProgramEnd => "missing-program-end",
+            FindingKind::ClampHit { .. } => "clamp-hit",
+            FindingKind::ClampsWithoutTool => "clamps-without-tool",
             FindingKind::AfterProgramEnd => "after-program-end",
             FindingKind::StockSkipped(_) => "stock-skipped",
             FindingKind::StockComment(_) => "stock-comment",
@@ -346,6 +358,25 @@ impl FindingKind {
             FindingKind::UnknownPosition { motion } => pick(
                 format!("{motion} from an unknown position (no earlier move set X, Y and Z): not simulated"),
                 format!("{motion} von unbekannter Position (keine frühere Bewegung setzte X, Y und Z): nicht simuliert"),
+            ),
+            FindingKind::ClampHit {
+                name,
+                min,
+                max,
+                radius,
+            } => pick(
+                format!(
+                    "the tool (radius {} mm, from its tip upward) runs into clamp \"{name}\" (X{}…{} Y{}…{} Z{}…{})",
+                    f3(*radius), f3(min[0]), f3(max[0]), f3(min[1]), f3(max[1]), f3(min[2]), f3(max[2])
+                ),
+                format!(
+                    "das Werkzeug (Radius {} mm, von der Spitze aufwärts) fährt in die Spannpratze „{name}“ (X{}…{} Y{}…{} Z{}…{})",
+                    f3(*radius), f3(min[0]), f3(max[0]), f3(min[1]), f3(max[1]), f3(min[2]), f3(max[2])
+                ),
+            ),
+            FindingKind::ClampsWithoutTool => pick(
+                "clamps are checked with the tool's axis only: the tool diameter is unknown (give --tool or a (MILLPATH-STOCK …) comment)".into(),
+                "Spannpratzen werden nur mit der Werkzeugachse geprüft: der Werkzeugdurchmesser ist unbekannt (--tool oder ein Kommentar (MILLPATH-STOCK …) angeben)".into(),
             ),
             FindingKind::MissingProgramEnd => pick(
                 "the program has no end (M30, M2 or a closing %): is it truncated?".into(),

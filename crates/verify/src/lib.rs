@@ -10,6 +10,8 @@
 //! * rapid moves (G00) through stock higher than the tool tip, and G00 plunges into stock;
 //! * cutting moves without a positive feed rate, by the rules of the chosen [`Dialect`];
 //! * cuts below the deepest drawn depth (when known);
+//! * moves whose tool (diameter O, from the tip upward) touches a keep-out box
+//!   ([`Options::clamps`], `clamps.rs`);
 //! * arcs whose start and end radius differ by more than 0.002 mm, arcs outside G17;
 //! * non-finite or absurd numbers (|v| > 1e6), unknown codes, syntax errors, a missing
 //!   program end (a truncated file).
@@ -22,19 +24,23 @@
 //! [`Limits::max_work`] cell visits (each with a finding saying so).
 
 mod adjusted;
+mod clamps;
 mod finding;
 mod machine;
 mod parse;
 mod stock;
+mod stock_view;
 pub mod surface;
 mod surface_frame;
 
 pub use adjusted::PROBES_WORD;
+pub use clamps::{Clamp, MAX_CLAMPS};
 pub use finding::{
     AdjustedProblem, ArcProblem, Finding, FindingKind, Lang, Limit, NoFeedReason, NumberProblem,
     Severity, StockCommentProblem, StockSkip, SyntaxError,
 };
 pub use parse::{parse_line, Block, Word, MAX_MAGNITUDE};
+pub use stock_view::{StockView, ViewRequest};
 pub use surface::{HeightMap, SurfaceProblem};
 pub use surface_frame::{ROUNDING as SURFACE_ROUNDING, SPLIT_TOLERANCE};
 
@@ -121,13 +127,19 @@ impl Default for Limits {
 }
 
 /// What to check against. `top`/`tool`/`bottom` override a `(MILLPATH-STOCK …)` comment.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct Options {
     pub dialect: Dialect,
     pub top: Option<f64>,
     pub tool: Option<f64>,
     pub bottom: Option<f64>,
     pub limits: Limits,
+    /// Keep-out boxes in machine coordinates: every move is checked against them.
+    pub clamps: Vec<Clamp>,
+    /// Leave the stock model out (a quick check of the clamps and the program's words).
+    pub skip_stock: bool,
+    /// Export the stock's height field for a viewer ([`Report::view`]).
+    pub view: Option<ViewRequest>,
 }
 
 /// The grid the stock model used.
@@ -161,6 +173,8 @@ pub struct Report {
     /// The measured surface the moves were judged against (given, or the program's
     /// `(MILLPATH-SURFACE …)` record).
     pub surface: Option<HeightMap>,
+    /// The stock after the program and its lowerings, when [`Options::view`] asked for it.
+    pub view: Option<StockView>,
 }
 
 impl Report {
@@ -361,6 +375,7 @@ pub fn verify_on_surface(
     findings.extend(extra);
     // on a height map: the moves back to the drawing's frame, within the roundings; cuts
     // also sampled inside (a piece whose straight Z misses the surface between its ends)
+    check_clamps(&m.moves, options, params.tool, &mut findings);
     let mut ztol = Z_TOLERANCE;
     let mut inside: Vec<Option<(f64, f64, f64)>> = Vec::new();
     if let Some(map) = &map {
@@ -402,6 +417,7 @@ pub fn verify_on_surface(
         ..Default::default()
     };
     match (params.top, params.tool) {
+        _ if options.skip_stock => {}
         (Some(top), Some(tool)) => {
             let stock = (top, tool, ztol);
             run_stock(&m.moves, stock, &limits, &mut findings, &mut report);
@@ -416,6 +432,10 @@ pub fn verify_on_surface(
         }),
     }
 
+    if let (Some(req), Some(top), Some(tool)) = (&options.view, params.top, params.tool) {
+        let cell = report.stock.map(|s| s.cell);
+        report.view = stock_view::stock_view(&m.moves, top, tool, cell, req);
+    }
     findings.sort_by_key(|f| f.line.unwrap_or(0));
     if findings.len() > limits.max_findings {
         findings.truncate(limits.max_findings);
@@ -439,6 +459,47 @@ pub fn verify_on_surface(
         })
         .collect();
     report
+}
+
+/// Every move against the keep-out boxes (machine coordinates: before a height map's frame),
+/// one finding per move and box it touches.
+fn check_clamps(
+    moves: &[machine::Move],
+    options: &Options,
+    tool: Option<f64>,
+    findings: &mut Vec<Raw>,
+) {
+    let clamps = &options.clamps[..options.clamps.len().min(MAX_CLAMPS)];
+    if clamps.is_empty() {
+        return;
+    }
+    if tool.is_none() {
+        findings.push(Raw {
+            line: None,
+            kind: FindingKind::ClampsWithoutTool,
+            severity: Severity::Warning,
+        });
+    }
+    let radius = tool.unwrap_or(0.0) / 2.0;
+    for mv in moves {
+        for c in clamps {
+            if clamps::hit(mv, radius, std::slice::from_ref(c)).is_some() {
+                findings.push(Raw {
+                    line: Some(mv.line),
+                    kind: FindingKind::ClampHit {
+                        name: c.name.clone(),
+                        min: c.min,
+                        max: c.max,
+                        radius,
+                    },
+                    severity: Severity::Error,
+                });
+            }
+        }
+        if findings.len() > options.limits.max_findings {
+            break;
+        }
+    }
 }
 
 /// Moves the Z of a line of an adjusted program to the drawing's frame ([`adjusted`]).

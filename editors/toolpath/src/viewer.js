@@ -5,6 +5,9 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { paths, positionAt, cumulative, moveAt } from './geometry.js';
+import { boundsWithClamps, clampGroup, HIT_COLOUR, CLAMP_COLOUR } from './clamps.js';
+import { CutPart, cutColour } from './cut.js';
+import { widthGroup } from './width.js';
 
 const t0 = performance.now();
 const KIND_COLOURS = {
@@ -30,6 +33,8 @@ const st = {
   data: null, world: null, extent: 1, centre: new THREE.Vector3(), cum: null, total: 0,
   time: 0, playing: false, speed: 20, selected: [], hover: -1, colour: 'depth',
   segFrom: null, segMove: null, segCount: 0, drawn: 0,
+  // the cut part follows the playback once it is used; before, it shows the finished part
+  cutFollows: false, showCut: true, showWidth: false, feeds: { min: 0, max: 0 },
 };
 
 // ---- drawing on demand ----
@@ -89,9 +94,16 @@ function depthColour(z, b, out) {
   // shallow: blue, deep: red
   return out.setHSL((220 - 220 * t) / 360, 0.8, 0.47);
 }
+/// Feed colour: slow blue to fast red over the cuts' feeds.
+function feedColour(f, out) {
+  const { min, max } = st.feeds;
+  const t = max > min ? Math.max(0, Math.min(1, (f - min) / (max - min))) : 0.5;
+  return out.setHSL((240 - 240 * t) / 360, 0.85, 0.45);
+}
 function moveColour(m, b, out) {
   if (m.kind === 'rapid') return out.set(KIND_COLOURS.rapid);
   if (st.colour === 'kind') return out.set(KIND_COLOURS[m.kind] || KIND_COLOURS.mill);
+  if (st.colour === 'feed') return feedColour(Number(m.feed) || 0, out);
   return depthColour(Math.min(m.from[2], m.to[2]), b, out);
 }
 
@@ -112,6 +124,8 @@ function build(data) {
   const group = new THREE.Group();
   const moves = data.moves;
   const pts = paths(moves);
+  const cutFeeds = moves.filter((m) => m.kind !== 'rapid').map((m) => Number(m.feed) || 0);
+  st.feeds = { min: cutFeeds.length ? Math.min(...cutFeeds.slice(0, 200000)) : 0, max: cutFeeds.length ? Math.max(...cutFeeds.slice(0, 200000)) : 0 };
   st.segFrom = pts.segFrom; st.segMove = pts.segMove; st.segCount = pts.count;
   // cuts and rapids: one geometry each (a 100,000-move program is two draw calls)
   const cutPos = new Float32Array(pts.count * 6), cutCol = new Float32Array(pts.count * 6);
@@ -141,11 +155,13 @@ function build(data) {
   rapids.computeLineDistances();
   group.add(cuts, rapids);
 
-  const w = Math.max(b.maxX - b.minX, 1), h = Math.max(b.maxY - b.minY, 1);
-  const extent = Math.max(w, h, b.maxZ - b.minZ, 10);
+  // the view's extent: the moves and the clamps
+  const vb = boundsWithClamps(b, data.clamps);
+  const w = Math.max(vb.maxX - vb.minX, 1), h = Math.max(vb.maxY - vb.minY, 1);
+  const extent = Math.max(w, h, vb.maxZ - vb.minZ, 10);
   st.extent = extent * 1.15;
   rapids.material.dashSize = rapids.material.gapSize = extent / 150;
-  st.centre.set((b.minX + b.maxX) / 2, (b.minY + b.maxY) / 2, (b.minZ + b.maxZ) / 2);
+  st.centre.set((vb.minX + vb.maxX) / 2, (vb.minY + vb.maxY) / 2, (vb.minZ + vb.maxZ) / 2);
 
   // grid in mm at Z 0 over the drawing and the origin, lines on multiples of the step
   const step = Math.pow(10, Math.max(0, Math.floor(Math.log10(extent / 4))));
@@ -163,7 +179,8 @@ function build(data) {
 
   // the stock top T as a translucent plane over the drawing
   const T = data.stock && data.stock.top;
-  if (typeof T === 'number') {
+  // (the cut part, when there is one, is the stock itself)
+  if (typeof T === 'number' && !(data.cut && data.cut.nx)) {
     const pad = extent * 0.05;
     const plane = new THREE.Mesh(new THREE.PlaneGeometry(w + 2 * pad, h + 2 * pad),
       new THREE.MeshBasicMaterial({ color: '#c8a165', transparent: true, opacity: 0.16, side: THREE.DoubleSide, depthWrite: false }));
@@ -212,6 +229,23 @@ function build(data) {
     }
     document.body.dataset.surface = `${hm.measured ? 'measured' : 'grid'} ${nx}x${ny}`;
   }
+
+  // the cut part: the stock after the program (data from Rust), cut during playback
+  let cutPart = null;
+  document.body.dataset.cut = '';
+  if (data.cut && data.cut.nx && data.cut.ny) {
+    cutPart = new CutPart(data.cut, moves);
+    cutPart.group.visible = st.showCut;
+    group.add(cutPart.group);
+    document.body.dataset.cut = `${data.cut.nx}x${data.cut.ny}`;
+  }
+
+  // clamps and the moves that run into them
+  const cl = clampGroup(data, pts, 9);
+  group.add(cl.group);
+  st.hits = cl.hits;
+  document.body.dataset.clamps = String(cl.boxes);
+  document.body.dataset.clampHits = String(cl.hits.length);
 
   // start, end and turn markers, direction arrows
   const r = extent / 120;
@@ -287,11 +321,32 @@ function build(data) {
   group.add(hl, hlPoints);
 
   scene.add(group);
-  st.world = { group, grid, tool, hl, cuts, pts };
+  st.world = { group, grid, tool, hl, cuts, pts, cutPart, width: null };
+  if (st.showWidth) showWidth(true);
+}
+
+/// Cuts drawn with the tool's diameter (built when first asked for, rebuilt on recolouring).
+function showWidth(on) {
+  st.showWidth = on;
+  const w = st.world;
+  if (!w) return;
+  if (w.width) {
+    w.group.remove(w.width);
+    w.width.traverse((o) => { if (o.geometry) o.geometry.dispose(); if (o.material) o.material.dispose(); });
+    w.width = null;
+  }
+  if (on) {
+    const d = st.data, dia = (d.tool && d.tool.diameter) || 1;
+    w.width = widthGroup(d.moves, w.pts, dia, (i, out) => moveColour(d.moves[i], d.bounds, out));
+    w.group.add(w.width);
+  }
+  document.body.dataset.toolWidth = on ? '1' : '';
+  requestDraw();
 }
 
 function recolour() {
   if (!st.world) return;
+  if (st.showWidth) showWidth(true);
   const b = st.data.bounds, c = new THREE.Color(), moves = st.data.moves;
   const col = st.world.cuts.geometry.getAttribute('color');
   let n = 0;
@@ -339,6 +394,35 @@ function legend() {
     dep.append(`Z ${f3(b.maxZ)}`, cv, `${f3(b.minZ)} mm`);
     el.append(dep);
   }
+  if (st.colour === 'feed') {
+    const fd = document.createElement('div');
+    fd.className = 'feed';
+    const cv = document.createElement('canvas');
+    cv.width = 120; cv.height = 10;
+    const g = cv.getContext('2d'), c = new THREE.Color(), { min, max } = st.feeds;
+    for (let x = 0; x < 120; x++) {
+      feedColour(min + (x / 119) * (max - min), c);
+      g.fillStyle = `#${c.getHexString()}`;
+      g.fillRect(x, 0, 1, 10);
+    }
+    fd.append(`F ${min.toFixed(0)}`, cv, `${max.toFixed(0)} mm/min`);
+    el.append(fd);
+  }
+  if (d.cut && d.cut.nx) {
+    const cp = document.createElement('div');
+    cp.className = 'cut';
+    const cv = document.createElement('canvas');
+    cv.width = 120; cv.height = 10;
+    const g = cv.getContext('2d'), c = new THREE.Color();
+    for (let x = 0; x < 120; x++) {
+      cutColour(d.cut.top - (x / 119) * (d.cut.top - d.cut.lowest), d.cut.top, d.cut.lowest, c);
+      g.fillStyle = `#${c.getHexString()}`;
+      g.fillRect(x, 0, 1, 10);
+    }
+    const note = [d.cut.coarsened ? 'coarsened' : '', d.cut.thinned ? 'playback in final steps' : ''].filter(Boolean).join(', ');
+    cp.append(`cut part ${d.cut.nx}×${d.cut.ny} of ${f3(d.cut.cell)} mm  Z ${f3(d.cut.top)}`, cv, `${f3(d.cut.lowest)} mm${note ? ` (${note})` : ''}`);
+    el.append(cp);
+  }
   const hm = d.heightmap;
   if (hm && Array.isArray(hm.xs)) {
     const sf = document.createElement('div');
@@ -357,6 +441,14 @@ function legend() {
     }
     el.append(sf);
   }
+  if ((d.clamps || []).length) {
+    const cl = document.createElement('div');
+    cl.className = 'clamps';
+    const hits = st.hits || [];
+    cl.innerHTML = `<span class="sw" style="background:${CLAMP_COLOUR}"></span>clamps ${d.clamps.length}` +
+      (hits.length ? ` · <span class="sw" style="background:${HIT_COLOUR}"></span><b>${hits.length} move${hits.length > 1 ? 's' : ''} into a clamp</b>` : ' · no move touches them');
+    el.append(cl);
+  }
   const tool = d.tool ? `tool Ø ${f3(d.tool.diameter)} mm` : '';
   const stock = d.stock ? `stock top ${f3(d.stock.top)} mm` : '';
   const extra = document.createElement('div');
@@ -370,10 +462,18 @@ function fmtTime(s) {
   const m = Math.floor(s / 60), r = s - 60 * m;
   return `${m}:${r < 10 ? '0' : ''}${r.toFixed(1)}`;
 }
-function setTime(t) {
+function setTime(t, follow = true) {
   if (!st.data || !st.world) return null;
   st.time = Math.max(0, Math.min(st.total, t));
   const { index, point } = positionAt(st.data.moves, st.cum, st.time);
+  // the cut part: the moves done by now (the one running is done at its end)
+  if (follow) st.cutFollows = true;
+  const cp = st.world.cutPart;
+  if (cp && st.cutFollows) {
+    const at = st.data.moves[index], doneNow = at && point.every((v, k) => Math.abs(v - at.to[k]) < 1e-9);
+    cp.showUpTo(st.time >= st.total ? st.data.moves.length : index + (doneNow ? 1 : 0));
+    document.body.dataset.cutMoves = String(cp.movesShown());
+  }
   const m = st.data.moves[index];
   st.world.tool.position.set(point[0], point[1], point[2]);
   st.world.tool.visible = true;
@@ -427,6 +527,12 @@ function setView(name) {
 }
 document.querySelectorAll('[data-view]').forEach((b) => b.addEventListener('click', () => setView(b.dataset.view)));
 $('colour').addEventListener('change', (e) => { st.colour = e.target.value; recolour(); });
+$('cut-on').addEventListener('change', (e) => {
+  st.showCut = e.target.checked;
+  if (st.world && st.world.cutPart) st.world.cutPart.group.visible = st.showCut;
+  requestDraw();
+});
+$('width-on').addEventListener('change', (e) => showWidth(e.target.checked));
 
 // ---- picking in screen space: the move nearest the pointer within 6 px ----
 const proj = new THREE.Matrix4();
@@ -459,7 +565,9 @@ function sourceOf(m) {
 function describe(i) {
   const m = st.data.moves[i], s = sourceOf(m);
   const where = s ? `${s.label}  ${s.text || ''}` : '(no source element)';
-  return `move ${i + 1}/${st.data.moves.length} ${m.kind}  ${where}\nG-code line ${m.line}: ${m.gcode || ''}`;
+  const clamps = (m.hits || []).map((k) => ((st.data.clamps || [])[k] || {}).name).filter(Boolean);
+  const into = clamps.length ? `\n⚠ runs into clamp ${clamps.map((n) => `'${n}'`).join(', ')}` : '';
+  return `move ${i + 1}/${st.data.moves.length} ${m.kind}  ${where}\nG-code line ${m.line}: ${m.gcode || ''}${into}`;
 }
 function showHighlight(indices) {
   st.selected = indices;
@@ -568,8 +676,8 @@ function render(data, keepView) {
   $('stats').textContent = (data.stats || []).join('\n');
   legend();
   applyTheme();
-  if (!keepView) setView('iso');
-  setTime(keepView ? st.time : 0);
+  if (!keepView) { setView('iso'); st.cutFollows = false; }
+  setTime(keepView ? st.time : 0, false);
   document.body.dataset.moves = String(st.drawn);
   // ready once the first frame of this data is drawn
   requestAnimationFrame(() => requestAnimationFrame(() => {
@@ -616,6 +724,15 @@ window.millpathToolpath = {
   highlighted: () => st.selected.slice(),
   play, pause,
   drawnMoves: () => st.drawn,
+  /// Indexes of the moves drawn in red: they run into a clamp.
+  clampHits: () => (st.hits || []).slice(),
+  /// The cut part as shown: its lowest height, the height at (x, y), how many moves it shows.
+  cutLowest: () => (st.world && st.world.cutPart ? st.world.cutPart.lowestShown() : null),
+  cutHeightAt: (x, y) => (st.world && st.world.cutPart ? st.world.cutPart.heightAt(x, y) : null),
+  cutMoves: () => (st.world && st.world.cutPart ? st.world.cutPart.movesShown() : null),
+  showCut: (on) => { $('cut-on').checked = on; $('cut-on').dispatchEvent(new Event('change')); },
+  showToolWidth: (on) => { $('width-on').checked = on; showWidth(on); },
+  setColour: (c) => { $('colour').value = c; st.colour = c; recolour(); },
   duration: () => st.total,
   toolPosition: () => (st.world ? st.world.tool.position.toArray() : null),
   cameraMatrix: () => { camera.updateMatrixWorld(); return [...camera.projectionMatrix.elements, ...camera.matrixWorldInverse.elements]; },

@@ -279,3 +279,135 @@ test('the height map: a measured surface coloured by its heights, a grid not mea
   assert.match(await grid.page.locator('#legend').textContent(), /height map 4×2 probe points at the top 3\.000 mm \(not measured\)/);
   await grid.page.close();
 });
+
+test('clamps are drawn and a move into one is marked in red', { skip, timeout: 120000 }, async () => {
+  // a slot with sweeps at S10; a vice under the last sweep with its top at the sweep height
+  const cdir = mkdtempSync(join(tmpdir(), 'millpath-clamps-'));
+  writeFileSync(join(cdir, '3001.mpath'), 'path 3001.1P {\n  start (0, 0)  M10x3 O2 T3 I1,5 B-0,2 S10\n  end (60, 0)\n  sweep (0, 0) -> (10, 0)\n  mill (10, 0) -> (50, 0)\n  sweep (50, 0) -> (60, 0)\n}\n');
+  writeFileSync(join(cdir, 'millpath.toml'), 'feed = 300\nsweep_speed = 1000\nsweep_height = 10\n[[clamp]]\nname = "vice"\nmin = [54, -3, 0]\nmax = [56, 3, 10]\n[[clamp]]\nname = "stop"\nmin = [20, 8, 0]\nmax = [30, 12, 5]\n');
+  const { page, data } = await open(join(cdir, '3001.mpath'));
+  assert.equal(data.clamps.length, 2);
+  assert.equal(await page.evaluate(() => document.body.dataset.clamps), '2');
+  const hits = await page.evaluate(() => window.millpathToolpath.clampHits());
+  assert.equal(hits.length, 1);
+  const hit = data.moves[hits[0]];
+  assert.equal(hit.kind, 'rapid');
+  assert.deepEqual(hit.hits, [0]);
+  assert.match(await page.locator('#legend').textContent(), /clamps 2 · 1 move into a clamp/);
+  await page.locator('[data-view="top"]').click();
+  await page.waitForTimeout(300);
+  const pixel = (p) => page.evaluate((p) => {
+    const [cx, cy] = window.millpathToolpath.screenOfPoint(p);
+    const c = document.querySelector('#stage > canvas'), r = c.getBoundingClientRect();
+    const g = c.getContext('webgl2') || c.getContext('webgl');
+    const px = new Uint8Array(4), k = c.width / r.width;
+    g.readPixels(Math.round((cx - r.left) * k), Math.round(c.height - (cy - r.top) * k), 1, 1, g.RGBA, g.UNSIGNED_BYTE, px);
+    return [...px.slice(0, 3)];
+  }, p);
+  // the hit is red at the move (its middle mark)
+  const mid = [0, 1, 2].map((a) => (hit.from[a] + hit.to[a]) / 2);
+  const red = await pixel(mid);
+  assert.ok(red[0] > 180 && red[0] > red[1] + 100 && red[0] > red[2] + 100, `hit pixel ${red}`);
+  // the untouched clamp is drawn (its translucent face differs from the background beside it)
+  const inBox = await pixel([25, 10.5, 5]), beside = await pixel([25, 20, 5]);
+  assert.ok(inBox.some((v, k) => Math.abs(v - beside[k]) > 12), `box ${inBox} vs background ${beside}`);
+  assert.ok(!(inBox[0] > inBox[1] + 100), `the untouched clamp is not red: ${inBox}`);
+  await page.screenshot({ path: join(artifacts, 'toolpath-clamps-top.png') });
+  // clicking the hit says which clamp
+  const [x, y] = await page.evaluate((i) => window.millpathToolpath.screenOf(i, 0.5), hits[0]);
+  await page.mouse.click(x, y);
+  assert.match(await page.locator('#info').textContent(), /runs into clamp 'vice'/);
+  await page.locator('[data-view="iso"]').click();
+  await page.waitForTimeout(200);
+  await page.screenshot({ path: join(artifacts, 'toolpath-clamps.png') });
+  await page.close();
+});
+
+/// The colour of the canvas pixel at model point `p`.
+const pixelAt = (page, p) => page.evaluate((p) => {
+  const [cx, cy] = window.millpathToolpath.screenOfPoint(p);
+  const c = document.querySelector('#stage > canvas'), r = c.getBoundingClientRect();
+  const g = c.getContext('webgl2') || c.getContext('webgl');
+  const px = new Uint8Array(4), k = c.width / r.width;
+  g.readPixels(Math.round((cx - r.left) * k), Math.round(c.height - (cy - r.top) * k), 1, 1, g.RGBA, g.UNSIGNED_BYTE, px);
+  return [...px.slice(0, 3)];
+}, p);
+const unlike = (a, b) => a.some((v, k) => Math.abs(v - b[k]) > 12);
+
+test('the cut part appears and its lowest point is the program\'s lowest cut', { skip, timeout: 120000 }, async () => {
+  const { page, data } = await open(join(repo, 'examples/text/2010.mpath'));
+  const cut = data.cut;
+  assert.ok(cut && cut.nx > 10 && cut.ny > 10, 'cut part data');
+  assert.equal(await page.evaluate(() => document.body.dataset.cut), `${cut.nx}x${cut.ny}`);
+  // the verify resolution: O/8
+  assert.equal(cut.cell, data.tool.diameter / 8);
+  const lowestCut = Math.min(...data.moves.filter((m) => m.kind !== 'rapid').flatMap((m) => [m.from[2], m.to[2]]));
+  const shown = await page.evaluate(() => window.millpathToolpath.cutLowest());
+  assert.ok(Math.abs(shown - lowestCut) < 1e-4, `lowest shown ${shown}, lowest cut ${lowestCut}`);
+  assert.match(await page.locator('#legend').textContent(), /cut part \d+×\d+ of 0\.250 mm/);
+  await page.screenshot({ path: join(artifacts, 'toolpath-cut-iso.png') });
+  await page.locator('[data-view="top"]').click();
+  await page.waitForTimeout(300);
+  // a slot (its floor) looks unlike the uncut stock beside it, which is unlike the background
+  const slot = data.moves.find((m) => m.kind === 'mill' && m.from[1] === m.to[1] && m.from[0] !== m.to[0] && m.to[2] === lowestCut);
+  const y = slot.to[1], x = (slot.from[0] + slot.to[0]) / 2;
+  const floor = await pixelAt(page, [x, y + 0.3, lowestCut]), stock = await pixelAt(page, [x, y + 4, 3]);
+  const outside = await pixelAt(page, [cut.x0 - 20, cut.y0 - 20, 3]);
+  assert.ok(unlike(floor, stock) && unlike(stock, outside), `floor ${floor}, stock ${stock}, background ${outside}`);
+  await page.screenshot({ path: join(artifacts, 'toolpath-cut-top.png') });
+  // switched off: the background shows where the stock was
+  await page.evaluate(() => window.millpathToolpath.showCut(false));
+  await page.waitForTimeout(200);
+  assert.ok(!unlike(await pixelAt(page, [x, y + 4, 3]), outside), 'the cut part is hidden');
+  await page.close();
+});
+
+test('a playback half-way shows the cuts of the first half only', { skip, timeout: 120000 }, async () => {
+  const { page, data } = await open(join(repo, 'examples/text/2010.mpath'));
+  const moves = data.moves, top = data.cut.top;
+  const total = await page.evaluate(() => window.millpathToolpath.duration());
+  await page.evaluate((t) => window.millpathToolpath.setTime(t), total / 2);
+  // the moves done at half time, from the data's own times
+  let t = 0, done = 0;
+  while (done < moves.length && t + moves[done].t <= total / 2 + 1e-9) t += moves[done++].t;
+  assert.equal(await page.evaluate(() => window.millpathToolpath.cutMoves()), done);
+  const planar = (m) => m.kind !== 'rapid' && m.from[2] === m.to[2] && (m.from[0] !== m.to[0] || m.from[1] !== m.to[1]);
+  const mid = (m) => [(m.from[0] + m.to[0]) / 2, (m.from[1] + m.to[1]) / 2];
+  const height = (p) => page.evaluate(([x, y]) => window.millpathToolpath.cutHeightAt(x, y), p);
+  const before = moves.slice(0, done).filter(planar), after = moves.slice(done).filter(planar);
+  assert.ok(before.length > 0 && after.length > 0, `${before.length} cuts before, ${after.length} after`);
+  // every cut of the first half is in the stock; a cut of the second half away from them is not yet
+  for (const m of before) assert.ok((await height(mid(m))) <= m.to[2] + 1e-4, `cut at line ${m.line} shown`);
+  const far = after.find((m) => before.every((b) => Math.hypot(mid(m)[0] - mid(b)[0], mid(m)[1] - mid(b)[1]) > 2 * data.tool.diameter));
+  assert.ok(far, 'a later cut away from the earlier ones');
+  assert.equal(await height(mid(far)), top);
+  await page.screenshot({ path: join(artifacts, 'toolpath-cut-half.png') });
+  // at the start nothing is cut; at the end all is
+  await page.evaluate(() => window.millpathToolpath.setTime(0));
+  assert.equal(await page.evaluate(() => window.millpathToolpath.cutLowest()), top);
+  await page.evaluate((t) => window.millpathToolpath.setTime(t), total);
+  assert.ok(Math.abs((await page.evaluate(() => window.millpathToolpath.cutLowest())) - data.cut.lowest) < 1e-6);
+  assert.ok((await height(mid(far))) <= far.to[2] + 1e-4);
+  await page.close();
+});
+
+test('cuts drawn with the tool width, moves coloured by feed', { skip, timeout: 120000 }, async () => {
+  const { page, data } = await open(join(repo, 'examples/text/2010.mpath'));
+  await page.evaluate(() => window.millpathToolpath.showCut(false));
+  await page.locator('[data-view="top"]').click();
+  const slot = data.moves.find((m) => m.kind === 'mill' && m.from[1] === m.to[1] && m.from[0] !== m.to[0]);
+  const r = data.tool.diameter / 2, p = [(slot.from[0] + slot.to[0]) / 2, slot.to[1] + 0.7 * r, slot.to[2]];
+  await page.waitForTimeout(200);
+  const thin = await pixelAt(page, p);
+  await page.evaluate(() => window.millpathToolpath.showToolWidth(true));
+  await page.waitForTimeout(200);
+  const wide = await pixelAt(page, p);
+  assert.ok(unlike(thin, wide), `0.7 r beside the cut: ${thin} without, ${wide} with the tool width`);
+  // 1.3 r beside it the band does not reach
+  const past = [p[0], slot.to[1] + 1.3 * r, p[2]];
+  assert.ok(!unlike(await pixelAt(page, past), thin), 'the band is the tool diameter wide');
+  await page.screenshot({ path: join(artifacts, 'toolpath-width.png') });
+  await page.evaluate(() => window.millpathToolpath.setColour('feed'));
+  assert.match(await page.locator('#legend').textContent(), /F \d+.*\d+ mm\/min/);
+  await page.close();
+});

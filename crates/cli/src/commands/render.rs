@@ -15,13 +15,19 @@ pub fn run(
     path: Option<&str>,
     (html, svg, png): (Option<PathBuf>, Option<PathBuf>, Option<PathBuf>),
     surface: Option<&str>,
+    (cut, cut_cell): (bool, Option<f64>),
 ) -> u8 {
     let file = complete_input(&file.to_string_lossy());
     let abs = dunce::canonicalize(&file).unwrap_or_else(|_| file.clone());
     // like `compile`: options over millpath.toml (or --config), no drawing with placeholder
     // machine settings
     let settings = match settings_for(m, Some(&file), true) {
-        Ok(s) => s,
+        Ok(mut s) => {
+            if cut_cell.is_some() {
+                s.cut_cell = cut_cell;
+            }
+            s
+        }
         Err(e) => {
             eprintln!(
                 "{}: {e}",
@@ -105,11 +111,11 @@ pub fn run(
     }
     if let Some(out) = svg {
         eprintln!("---- {writing} {}", out.display());
-        status |= emit(Some(&out), &millpath_ide::toolpath_svg(&data), lang);
+        status |= emit(Some(&out), &millpath_ide::toolpath_svg(&data, cut), lang);
     }
     if let Some(out) = png {
         eprintln!("---- {writing} {}", out.display());
-        let written = png::svg_to_png(&millpath_ide::toolpath_svg(&data))
+        let written = png::svg_to_png(&millpath_ide::toolpath_svg(&data, cut))
             .and_then(|bytes| write::write_atomic_bytes(&out, &bytes).map_err(|e| e.to_string()));
         if let Err(e) = written {
             eprintln!(

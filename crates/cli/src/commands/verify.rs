@@ -25,6 +25,10 @@ pub struct Args {
     pub json: bool,
     /// `--surface FILE` and `--tolerance`.
     pub surface: Option<(String, f64)>,
+    /// `--clamp NAME,XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX`.
+    pub clamps: Vec<String>,
+    /// `--config FILE`: its `[[clamp]]` boxes.
+    pub config: Option<PathBuf>,
     pub files: Vec<PathBuf>,
 }
 
@@ -107,7 +111,16 @@ fn summary(report: &Report, lang: Lang) -> String {
 
 /// Exit status 1 when any finding is an error (or a file cannot be read).
 pub fn run(a: &Args) -> u8 {
-    let options = Options {
+    // boxes given for every program (--clamp, --config); else each program's millpath.toml
+    let given = match crate::verify_clamps::given(&a.clamps, a.config.as_deref(), core_lang(a.lang))
+    {
+        Ok(c) => c,
+        Err(lines) => {
+            lines.iter().for_each(|l| eprintln!("{l}"));
+            return 2;
+        }
+    };
+    let mut options = Options {
         dialect: a.dialect,
         top: a.top,
         tool: a.tool,
@@ -184,6 +197,16 @@ pub fn run(a: &Args) -> u8 {
             },
             None => None,
         };
+        options.clamps = match &given {
+            Some(c) => c.clone(),
+            None => match crate::verify_clamps::nearest(path, core_lang(a.lang)) {
+                Ok(c) => c,
+                Err(lines) => {
+                    lines.iter().for_each(|l| eprintln!("{l}"));
+                    return 2;
+                }
+            },
+        };
         let report = verify_on_surface(&text, &options, map.as_ref());
         failed |= report.has_errors();
         errors += report.count(Severity::Error);
@@ -201,6 +224,7 @@ pub fn run(a: &Args) -> u8 {
                     "nx": s.nx, "ny": s.ny, "x0": s.x0, "y0": s.y0,
                 })),
                 "bottom": report.params.bottom,
+                "clamps": options.clamps.iter().map(|c| json!({ "name": c.name, "min": c.min, "max": c.max })).collect::<Vec<_>>(),
                 "surface": report.surface.as_ref().map(|m| json!({
                     "nx": m.xs().len(), "ny": m.ys().len(), "top": m.top(),
                     "from": a.surface.as_ref().map(|s| s.0.clone()),

@@ -40,6 +40,11 @@ pub struct FileConfig {
     /// With drawn probes, moves longer than this (mm) are milled in pieces, each corrected
     /// at its own start (linuxcnc and grbl).
     pub probe_split: Option<f64>,
+    /// `[[clamp]]`: keep-out boxes the tool must never touch (`load/clamps.rs`).
+    #[serde(default)]
+    pub clamp: Vec<crate::load::clamps::ClampConfig>,
+    /// The toolpath view's cut part: its cell edge (mm); default the checker's (O/8).
+    pub cut_cell: Option<f64>,
 }
 
 /// `[heightmap]`: `step` (mm, required), `margin` (mm, default 0), `area = [xmin, ymin,
@@ -156,6 +161,12 @@ impl FileConfig {
         }
         if self.probe_split.is_some() {
             s.probe_split = self.probe_split;
+        }
+        if self.cut_cell.is_some() {
+            s.cut_cell = self.cut_cell;
+        }
+        if !self.clamp.is_empty() {
+            s.clamps = crate::load::clamps::clamps(&self.clamp);
         }
         if let Some(m) = &self.machine {
             if let Some(v) = m.max_velocity {

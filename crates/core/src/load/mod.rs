@@ -1,6 +1,7 @@
 //! Loading: the file system, settings, `millpath.toml`, name patterns, subpath search and the
 //! process-wide caches of compiled patterns and parsed files.
 
+pub mod clamps;
 pub mod config;
 pub mod fs;
 pub mod name_regex;

@@ -78,6 +78,13 @@ pub struct Settings {
     pub probe_split: Option<f64>,
     /// Where `probe_split` was given (its errors are located there); `None`: `--probe-split`.
     pub probe_split_file: Option<PathBuf>,
+    /// `[[clamp]]`: keep-out boxes; every written program is checked against them.
+    pub clamps: Vec<millpath_verify::Clamp>,
+    /// Where the clamps were given (their errors are located there).
+    pub clamps_file: Option<PathBuf>,
+    /// The toolpath view's cut part: cell edge in mm (`cut_cell`, `render --cut-cell`);
+    /// `None`: the checker's.
+    pub cut_cell: Option<f64>,
 }
 
 impl Default for Settings {
@@ -110,6 +117,9 @@ impl Default for Settings {
             heightmap_options: (false, false),
             probe_split: None,
             probe_split_file: None,
+            clamps: Vec::new(),
+            clamps_file: None,
+            cut_cell: None,
         }
     }
 }
@@ -127,6 +137,7 @@ impl Settings {
         values.extend(self.plunge_feed.map(|v| ("plunge_feed", v)));
         values.extend(self.spindle_rpm.map(|v| ("spindle_rpm", v)));
         values.push(("spindle_dwell", self.spindle_dwell));
+        values.extend(self.cut_cell.map(|v| ("cut_cell", v)));
         let machine = self.machine_values();
         values.extend(machine.iter().cloned());
         let finite = |v: f64| v.is_finite() && v.abs() <= MAX_MAGNITUDE;
@@ -151,6 +162,7 @@ impl Settings {
         let mut positive = vec![
             ("plunge_feed", self.plunge_feed),
             ("spindle_rpm", self.spindle_rpm),
+            ("cut_cell", self.cut_cell),
         ];
         positive.extend(machine.iter().map(|(name, v)| (*name, Some(*v))));
         for (name, v) in positive {
@@ -178,6 +190,10 @@ impl Settings {
         }
         errors.extend(self.heightmap_errors());
         errors.extend(self.probe_split_errors());
+        errors.extend(crate::load::clamps::errors(
+            &self.clamps,
+            self.clamps_file.as_ref(),
+        ));
         if self.max_velocity.is_some() && self.max_acceleration.is_none() {
             errors.push(Diagnostic::error(
                 Msg::MachineNeedsAcceleration,
