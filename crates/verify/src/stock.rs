@@ -120,6 +120,9 @@ pub fn visit_arc(
     let z_at = |s: f64| z0 + s * (z1 - z0);
     let big_r = arc.r;
     let sweep = arc.sweep;
+    // most arcs keep their height (only helixes change it): one atan2 a cell, no acos/cos
+    let flat = z0 == z1;
+    let ends = (arc.point(0.0), arc.point(1.0));
     let mut work = 0u64;
     for j in j0..=j1 {
         for i in i0..=i1 {
@@ -137,6 +140,18 @@ pub fn visit_arc(
                     None
                 } else if k <= -1.0 {
                     Some(z0.min(z1))
+                } else if flat {
+                    // a flat arc cuts the cell at its height when the footprint reaches it:
+                    // where the cell's nearest circle point lies on the arc, or an end does
+                    let phi = (py - arc.cy).atan2(px - arc.cx);
+                    let rel = if sweep >= 0.0 {
+                        (phi - arc.a0).rem_euclid(std::f64::consts::TAU)
+                    } else {
+                        (arc.a0 - phi).rem_euclid(std::f64::consts::TAU)
+                    };
+                    let near_end = |(ex, ey): (f64, f64)| (px - ex).hypot(py - ey) <= r + 1e-12;
+                    let hit = rel <= sweep.abs() || near_end(ends.0) || near_end(ends.1);
+                    hit.then_some(z0)
                 } else {
                     let w = k.acos();
                     let phi = (py - arc.cy).atan2(px - arc.cx);
@@ -286,6 +301,66 @@ mod tests {
         let k = 100 * 200 + 110; // centre (1.05, 0.05)
         let t = (1.05 + (0.25f64 - 0.0025).sqrt()) / 4.0;
         assert!((s.heights[k] - (2.0 - 4.0 * t)).abs() < 1e-9);
+    }
+
+    #[test]
+    fn flat_arcs_cut_the_cells_the_general_rule_cuts() {
+        // the flat shortcut against the general rule (a tiny rise makes the arc not flat):
+        // the same cells, apart from cells exactly on the footprint's edge
+        let g = GridGeom {
+            x0: -10.0,
+            y0: -10.0,
+            cell: 0.25,
+            nx: 80,
+            ny: 80,
+        };
+        let mut seed = 7u64;
+        let mut rnd = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut cells = 0;
+        for _ in 0..300 {
+            let arc = ArcGeo {
+                cx: rnd() * 8.0 - 4.0,
+                cy: rnd() * 8.0 - 4.0,
+                r: 0.2 + rnd() * 5.0,
+                a0: rnd() * 7.0 - 3.5,
+                sweep: (rnd() * 2.0 - 1.0) * 7.0,
+            };
+            let r = 0.1 + rnd() * 2.0;
+            let collect = |z1: f64| {
+                let mut m = std::collections::BTreeMap::new();
+                visit_arc(&g, &arc, -1.0, z1, r, |k, z, _, _| {
+                    m.insert(k, z);
+                });
+                m
+            };
+            let (flat, general) = (collect(-1.0), collect(-1.0 + 1e-9));
+            cells += flat.len();
+            for k in flat.keys().chain(general.keys()) {
+                match (flat.get(k), general.get(k)) {
+                    (Some(a), Some(b)) => assert!((a - b).abs() < 1e-8),
+                    _ => {
+                        // on the edge: the cell centre's distance to the arc is r
+                        let (px, py) = g.centre(k % g.nx, k / g.nx);
+                        let dist = (0..=20000)
+                            .map(|i| {
+                                let (x, y) = arc.point(f64::from(i) / 20000.0);
+                                (px - x).hypot(py - y)
+                            })
+                            .fold(f64::INFINITY, f64::min);
+                        assert!(
+                            (dist - r).abs() < 1e-3,
+                            "{arc:?} r {r}: cell {k} at distance {dist}"
+                        );
+                    }
+                }
+            }
+        }
+        assert!(cells > 10_000, "{cells}");
     }
 
     #[test]
