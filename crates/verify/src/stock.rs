@@ -128,7 +128,9 @@ pub fn visit_arc(
         for i in i0..=i1 {
             work += 1;
             let (px, py) = g.centre(i, j);
-            let d = (px - arc.cx).hypot(py - arc.cy);
+            // sqrt, not hypot: coordinates are bounded (±1e6), and libm's hypot is slow
+            let (ux, uy) = (px - arc.cx, py - arc.cy);
+            let d = (ux * ux + uy * uy).sqrt();
             let zmin = if d + big_r <= r {
                 // the whole circle is under the footprint
                 Some(z0.min(z1))
@@ -149,7 +151,10 @@ pub fn visit_arc(
                     } else {
                         (arc.a0 - phi).rem_euclid(std::f64::consts::TAU)
                     };
-                    let near_end = |(ex, ey): (f64, f64)| (px - ex).hypot(py - ey) <= r + 1e-12;
+                    let reach = (r + 1e-12) * (r + 1e-12);
+                    let near_end = |(ex, ey): (f64, f64)| {
+                        (px - ex) * (px - ex) + (py - ey) * (py - ey) <= reach
+                    };
                     let hit = rel <= sweep.abs() || near_end(ends.0) || near_end(ends.1);
                     hit.then_some(z0)
                 } else {
