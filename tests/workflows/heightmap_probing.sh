@@ -120,36 +120,9 @@ cd ..
 # nine numbers per contact); here the log is what it would write over a board that rises
 # 0.5 mm along X and falls 0.2 mm along Y. adjust-z reads the log and writes a program whose
 # cuts follow the board; LinuxCNC's interpreter runs it.
-# write_log PROBING "height(x, y)" [FORMAT]: the log a controller writes at the program's G38s
-write_log() {
-  python3 - "$@" <<'PY'
-import re, sys
-probing, height = sys.argv[1], sys.argv[2]
-fmt = sys.argv[3] if len(sys.argv) > 3 else "linuxcnc"
-x = y = 0.0
-if fmt == "grbl":
-    # GRBL reports machine coordinates; the sender's console also holds the work offset ($#)
-    print("[G54:-100.000,-50.000,-20.000]")
-for l in open(probing):
-    if l.startswith("("):
-        continue
-    for letter, v in re.findall(r"([XY])(-?[0-9.]+)", l):
-        if letter == "X":
-            x = float(v)
-        else:
-            y = float(v)
-    if l.startswith("G38.2"):
-        z = eval(height)
-        if fmt == "grbl":
-            print(f"[PRB:{x - 100:.3f},{y - 50:.3f},{z - 20:.3f}:1]")
-            print("ok")
-        else:
-            print(f"{x:.6f} {y:.6f} {z:.6f} 0.000000 0.000000 0.000000 0.000000 0.000000 0.000000")
-PY
-}
 cd linuxcnc
 board="3 + 0.01 * x - 0.005 * y"
-write_log 1234.1P_Probing.gcode "$board" >1234.1P_probes.txt
+write_probe_log 1234.1P_Probing.gcode "$board" linuxcnc >1234.1P_probes.txt
 expect_status 0 "$MILLPATH" adjust-z --max 1 --probe-log 1234.1P_probes.txt 1234.1P_Clean.gcode
 grep -q 'moves split into' "$WORK/err" || fail "adjust-z: no split count: $(cat "$WORK/err")"
 [ -s 1234.1P_Milling.gcode ] || fail "adjust-z wrote no program"
@@ -187,7 +160,7 @@ cd ..
 # GRBL: the sender's console log, machine coordinates and the work offset; no contact (:0)
 # is refused
 cd grbl
-write_log 1234.1P_Probing.gcode "$board" grbl >console.txt
+write_probe_log 1234.1P_Probing.gcode "$board" grbl >console.txt
 expect_status 0 "$MILLPATH" adjust-z --max 1 --probe-log console.txt 1234.1P_Clean.gcode
 grep -q '^G01 F300.000 X10.000 Y18.000 Z1.510$' 1234.1P_Milling.gcode \
   || fail "grbl: the groove does not follow the board"

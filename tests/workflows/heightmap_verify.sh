@@ -6,38 +6,6 @@
 # found when verify is given the log of the board on the machine (verify --surface).
 source "$ROOT/tests/workflows/lib.bash"
 
-# write_log PROBING "height(x, y, t, …)" linuxcnc|grbl: the log a controller writes at the
-# G38s (t: the part's nominal top; cx, cy: the probed area's centre, w, h: its half sizes)
-write_log() {
-  python3 - "$@" <<'PY'
-import re, sys
-probing, height, fmt = sys.argv[1], sys.argv[2], sys.argv[3]
-# t: the nominal top of the part, as its _Z.txt says
-t = float(open(probing.replace("_Probing.gcode", "_Z.txt")).read().split("/T=")[1].split(")")[0])
-# x0 y0 x1 y1: the probed area, as the probing program's MILLPATH-HEIGHTMAP comment says
-area = dict(re.findall(r" ([XY][01])=(-?[0-9.]+)", next(l for l in open(probing) if l.startswith("(MILLPATH-HEIGHTMAP"))))
-x0, y0, x1, y1 = (float(area[k]) for k in ("X0", "Y0", "X1", "Y1"))
-w, h = (x1 - x0) / 2 + 1, (y1 - y0) / 2 + 1
-cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
-x = y = 0.0
-if fmt == "grbl":
-    print("[G54:-100.000,-50.000,-20.000]")
-for l in open(probing):
-    if l.startswith("("):
-        continue
-    for letter, v in re.findall(r"([XY])(-?[0-9.]+)", l):
-        if letter == "X":
-            x = float(v)
-        else:
-            y = float(v)
-    if l.startswith("G38.2"):
-        z = eval(height)
-        if fmt == "grbl":
-            print(f"[PRB:{x - 100:.3f},{y - 50:.3f},{z - 20:.3f}:1]\nok")
-        else:
-            print(f"{x:.6f} {y:.6f} {z:.6f} 0 0 0 0 0 0")
-PY
-}
 
 drawings=("$ROOT"/examples/plate/*.dxf "$ROOT"/examples/text/*.mpath)
 if [ -d "$SHARED/conformance/fixtures" ]; then
@@ -73,7 +41,7 @@ TOML
       continue
     fi
     for board in "${boards[@]}"; do
-      write_log "${name}_Probing.gcode" "$board" "$dialect" >probes.txt
+      write_probe_log "${name}_Probing.gcode" "$board" "$dialect" >probes.txt
       rm -f "${name}_Milling.gcode"
       expect_status 0 "$MILLPATH" adjust-z --max 3 --probe-log probes.txt "${name}_Clean.gcode"
       expect_status 0 "$MILLPATH" verify --dialect "$dialect" "${name}_Milling.gcode"
@@ -96,8 +64,8 @@ echo "adjusted and verified $adjusted programs ($skipped drawings without a heig
 # program cuts deeper there) is found by verify given the log of the board on the machine.
 # (A log of a higher board makes cuts shallower: no depth check can see that.)
 cd "$WORK/linuxcnc/1234.1P.dxf"
-write_log 1234.1P_Probing.gcode "t - 0.004 * x" linuxcnc >yesterday.txt
-write_log 1234.1P_Probing.gcode "t" linuxcnc >today.txt
+write_probe_log 1234.1P_Probing.gcode "t - 0.004 * x" linuxcnc >yesterday.txt
+write_probe_log 1234.1P_Probing.gcode "t" linuxcnc >today.txt
 rm -f 1234.1P_Milling.gcode
 expect_status 0 "$MILLPATH" adjust-z --max 3 --probe-log yesterday.txt 1234.1P_Clean.gcode
 expect_status 0 "$MILLPATH" verify --dialect linuxcnc 1234.1P_Milling.gcode

@@ -58,7 +58,7 @@ pub fn read(path: &str, lang: Lang) -> Result<Surface, Vec<String>> {
             .map(|d| report::human(d, lang))
             .collect::<Vec<_>>()
     };
-    let Some(text) = read_bounded(path, &mut diags) else {
+    let Some(text) = crate::commands::adjust_z::read_log(path, &mut diags) else {
         return Err(printed(&diags));
     };
     // a program with its record (an adjusted NAME_Milling.gcode)
@@ -168,33 +168,6 @@ impl Surface {
             )
         })
     }
-}
-
-/// The file's text, unless it is larger than a probe log may be; bytes that are not UTF-8
-/// become U+FFFD.
-fn read_bounded(path: &str, diags: &mut Diags) -> Option<String> {
-    use std::io::Read;
-    let limit = adjustz::MAX_LOG_BYTES as u64;
-    let mut bytes = Vec::new();
-    let read = std::fs::File::open(path).and_then(|f| f.take(limit + 1).read_to_end(&mut bytes));
-    if let Err(e) = read {
-        diags.error(
-            Msg::CannotRead,
-            Origin::Input,
-            millpath_core::args![path, e],
-        );
-        return None;
-    }
-    if bytes.len() as u64 > limit {
-        let origin = Origin::FileLine {
-            file: path.to_string(),
-            line: 1,
-        };
-        let limit = format!("{} bytes", adjustz::MAX_LOG_BYTES);
-        diags.error(Msg::ProbeLogTooLarge, origin, millpath_core::args![limit]);
-        return None;
-    }
-    Some(String::from_utf8_lossy(&bytes).into_owned())
 }
 
 #[cfg(test)]

@@ -8,7 +8,7 @@ mod support;
 
 use millpath_core::diag::Msg;
 use millpath_core::{compile_file, Dialect, OsFileSystem, Session, Settings};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use support::grbl;
 use support::*;
 
@@ -384,10 +384,6 @@ M30
     }
 }
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
 /// The G-code files `compile` writes for a drawing on disk, with the settings of its
 /// `millpath.toml` (if any) and the given dialect; `None` when it does not compile alone.
 fn compile_disk(file: &Path, dialect: Dialect) -> Option<Vec<(String, String)>> {
@@ -412,18 +408,6 @@ fn compile_disk(file: &Path, dialect: Dialect) -> Option<Vec<(String, String)>> 
             .map(|o| (o.path.display().to_string(), o.content))
             .collect(),
     )
-}
-
-fn files_in(dir: &Path, ext: &[&str]) -> Vec<PathBuf> {
-    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
-        .map(|r| r.map(|e| e.unwrap().path()).collect())
-        .unwrap_or_default();
-    v.retain(|p| {
-        p.extension()
-            .is_some_and(|e| ext.iter().any(|x| e.eq_ignore_ascii_case(x)))
-    });
-    v.sort();
-    v
 }
 
 #[test]

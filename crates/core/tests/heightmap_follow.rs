@@ -14,8 +14,8 @@ use millpath_core::probe::adjustz::{self, SetFile, DEFAULT_TOLERANCE};
 use millpath_core::probe::heightmap::Heightmap;
 use millpath_core::{compile_file, diag::Diags, Dialect, OsFileSystem, Session};
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
-use support::grbl;
+use std::path::Path;
+use support::{files_in, grbl, root};
 
 /// A synthetic surface: its height above the nominal top at (x, y), and how far the
 /// adjustment may be off on it (the bilinear interpolation's own error for the bowl).
@@ -59,10 +59,6 @@ fn surfaces(lo: (f64, f64), hi: (f64, f64)) -> Vec<Surface> {
             tolerance: bowl_error + EXACT,
         },
     ]
-}
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
 /// The program set of `file` compiled with a height map, or `None` when the drawing does not
@@ -394,18 +390,6 @@ fn arc_len(m: &Move) -> f64 {
             (span * r).abs()
         }
     }
-}
-
-fn files_in(dir: &Path, ext: &[&str]) -> Vec<PathBuf> {
-    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
-        .map(|r| r.map(|e| e.unwrap().path()).collect())
-        .unwrap_or_default();
-    v.retain(|p| {
-        p.extension()
-            .is_some_and(|e| ext.iter().any(|x| e.eq_ignore_ascii_case(x)))
-    });
-    v.sort();
-    v
 }
 
 #[test]

@@ -31,8 +31,8 @@ pub fn run_with_log(max: f64, log: &str, tolerance: f64, lang: Lang, files: &[St
 }
 
 /// A probe log, read only when it is not larger than [`adjustz::MAX_LOG_BYTES`]; bytes that
-/// are not UTF-8 (a console's odd characters) become U+FFFD.
-fn read_log(path: &str, diags: &mut Diags) -> Option<String> {
+/// are not UTF-8 (a console's odd characters) become U+FFFD. Also `verify --surface`'s reader.
+pub(crate) fn read_log(path: &str, diags: &mut Diags) -> Option<String> {
     use std::io::Read;
     let limit = adjustz::MAX_LOG_BYTES as u64;
     let mut bytes = Vec::new();

@@ -5,7 +5,7 @@
 use millpath_core::diag::{Diagnostic, Lang, Msg, Severity};
 use millpath_core::{compile_file, MemFileSystem, OutputFile, Session, Settings};
 use millpath_dxf::writer::DxfWriter;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 pub mod grbl;
 
@@ -178,3 +178,22 @@ pub fn compile_one(d: &Drawing) -> Run {
 }
 
 pub const L: &str = "1000_1P";
+
+/// The repository's root.
+pub fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// The files of `dir` with one of the extensions `ext` (any case), sorted; none when the
+/// folder is not there.
+pub fn files_in(dir: &Path, ext: &[&str]) -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map(|r| r.map(|e| e.unwrap().path()).collect())
+        .unwrap_or_default();
+    v.retain(|p| {
+        p.extension()
+            .is_some_and(|e| ext.iter().any(|x| e.eq_ignore_ascii_case(x)))
+    });
+    v.sort();
+    v
+}

@@ -46,9 +46,8 @@ pub const SPLIT_WORD: &str = "MILLPATH-SPLIT";
 
 /// The split count an adjusted program records (`(MILLPATH-SPLIT MOVES=n PIECES=m)`).
 pub fn split_summary(program: &str) -> Option<(usize, usize)> {
-    let line = program
-        .lines()
-        .find(|l| l.starts_with(&format!("({SPLIT_WORD} ")))?;
+    let head = format!("({SPLIT_WORD} ");
+    let line = program.lines().find(|l| l.starts_with(&head))?;
     let mut words = line.trim_end_matches(')').split_whitespace().skip(1);
     let mut value = |key: &str| words.next()?.strip_prefix(key)?.parse().ok();
     Some((value("MOVES=")?, value("PIECES=")?))

@@ -144,7 +144,9 @@ pub fn adjust_set(
     }
     let lines = parse_z_file(z_text, z_file, diags);
     if is_height_map(&lines) {
-        // a grid's clean program is nominal: its moves are made to follow the surface
+        // a grid's clean program is nominal: its moves are made to follow the surface; a cut
+        // off or unfinished program is refused as for drawn probes
+        read_clean(clean_text, clean_file, diags);
         if diags.error_count() > before {
             return None;
         }
@@ -431,6 +433,20 @@ mod tests {
         // the adjusted program no longer matches: nothing is left to rewrite
         assert!(!has_expression_mark(&out));
         assert!(z_regex().captures(&out).is_none());
+    }
+
+    #[test]
+    fn a_height_maps_clean_program_cut_off_is_refused() {
+        let z = "([0.000 0.000]/T=2.000) #1000=2.1\n([10.000 0.000]/T=2.000) #1001=2.2\n";
+        let whole = "%\n(MILLPATH-STOCK T=2.000 O=1.000)\nG00 Z5.000\nG00 X0.000 Y0.000\nG00 Z3.000\nG01 F100.000 Z1.000\nG01 X10.000 Z1.000\nG00 Z5.000\nM30\n%\n";
+        let (out, msgs, _) = run(whole, z, 1.0);
+        assert!(msgs.is_empty(), "{msgs:?}");
+        assert!(out.unwrap().contains("\nG01 X10.000 Y0.000 Z1.200\n"));
+        // cut off before its end: the rest of the cuts would be missing from the program
+        let cut = &whole[..whole.find("G00 Z5.000\nM30").unwrap()];
+        let (out, msgs, _) = run(cut, z, 1.0);
+        assert!(out.is_none());
+        assert_eq!(msgs, [Msg::ZIncompleteProgram]);
     }
 
     #[test]
