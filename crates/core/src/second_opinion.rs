@@ -3,8 +3,9 @@
 //! stock model, and each finding comes back located at the element that wrote the line.
 
 use crate::args;
-use crate::diag::{Diagnostic, Lang, Msg, Origin};
+use crate::diag::{Diagnostic, Lang, Msg};
 use crate::emit::dialect::lowest_depth;
+use crate::emit::program::LineSources;
 use crate::model::{Element, Model};
 use millpath_verify::{verify, Clamp, Dialect, FindingKind, Options, Severity};
 
@@ -38,7 +39,7 @@ pub fn stock_of(model: &Model) -> (f64, f64, Option<f64>) {
 pub fn review(
     program: &str,
     model: &Model,
-    line_sources: &[Option<Origin>],
+    line_sources: &LineSources,
     lang: Lang,
     dialect: crate::emit::dialect::Dialect,
     clamps: &[Clamp],
@@ -75,7 +76,7 @@ pub fn review(
         .map(|f| {
             let origin = f
                 .line
-                .and_then(|l| line_sources.get(l.wrapping_sub(1)).cloned().flatten())
+                .and_then(|l| line_sources.origin(l).cloned())
                 .unwrap_or_else(|| model.raw.start_origin());
             if let FindingKind::ClampHit { name, .. } = &f.kind {
                 let at = args![

@@ -246,6 +246,28 @@ pub fn verify(program: &str, options: &Options) -> Report {
     verify_on_surface(program, options, None)
 }
 
+/// The texts of the lines `wanted` (1-based, at most `count`), found in one pass.
+fn line_texts(
+    body: &str,
+    wanted: impl Iterator<Item = usize>,
+    count: usize,
+) -> std::collections::HashMap<usize, &str> {
+    let wanted: std::collections::HashSet<usize> = wanted.filter(|&l| l <= count).collect();
+    let mut texts = std::collections::HashMap::with_capacity(wanted.len());
+    if wanted.is_empty() {
+        return texts;
+    }
+    for (idx, raw) in body.split('\n').take(count).enumerate() {
+        if wanted.contains(&(idx + 1)) {
+            texts.insert(idx + 1, raw.strip_suffix('\r').unwrap_or(raw));
+            if texts.len() == wanted.len() {
+                break;
+            }
+        }
+    }
+    texts
+}
+
 /// The nominal top of a program: its `(MILLPATH-SURFACE T=…)` record's, else its
 /// `(MILLPATH-STOCK T=…)` comment's.
 pub fn program_top(program: &str) -> Option<f64> {
@@ -268,7 +290,9 @@ pub fn verify_on_surface(
 ) -> Report {
     let limits = options.limits;
     let mut m = Machine::new(options.dialect);
-    let mut lines: Vec<&str> = Vec::new();
+    // lines read, and the last that is not blank (the texts of findings are looked up at the
+    // end: a program can have millions of lines)
+    let (mut line_count, mut last_text) = (0usize, None);
     let body = program.strip_suffix('\n').unwrap_or(program);
     // adjust-z's programs: heights back to the drawing's frame (adjusted.rs)
     let (surface, problems) = adjusted::Surface::scan(body.split('\n').take(limits.max_lines));
@@ -315,7 +339,10 @@ pub fn verify_on_surface(
             break;
         }
         let l = raw.strip_suffix('\r').unwrap_or(raw);
-        lines.push(l);
+        line_count = no;
+        if !l.trim().is_empty() {
+            last_text = Some(no);
+        }
         let parsed = if l.len() > limits.max_line_len {
             Err(FindingKind::Syntax(SyntaxError::LineTooLong(
                 limits.max_line_len,
@@ -353,9 +380,8 @@ pub fn verify_on_surface(
         }
     }
     if !m.ended && !m.percent_closed && m.findings.len() <= limits.max_findings {
-        let last = lines.iter().rposition(|l| !l.trim().is_empty());
         m.findings.push(Raw {
-            line: last.map(|i| i + 1),
+            line: last_text,
             kind: FindingKind::MissingProgramEnd,
             severity: Severity::Error,
         });
@@ -411,7 +437,7 @@ pub fn verify_on_surface(
     }
     let mut report = Report {
         params,
-        lines: lines.len(),
+        lines: line_count,
         moves: m.moves.len(),
         surface: map,
         ..Default::default()
@@ -445,12 +471,13 @@ pub fn verify_on_surface(
             severity: Severity::Note,
         });
     }
+    let texts = line_texts(body, findings.iter().filter_map(|f| f.line), line_count);
     report.findings = findings
         .into_iter()
         .map(|f| Finding {
             text: f
                 .line
-                .and_then(|l| lines.get(l - 1))
+                .and_then(|l| texts.get(&l))
                 .map(|t| t.trim().chars().take(200).collect())
                 .unwrap_or_default(),
             line: f.line,

@@ -27,7 +27,25 @@ pub struct Generated {
     pub output: Output,
     pub stats: Stats,
     /// For every line of the milling (or clean) program, the element that wrote it.
-    pub line_sources: Vec<Option<Origin>>,
+    pub line_sources: LineSources,
+}
+
+/// Which element wrote each line of a program: one index a line into the elements' origins
+/// (4 bytes a line; a program can have millions of lines).
+#[derive(Debug, Clone, Default)]
+pub struct LineSources {
+    lines: Vec<u32>,
+    origins: Vec<Origin>,
+}
+
+impl LineSources {
+    const NONE: u32 = u32::MAX;
+
+    /// The element that wrote line `no` (1-based), if an element did.
+    pub fn origin(&self, no: usize) -> Option<&Origin> {
+        let k = *self.lines.get(no.checked_sub(1)?)?;
+        self.origins.get(k as usize)
+    }
 }
 
 /// What a check needs: the emission errors and the statistics, without any text.
@@ -111,19 +129,34 @@ pub fn generate_for(
         }
         None => None,
     };
-    let mut lines = ctl.prologue(banner, file_name, model, sx, true);
-    let mut line_sources: Vec<Option<Origin>> = vec![None; lines.len()];
-    line_sources.extend(
-        items
-            .iter()
-            .map(|i| i.source.and_then(|k| sources.get(k as usize).cloned())),
-    );
-    lines.extend(items.into_iter().map(|i| i.text));
-    lines.extend(stats.lines(lang).iter().map(|l| format!("  ({l})")));
-    lines.extend(stats.model_line(lang).map(|l| format!("  ({l})")));
-    lines.extend(stats.split_line(lang).map(|l| format!("  ({l})")));
-    lines.extend(ctl.epilogue(true));
-    let body = join(&lines);
+    let prologue = ctl.prologue(banner, file_name, model, sx, true);
+    let mut tail: Vec<String> = stats
+        .lines(lang)
+        .iter()
+        .map(|l| format!("  ({l})"))
+        .collect();
+    tail.extend(stats.model_line(lang).map(|l| format!("  ({l})")));
+    tail.extend(stats.split_line(lang).map(|l| format!("  ({l})")));
+    tail.extend(ctl.epilogue(true));
+    let mut lines = Vec::with_capacity(prologue.len() + items.len());
+    lines.resize(prologue.len(), LineSources::NONE);
+    lines.extend(items.iter().map(|i| i.source.unwrap_or(LineSources::NONE)));
+    let line_sources = LineSources {
+        lines,
+        origins: sources,
+    };
+    // the program in one allocation of its exact size; each move's text is freed as it is
+    // copied (a program can be many times the size of its drawing)
+    let size = text_size(&prologue)
+        + items.iter().map(|i| i.text.len() + 1).sum::<usize>()
+        + text_size(&tail);
+    let mut body = String::with_capacity(size);
+    push_lines(&mut body, &prologue);
+    for it in items {
+        body.push_str(&it.text);
+        body.push('\n');
+    }
+    push_lines(&mut body, &tail);
     // a probing set: the Z file and both programs stamped with the set's digest
     let set = |z_lines: &[String], probing: &[String], clean: String| {
         let z_txt = join(z_lines);
@@ -202,13 +235,24 @@ pub fn generate_for(
 /// probing and clean programs.
 fn stamp_set(banner: &str, z_txt: &str, probing: String, clean: String) -> (String, String) {
     let stamped = as_comment(0, &banner_with_digest(banner, &set_digest(z_txt, &clean)));
-    let stamp = |text: String| {
+    let stamp = |mut text: String| {
         let at = banner_index(&text);
-        let mut lines: Vec<&str> = text.lines().collect();
-        if let Some(l) = lines.get_mut(at) {
-            *l = &stamped;
+        // the banner line's bytes replaced in place (no copy of a long program)
+        let mut start = 0;
+        for _ in 0..at {
+            match text[start..].find('\n') {
+                Some(k) => start += k + 1,
+                None => return text,
+            }
         }
-        join(&lines)
+        let end = text[start..].find('\n').map_or(text.len(), |k| start + k);
+        let end = if text[..end].ends_with('\r') {
+            end - 1
+        } else {
+            end
+        };
+        text.replace_range(start..end, &stamped);
+        text
     };
     (stamp(probing), stamp(clean))
 }
@@ -223,11 +267,19 @@ fn start(sx: f64) -> P3 {
 }
 
 fn join<S: AsRef<str>>(lines: &[S]) -> String {
-    let mut s = lines
-        .iter()
-        .map(AsRef::as_ref)
-        .collect::<Vec<&str>>()
-        .join("\n");
-    s.push('\n');
+    let mut s = String::with_capacity(text_size(lines));
+    push_lines(&mut s, lines);
     s
+}
+
+/// Bytes of `lines` written one a line.
+fn text_size<S: AsRef<str>>(lines: &[S]) -> usize {
+    lines.iter().map(|l| l.as_ref().len() + 1).sum()
+}
+
+fn push_lines<S: AsRef<str>>(out: &mut String, lines: &[S]) {
+    for l in lines {
+        out.push_str(l.as_ref());
+        out.push('\n');
+    }
 }
