@@ -1,11 +1,11 @@
 //! G-code emission (reference-output.md §4–§14): the emitter walks a model's elements in
-//! traversal order and makes a list of items (moves with their texts, lengths, feeds,
-//! targets and source elements); the optimizer, the statistics and the file layouts work on
-//! that list. One file per kind of element and per stage.
+//! traversal order and records (`record.rs`, with the peephole optimizer) the program's lines
+//! and its moves (lengths, feeds, targets and source elements), which the statistics and
+//! the file layouts work on. One file per kind of element and per stage.
 
 use crate::args;
 use crate::diag::{Diagnostic, Msg, Origin};
-use crate::emit::optimize::optimize;
+use crate::emit::record::{Record, NO_SOURCE};
 use crate::front::drawing::Style;
 use crate::geom::{Transform, F3, P2, P3};
 use crate::model::*;
@@ -21,9 +21,9 @@ pub mod elements;
 pub mod heightmap_program;
 pub mod helix;
 pub mod motion;
-pub mod optimize;
 pub mod probe_split;
 pub mod program;
+pub(crate) mod record;
 pub mod stats;
 pub mod timing;
 pub mod toolpath;
@@ -169,7 +169,10 @@ pub(crate) struct Frame<'m> {
 }
 
 pub(crate) struct Emitter<'a> {
-    pub(crate) items: Vec<Item>,
+    /// The lines and moves emitted so far.
+    pub(crate) rec: Record,
+    /// The first move whose target leaves the sane range: its value and source.
+    pub(crate) out_of_range: Option<(f64, Option<u32>)>,
     pub(crate) pos: P3,
     pub(crate) probes: &'a [NamedProbe],
     pub(crate) errors: Vec<Diagnostic>,
@@ -225,16 +228,8 @@ impl<'a> Emitter<'a> {
         } else {
             comment::comment_line(self.ctl.dialect, indent, &text())
         };
-        let source = self.source;
-        self.items.push(Item {
-            kind: Kind::Comment,
-            text,
-            len: 0.0,
-            feed: 0.0,
-            target: Target::default(),
-            source,
-            shape: self.shape,
-        });
+        let source = self.source.unwrap_or(NO_SOURCE);
+        self.rec.comment(text, source);
     }
     pub(crate) fn push(
         &mut self,
@@ -247,16 +242,16 @@ impl<'a> Emitter<'a> {
             return;
         }
         let text = if self.dry { String::new() } else { text(self) };
-        let source = self.source;
-        self.items.push(Item {
+        let item = Item {
             kind,
-            text,
+            text: String::new(),
             len,
             feed,
             target: Target::default(),
-            source,
+            source: self.source,
             shape: self.shape,
-        });
+        };
+        self.rec.moved(item, text, self.source.unwrap_or(NO_SOURCE));
     }
     /// Asks [`Emitter::stop`] now and then; once it says stop, every loop ends (as when
     /// the list is full) and [`emit`] returns no result.
@@ -274,7 +269,7 @@ impl<'a> Emitter<'a> {
         self.stopped
     }
     fn at_capacity(&mut self) -> bool {
-        if self.items.len() >= MAX_ITEMS {
+        if self.rec.lines >= MAX_ITEMS {
             self.full = true;
         }
         self.full
@@ -296,8 +291,18 @@ impl<'a> Emitter<'a> {
     }
     /// Sets where the last move goes.
     pub(crate) fn to(&mut self, t: Target) {
-        if let Some(it) = self.items.last_mut() {
+        if let Some(it) = self.rec.items.last_mut() {
             it.target = t;
+            // each value was in range, but sums of them (T + O, S·(1 + 2e-6), h + depth,
+            // placed subpaths) may not be: no program leaves the sane range
+            let centre = t.arc.map(|(c, _)| c);
+            let bad = [t.x, t.y, t.z, centre.map(|c| c.x), centre.map(|c| c.y)]
+                .into_iter()
+                .flatten()
+                .find(|v| !(v.is_finite() && v.abs() <= MAX_MAGNITUDE));
+            if let (Some(v), None) = (bad, self.out_of_range) {
+                self.out_of_range = Some((v, it.source));
+            }
         }
     }
 
@@ -405,6 +410,22 @@ pub(crate) fn emit_until(
     ctl: &Controller,
     stop: Option<&dyn Fn() -> bool>,
 ) -> Result<Emitted, Vec<Diagnostic>> {
+    emit_after(model, dry, ctl, stop, &[] as &[&str])
+}
+
+/// The start height of a model's program (the start height S, a little above).
+pub(crate) fn start_height(model: &Model) -> f64 {
+    model.params.s * START_OFFSET
+}
+
+/// [`emit_until`] whose text starts with the lines `prefix` (a program's prologue).
+pub(crate) fn emit_after<S: AsRef<str>>(
+    model: &Model,
+    dry: bool,
+    ctl: &Controller,
+    stop: Option<&dyn Fn() -> bool>,
+    prefix: &[S],
+) -> Result<Emitted, Vec<Diagnostic>> {
     if model.elements.is_empty() {
         return Err(vec![Diagnostic::error(
             Msg::NoSegments,
@@ -430,9 +451,10 @@ pub(crate) fn emit_until(
             name: format!("#{}", 51 + i),
         })
         .collect();
-    let sx = model.params.s * START_OFFSET;
+    let sx = start_height(model);
     let mut em = Emitter {
-        items: Vec::with_capacity(expected_items(model)),
+        rec: Record::new(dry, prefix),
+        out_of_range: None,
         pos: P3 {
             x: 0.0,
             y: 0.0,
@@ -465,17 +487,7 @@ pub(crate) fn emit_until(
         (last_z - sx).abs(),
         0.0,
     );
-    // each value was in range, but sums of them (T + O, S·(1 + 2e-6), h + depth, placed
-    // subpaths) may not be: no program leaves the sane range
-    let out_of_range = em.items.iter().find_map(|it| {
-        let t = it.target;
-        let centre = t.arc.map(|(c, _)| c);
-        [t.x, t.y, t.z, centre.map(|c| c.x), centre.map(|c| c.y)]
-            .into_iter()
-            .flatten()
-            .find(|v| !(v.is_finite() && v.abs() <= MAX_MAGNITUDE))
-            .map(|v| (v, it.source))
-    });
+    let out_of_range = em.out_of_range;
     let sx_bad = !(sx.is_finite() && sx.abs() <= MAX_MAGNITUDE);
     if let Some((v, source)) = out_of_range.or(sx_bad.then_some((sx, None))) {
         let origin = source
@@ -500,11 +512,10 @@ pub(crate) fn emit_until(
     if !em.errors.is_empty() {
         return Err(em.errors);
     }
-    let mut items = em.items;
-    optimize(&mut items);
+    em.rec.finish();
     let split = em.split;
     Ok(Emitted {
-        items,
+        rec: em.rec,
         sources: em.sources,
         probes,
         sx,
@@ -512,23 +523,9 @@ pub(crate) fn emit_until(
     })
 }
 
-/// A first capacity of the item list: about ten items per chain segment and pass group, as
-/// chains emit them. Growing a list of a large drawing (tens of megabytes) copies it each
-/// time; a guess too large only reserves address space.
-fn expected_items(model: &Model) -> usize {
-    let segments: usize = model
-        .elements
-        .iter()
-        .map(|e| match e {
-            Element::Chain(c) => c.segs.len(),
-            _ => 1,
-        })
-        .sum();
-    segments.saturating_mul(10).min(1 << 20)
-}
-
 pub(crate) struct Emitted {
-    pub(crate) items: Vec<Item>,
+    /// The moves and the program's lines.
+    pub(crate) rec: Record,
     pub(crate) sources: Vec<Origin>,
     pub(crate) probes: Vec<NamedProbe>,
     pub(crate) sx: f64,

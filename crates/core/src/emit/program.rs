@@ -6,7 +6,7 @@ use crate::emit::as_comment;
 use crate::emit::dialect::Controller;
 use crate::emit::heightmap_program::{grid_of, grid_set, probe_close, probe_open, GridSet};
 use crate::emit::stats::Stats;
-use crate::emit::{emit, emit_until, Emitted};
+use crate::emit::{emit_after, emit_until, start_height, Emitted};
 use crate::geom::{near, F3, P2, P3};
 use crate::model::*;
 use crate::probe::adjustz::{banner_index, banner_with_digest, set_digest};
@@ -39,8 +39,6 @@ pub struct LineSources {
 }
 
 impl LineSources {
-    const NONE: u32 = u32::MAX;
-
     /// The element that wrote line `no` (1-based), if an element did.
     pub fn origin(&self, no: usize) -> Option<&Origin> {
         let k = *self.lines.get(no.checked_sub(1)?)?;
@@ -72,9 +70,9 @@ pub fn check_until(
     let e = emit_until(model, true, ctl, stop)?;
     // the editor's check refuses a height map as compile does
     if let Some(hm) = &ctl.heightmap {
-        grid_of(hm, ctl, model, &e.items, &e.probes).map_err(|d| vec![d])?;
+        grid_of(hm, ctl, model, &e.rec.items, &e.probes).map_err(|d| vec![d])?;
     }
-    let mut stats = Stats::timed(&e.items, sweep_speed, start(e.sx), ctl.machine.as_ref());
+    let mut stats = Stats::timed(&e.rec.items, sweep_speed, start(e.sx), ctl.machine.as_ref());
     stats.split = e.split;
     Ok(stats)
 }
@@ -107,16 +105,18 @@ pub fn generate_for(
     lang: Lang,
     ctl: &Controller,
 ) -> Result<Generated, Vec<Diagnostic>> {
+    let prologue = ctl.prologue(banner, file_name, model, start_height(model), true);
     let Emitted {
-        items,
+        rec,
         probes,
         sx,
         sources,
         split,
-    } = emit(model, false, ctl)?;
+    } = emit_after(model, false, ctl, None, &prologue)?;
     let s = model.params.s;
+    let items = &rec.items;
 
-    let mut stats = Stats::timed(&items, sweep_speed, start(sx), ctl.machine.as_ref());
+    let mut stats = Stats::timed(items, sweep_speed, start(sx), ctl.machine.as_ref());
     stats.split = split;
     // the file LinuxCNC logs the probe contacts to (PROBEOPEN), beside the set
     let log = crate::output_prefix(std::path::Path::new(file_name), &model.params.r);
@@ -124,12 +124,11 @@ pub fn generate_for(
     // a height map's probing set needs the cutting moves before they become lines
     let grid = match &ctl.heightmap {
         Some(hm) => {
-            let grid = grid_of(hm, ctl, model, &items, &probes).map_err(|e| vec![e])?;
+            let grid = grid_of(hm, ctl, model, items, &probes).map_err(|e| vec![e])?;
             Some(grid_set(hm, ctl, model, &grid, banner, file_name, &log))
         }
         None => None,
     };
-    let prologue = ctl.prologue(banner, file_name, model, sx, true);
     let mut tail: Vec<String> = stats
         .lines(lang)
         .iter()
@@ -138,25 +137,14 @@ pub fn generate_for(
     tail.extend(stats.model_line(lang).map(|l| format!("  ({l})")));
     tail.extend(stats.split_line(lang).map(|l| format!("  ({l})")));
     tail.extend(ctl.epilogue(true));
-    let mut lines = Vec::with_capacity(prologue.len() + items.len());
-    lines.resize(prologue.len(), LineSources::NONE);
-    lines.extend(items.iter().map(|i| i.source.unwrap_or(LineSources::NONE)));
+    // the program is the emitter's text (written line by line as it went), then the tail
+    let mut body = rec.text;
+    body.reserve_exact(text_size(&tail));
+    push_lines(&mut body, &tail);
     let line_sources = LineSources {
-        lines,
+        lines: rec.line_sources,
         origins: sources,
     };
-    // the program in one allocation of its exact size; each move's text is freed as it is
-    // copied (a program can be many times the size of its drawing)
-    let size = text_size(&prologue)
-        + items.iter().map(|i| i.text.len() + 1).sum::<usize>()
-        + text_size(&tail);
-    let mut body = String::with_capacity(size);
-    push_lines(&mut body, &prologue);
-    for it in items {
-        body.push_str(&it.text);
-        body.push('\n');
-    }
-    push_lines(&mut body, &tail);
     // a probing set: the Z file and both programs stamped with the set's digest
     let set = |z_lines: &[String], probing: &[String], clean: String| {
         let z_txt = join(z_lines);

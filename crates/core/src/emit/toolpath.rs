@@ -66,14 +66,26 @@ pub fn toolpath(
         y: 0.0,
         z: e.sx,
     };
-    let mut stats = Stats::timed(&e.items, sweep_speed, start, ctl.machine.as_ref());
+    let mut stats = Stats::timed(&e.rec.items, sweep_speed, start, ctl.machine.as_ref());
     stats.split = e.split;
-    let planned = ctl.machine.as_ref().map(|m| item_times(&e.items, start, m));
-    // the body follows the prologue line for line (one line per item, as `generate` writes)
+    let planned = ctl
+        .machine
+        .as_ref()
+        .map(|m| item_times(&e.rec.items, start, m));
+    // the body follows the prologue (as `generate` writes it)
     let first_line = ctl.prologue("", "", model, e.sx, true).len() + 1;
     let mut pos = start;
     let mut moves = Vec::new();
-    for (i, it) in e.items.iter().enumerate() {
+    // each move's text: its line of the emitted text (lines in order, so one walk)
+    let mut texts = e.rec.text.split('\n');
+    let mut next_line = 0usize;
+    for (i, it) in e.rec.items.iter().enumerate() {
+        let line = e.rec.item_lines[i] as usize;
+        let gcode = texts
+            .nth(line.saturating_sub(next_line))
+            .unwrap_or_default()
+            .to_string();
+        next_line = line + 1;
         let rapid = matches!(it.kind, Kind::HSweep | Kind::VSweep);
         let kind = match it.kind {
             Kind::Comment => continue,
@@ -99,10 +111,10 @@ pub fn toolpath(
             to,
             arc: t.arc,
             source: it.source.and_then(|k| e.sources.get(k as usize).cloned()),
-            line: first_line + i,
+            line: first_line + line,
             feed,
             seconds,
-            gcode: it.text.clone(),
+            gcode,
         });
         pos = to;
     }
@@ -118,7 +130,7 @@ pub fn toolpath(
     // the grid as compile makes it; a refused one (check says why) is not shown
     let heightmap = ctl.heightmap.as_ref().and_then(|hm| {
         let drawn = &e.probes;
-        crate::emit::heightmap_program::grid_of(hm, ctl, model, &e.items, drawn).ok()
+        crate::emit::heightmap_program::grid_of(hm, ctl, model, &e.rec.items, drawn).ok()
     });
     Ok(Toolpath {
         moves,

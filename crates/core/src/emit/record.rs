@@ -1,0 +1,166 @@
+//! What the emitter records as it goes: the program's lines written straight into one text
+//! (no string per line: a program can be many times the size of its drawing), the element
+//! that wrote each line, and the moves (for the statistics, the times and the toolpath view;
+//! comments are lines only).
+//!
+//! The peephole optimizer (reference-output.md §13: a horizontal sweep followed, past
+//! comments, by another one is commented out) works as the lines come: a horizontal sweep is
+//! held back with the comments after it until the next move says whether it stays.
+
+use crate::emit::{Item, Kind};
+
+/// A line no element wrote (prologue, statistics, epilogue).
+pub(crate) const NO_SOURCE: u32 = u32::MAX;
+
+#[derive(Default)]
+pub(crate) struct Record {
+    /// The moves, in program order (no comments).
+    pub(crate) items: Vec<Item>,
+    /// The line of each move, counted from the first line after the prefix (0-based).
+    pub(crate) item_lines: Vec<u32>,
+    /// The lines written so far, each ending in `\n` (none in a dry run).
+    pub(crate) text: String,
+    /// The element of every line of `text` (a dry run keeps none).
+    pub(crate) line_sources: Vec<u32>,
+    /// Lines recorded, held ones included, after the prefix.
+    pub(crate) lines: usize,
+    dry: bool,
+    /// A horizontal sweep not written yet (its text and source; the last of `items`) and the
+    /// comment lines after it.
+    held: Option<Held>,
+}
+
+struct Held {
+    sweep: (String, u32),
+    comments: Vec<(String, u32)>,
+}
+
+impl Record {
+    /// A record whose text starts with `prefix` (lines no element wrote).
+    pub(crate) fn new<S: AsRef<str>>(dry: bool, prefix: &[S]) -> Record {
+        let mut r = Record {
+            dry,
+            ..Record::default()
+        };
+        for l in prefix {
+            r.write(l.as_ref(), NO_SOURCE);
+        }
+        r
+    }
+
+    /// Records a comment line.
+    pub(crate) fn comment(&mut self, text: String, source: u32) {
+        self.lines += 1;
+        match &mut self.held {
+            Some(h) => h.comments.push((text, source)),
+            None => self.write(&text, source),
+        }
+    }
+
+    /// Records a move and its line.
+    pub(crate) fn moved(&mut self, item: Item, text: String, source: u32) {
+        let sweep = item.kind == Kind::HSweep;
+        // the held sweep stays unless this one follows it (past comments)
+        if let Some(h) = self.held.take() {
+            if sweep {
+                // no move was recorded after it
+                self.items.pop();
+                self.item_lines.pop();
+                self.write_commented(&h.sweep.0, h.sweep.1);
+            } else {
+                self.write(&h.sweep.0, h.sweep.1);
+            }
+            for (c, s) in &h.comments {
+                self.write(c, *s);
+            }
+        }
+        self.item_lines.push(self.lines as u32);
+        self.items.push(item);
+        self.lines += 1;
+        if sweep {
+            self.held = Some(Held {
+                sweep: (text, source),
+                comments: Vec::new(),
+            });
+        } else {
+            self.write(&text, source);
+        }
+    }
+
+    /// Writes what is held: the end of the body.
+    pub(crate) fn finish(&mut self) {
+        if let Some(h) = self.held.take() {
+            self.write(&h.sweep.0, h.sweep.1);
+            for (c, s) in &h.comments {
+                self.write(c, *s);
+            }
+        }
+    }
+
+    fn write(&mut self, line: &str, source: u32) {
+        if self.dry {
+            return;
+        }
+        self.text.push_str(line);
+        self.text.push('\n');
+        self.line_sources.push(source);
+    }
+
+    fn write_commented(&mut self, line: &str, source: u32) {
+        if !self.dry {
+            self.text.push_str("; ");
+        }
+        self.write(line, source);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::emit::Target;
+
+    fn item(kind: Kind) -> Item {
+        Item {
+            kind,
+            text: String::new(),
+            len: 1.0,
+            feed: 1.0,
+            target: Target::default(),
+            source: None,
+            shape: Default::default(),
+        }
+    }
+
+    #[test]
+    fn only_the_last_sweep_of_a_run_stays() {
+        let mut r = Record::new(false, &["%"]);
+        r.moved(item(Kind::HSweep), "G00 X1 Y1".into(), 0);
+        r.comment("(c)".into(), 1);
+        r.moved(item(Kind::HSweep), "G00 X2 Y2".into(), 2);
+        r.moved(item(Kind::VSweep), "G00 Z1".into(), 3);
+        r.moved(item(Kind::HSweep), "G00 X3 Y3".into(), 4);
+        r.comment("(d)".into(), 5);
+        r.finish();
+        assert_eq!(
+            r.text,
+            "%\n; G00 X1 Y1\n(c)\nG00 X2 Y2\nG00 Z1\nG00 X3 Y3\n(d)\n"
+        );
+        assert_eq!(r.line_sources, [NO_SOURCE, 0, 1, 2, 3, 4, 5]);
+        // the commented sweep is no move any more; each move knows its line
+        assert_eq!(r.items.len(), 3);
+        assert_eq!(r.item_lines, [2, 3, 4]);
+        assert_eq!(r.lines, 6);
+    }
+
+    #[test]
+    fn a_dry_record_counts_lines_and_keeps_moves_only() {
+        let mut r = Record::new(true, &["%"]);
+        r.moved(item(Kind::HSweep), "G00 X1 Y1".into(), 0);
+        r.moved(item(Kind::HSweep), "G00 X2 Y2".into(), 0);
+        r.comment("(c)".into(), 0);
+        r.finish();
+        assert!(r.text.is_empty() && r.line_sources.is_empty());
+        assert_eq!(r.lines, 3);
+        assert_eq!(r.items.len(), 1, "the first sweep is commented out");
+    }
+}
