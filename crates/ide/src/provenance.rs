@@ -38,7 +38,7 @@ pub(crate) fn provenance(
 ) -> Vec<Row> {
     let german = de(a);
     let lang = a.settings.settings.lang;
-    let own = seg.and_then(|s| s.text.as_ref()).or_else(|| {
+    let own = seg.and_then(|s| s.text.as_deref()).or_else(|| {
         // markers and probes: their own text from the element line
         object_index(a, el).and_then(|i| a.objects[i].text.as_ref())
     });
@@ -75,7 +75,7 @@ pub(crate) fn provenance(
             // the chain takes I and W (and N, C) from its first segment
             if "IW".contains(k) && matches!(el.kind.value, Kind::Mill | Kind::Mark | Kind::Bars) {
                 if let Some(first) = chain_first.filter(|f| !std::ptr::eq(*f, seg.unwrap_or(f))) {
-                    if let Some(v) = get(first.text.as_ref(), k) {
+                    if let Some(v) = get(first.text.as_deref(), k) {
                         let src = if german {
                             "erstes Segment der Kette"
                         } else {

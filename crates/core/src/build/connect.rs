@@ -21,7 +21,7 @@ impl Session<'_> {
         ev: &Eval,
         cx: &BuildCtx,
     ) -> Result<Option<Arc<Model>>, Abort> {
-        let text = seg.text.as_ref();
+        let text = seg.text.as_deref();
         let end_origin = with_pos(&seg.origin, seg.shape.end());
         let t_sub = ev.num(text, 'T').unwrap_or(params.t);
         let target_text = ev.string(text, '>');

@@ -187,7 +187,7 @@ impl Session<'_> {
             let text = if step.turn_back {
                 None
             } else {
-                seg.text.as_ref()
+                seg.text.as_deref()
             };
             match (kind, &seg.shape) {
                 (SegKind::Drill(style), Shape::Circle { c, .. }) => {

@@ -182,7 +182,8 @@ pub fn pin_by_walking(raw: &RawPath, start: P2, end: P2, steps: &[Step], tie: &T
     let value = pin_value(raw, tie)?;
     let seg = &raw.segments[tie.chosen];
     let mut pinned = raw.clone();
-    pinned.segments[tie.chosen].text = Some(with_n(seg.text.as_ref(), value, &seg.origin)?);
+    pinned.segments[tie.chosen].text =
+        Some(Box::new(with_n(seg.text.as_deref(), value, &seg.origin)?));
     let (again, ties) = walk(&pinned, start, end, &mut Diags::default());
     (again == steps && !ties.iter().any(|t| t.step == tie.step)).then_some(value)
 }

@@ -80,7 +80,7 @@ impl Session<'_> {
         params: &PathParams,
         ev: &Eval,
     ) -> (Option<f64>, Option<f64>) {
-        let text = first.text.as_ref();
+        let text = first.text.as_deref();
         if let Some(t) = text {
             for (k, _) in &t.params {
                 if !CHAIN_KEYS.contains(*k) {
@@ -126,7 +126,7 @@ impl Session<'_> {
         ev: &Eval,
         _first: bool,
     ) -> Result<ChainSeg, Abort> {
-        let text = seg.text.as_ref();
+        let text = seg.text.as_deref();
         if let Some(t) = text {
             self.check_text(t, seg.kind.allowed_keys(), &seg.origin, ev);
             if t.has('S') {

@@ -118,7 +118,8 @@ pub struct RawSegment {
     pub object: usize,
     pub kind: SegKind,
     pub shape: Shape,
-    pub text: Option<ParamText>,
+    /// Boxed: most segments have no text, and a drawing can have millions of segments.
+    pub text: Option<Box<ParamText>>,
     pub origin: Origin,
 }
 
@@ -429,7 +430,7 @@ pub fn build_paths(
             object: i,
             kind,
             shape: o.shape.clone(),
-            text: o.text.clone(),
+            text: o.text.clone().map(Box::new),
             origin: o.origin.clone(),
         });
     }
@@ -463,7 +464,7 @@ pub fn build_paths(
                 object: i,
                 kind,
                 shape: o.shape.clone(),
-                text: o.text.clone(),
+                text: o.text.clone().map(Box::new),
                 origin: o.origin.clone(),
             });
         }
