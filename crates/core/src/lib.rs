@@ -166,20 +166,25 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
                     session.diags.push(d);
                 }
             }
-            if reference_check || session.settings.quick_check {
+            if session.settings.quick_check && !reference_check {
+                // the editor: the diagnostics alone (its lenses compile for the statistics)
+                let ctl = Controller::for_model(&session.settings, &model);
+                match emit::quick_check_until(&model, &ctl, session.stop) {
+                    Ok(()) if !session.settings.clamps.is_empty() => {
+                        // the clamps are checked as you type (on the program compile writes)
+                        generate_and_review_as(session, &model, &file_name, banner, true);
+                    }
+                    Ok(()) => {}
+                    Err(errs) => errs.into_iter().for_each(|e| session.diags.push(e)),
+                }
+            } else if reference_check {
                 match emit::check_until(
                     &model,
                     session.settings.sweep_speed,
                     &Controller::for_model(&session.settings, &model),
                     session.stop,
                 ) {
-                    Ok(stats) => {
-                        outcome.stats.push((model.name().to_string(), stats));
-                        // the clamps are checked as you type (on the program compile writes)
-                        if !reference_check && !session.settings.clamps.is_empty() {
-                            generate_and_review_as(session, &model, &file_name, banner, true);
-                        }
-                    }
+                    Ok(stats) => outcome.stats.push((model.name().to_string(), stats)),
                     Err(errs) => errs.into_iter().for_each(|e| session.diags.push(e)),
                 }
             } else if let Some(g) = generate_and_review(session, &model, &file_name, banner) {

@@ -2,7 +2,7 @@
 
 use crate::args;
 use crate::diag::{Diagnostic, Msg};
-use crate::emit::chain_order::fast_order;
+use crate::emit::chain_order::{fast_order, Step};
 use crate::emit::{bounded_passes, missing, Emitter, Frame, Shape, Skip, MAX_ITEMS};
 use crate::front::drawing::Style;
 use crate::geom::{ge, lt, near, Geom, P2};
@@ -63,7 +63,14 @@ impl Emitter<'_> {
         let head = geoms[0].start().with_z(passes[0][0]);
         let s = fr.h + p.s;
         let ends: Vec<(P2, P2)> = geoms.iter().map(|g| (g.start(), g.end())).collect();
-        for (si, forward) in fast_order(&ends, passes, head) {
+        let order = if self.quick_order {
+            let order = level_order(passes);
+            self.quick_steps += order.len();
+            order
+        } else {
+            fast_order(&ends, passes, head)
+        };
+        for (si, forward) in order {
             if self.full || self.stop_now() {
                 break;
             }
@@ -221,4 +228,19 @@ mod tests {
         // a mark below the first pass gets a single pass at D
         assert_eq!(pass_depths(0.8, 1.5, 1.2), vec![1.5]);
     }
+}
+
+/// Every pass of every segment once, level by level in list order, each forward (the
+/// editor's quick check: see `emit_quick`).
+fn level_order(passes: &[Vec<f64>]) -> Vec<Step> {
+    let levels = passes.iter().map(Vec::len).max().unwrap_or(0);
+    (0..levels)
+        .flat_map(|k| {
+            passes
+                .iter()
+                .enumerate()
+                .filter(move |(_, p)| k < p.len())
+                .map(|(si, _)| (si, true))
+        })
+        .collect()
 }

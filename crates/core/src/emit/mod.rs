@@ -29,7 +29,9 @@ pub mod timing;
 pub mod toolpath;
 
 pub use dialect::{Controller, Dialect};
-pub use program::{check, check_for, check_until, generate, generate_for, Generated, Output};
+pub use program::{
+    check, check_for, check_until, generate, generate_for, quick_check_until, Generated, Output,
+};
 pub use toolpath::{toolpath, Move, ProbePoint, Toolpath};
 
 /// Items (moves and comments) one program may hold: far beyond any real part, and a bound on
@@ -196,6 +198,10 @@ pub(crate) struct Emitter<'a> {
     pub(crate) until_stop_check: usize,
     /// `probe_split`: moves split, and the pieces they became.
     pub(crate) split: (usize, usize),
+    /// The editor's quick check: fast-milled chains in list order (see [`emit_quick`]), and
+    /// the passes so emitted.
+    pub(crate) quick_order: bool,
+    pub(crate) quick_steps: usize,
 }
 
 /// Elements or passes between two questions to [`Emitter::stop`].
@@ -418,6 +424,34 @@ pub(crate) fn start_height(model: &Model) -> f64 {
     model.params.s * START_OFFSET
 }
 
+/// The emission's diagnostics for the editor's quick check, without the order of fast
+/// milling (§7.2: a nearest-first walk, half the time of a long chain's check): each chain's
+/// passes are emitted level by level in list order. The diagnostics are the same: every
+/// pass of every segment is emitted once either way, so the same moves are checked (their
+/// ends are the segments' ends, their depths the passes'), and only the sweeps between them
+/// differ, at most [`SWEEP_LINES`] lines a pass: where that could reach [`MAX_ITEMS`], the
+/// true order is emitted. The moves' order and times are not the program's.
+pub(crate) fn emit_quick(
+    model: &Model,
+    ctl: &Controller,
+    stop: Option<&dyn Fn() -> bool>,
+) -> Result<Emitted, Vec<Diagnostic>> {
+    let no_prefix: &[&str] = &[];
+    match emit_with(model, true, ctl, stop, no_prefix, true) {
+        Ok(e)
+            if e.quick_steps.saturating_mul(SWEEP_LINES)
+                >= MAX_ITEMS - e.rec.lines.min(MAX_ITEMS) =>
+        {
+            emit_with(model, true, ctl, stop, no_prefix, false)
+        }
+        r => r,
+    }
+}
+
+/// Lines one sweep between two passes can take at most (`safe_sweep`: its comment, two
+/// drills or pulls of a comment and three moves each, the rapid), with room to spare.
+const SWEEP_LINES: usize = 16;
+
 /// [`emit_until`] whose text starts with the lines `prefix` (a program's prologue).
 pub(crate) fn emit_after<S: AsRef<str>>(
     model: &Model,
@@ -425,6 +459,17 @@ pub(crate) fn emit_after<S: AsRef<str>>(
     ctl: &Controller,
     stop: Option<&dyn Fn() -> bool>,
     prefix: &[S],
+) -> Result<Emitted, Vec<Diagnostic>> {
+    emit_with(model, dry, ctl, stop, prefix, false)
+}
+
+fn emit_with<S: AsRef<str>>(
+    model: &Model,
+    dry: bool,
+    ctl: &Controller,
+    stop: Option<&dyn Fn() -> bool>,
+    prefix: &[S],
+    quick_order: bool,
 ) -> Result<Emitted, Vec<Diagnostic>> {
     if model.elements.is_empty() {
         return Err(vec![Diagnostic::error(
@@ -453,7 +498,7 @@ pub(crate) fn emit_after<S: AsRef<str>>(
         .collect();
     let sx = start_height(model);
     let mut em = Emitter {
-        rec: Record::new(dry, prefix),
+        rec: Record::new(dry, prefix, expected_moves(model)),
         out_of_range: None,
         pos: P3 {
             x: 0.0,
@@ -473,6 +518,8 @@ pub(crate) fn emit_after<S: AsRef<str>>(
         stopped: false,
         until_stop_check: 1,
         split: (0, 0),
+        quick_order,
+        quick_steps: 0,
     };
     em.comment(2, || format!("Model {}", model.label()));
     em.emit_model(Frame {
@@ -514,13 +561,29 @@ pub(crate) fn emit_after<S: AsRef<str>>(
     }
     em.rec.finish();
     let split = em.split;
+    let quick_steps = em.quick_steps;
     Ok(Emitted {
         rec: em.rec,
         sources: em.sources,
         probes,
         sx,
         split,
+        quick_steps,
     })
+}
+
+/// A first guess of the moves of a model: about four per chain segment (two passes of a
+/// sweep and a cut), at most a million.
+fn expected_moves(model: &Model) -> usize {
+    let segments: usize = model
+        .elements
+        .iter()
+        .map(|e| match e {
+            Element::Chain(c) => c.segs.len(),
+            _ => 1,
+        })
+        .sum();
+    segments.saturating_mul(4).min(1 << 20)
 }
 
 pub(crate) struct Emitted {
@@ -531,6 +594,8 @@ pub(crate) struct Emitted {
     pub(crate) sx: f64,
     /// `probe_split`: moves split, and the pieces they became.
     pub(crate) split: (usize, usize),
+    /// Passes emitted in list order by [`emit_quick`].
+    pub(crate) quick_steps: usize,
 }
 
 #[cfg(test)]

@@ -6,7 +6,7 @@ use crate::emit::as_comment;
 use crate::emit::dialect::Controller;
 use crate::emit::heightmap_program::{grid_of, grid_set, probe_close, probe_open, GridSet};
 use crate::emit::stats::Stats;
-use crate::emit::{emit_after, emit_until, start_height, Emitted};
+use crate::emit::{emit_after, emit_quick, emit_until, start_height, Emitted};
 use crate::geom::{near, F3, P2, P3};
 use crate::model::*;
 use crate::probe::adjustz::{banner_index, banner_with_digest, set_digest};
@@ -77,6 +77,21 @@ pub fn check_until(
     Ok(stats)
 }
 
+/// The editor's quick check: the errors [`check_until`] finds, without the statistics (the
+/// order of fast milling is skipped, see `emit_quick`).
+pub fn quick_check_until(
+    model: &Model,
+    ctl: &Controller,
+    stop: Option<&dyn Fn() -> bool>,
+) -> Result<(), Vec<Diagnostic>> {
+    let e = emit_quick(model, ctl, stop)?;
+    // the editor's check refuses a height map as compile does
+    if let Some(hm) = &ctl.heightmap {
+        grid_of(hm, ctl, model, &e.rec.items, &e.probes).map_err(|d| vec![d])?;
+    }
+    Ok(())
+}
+
 /// Generates the G-code of a top-level model as the reference does. `Err` holds the errors
 /// that make the output unusable (the caller writes nothing then).
 pub fn generate(
@@ -112,6 +127,7 @@ pub fn generate_for(
         sx,
         sources,
         split,
+        ..
     } = emit_after(model, false, ctl, None, &prologue)?;
     let s = model.params.s;
     let items = &rec.items;

@@ -37,8 +37,12 @@ struct Held {
 
 impl Record {
     /// A record whose text starts with `prefix` (lines no element wrote).
-    pub(crate) fn new<S: AsRef<str>>(dry: bool, prefix: &[S]) -> Record {
+    /// `moves`: a first guess of their number (the list grows beyond it; a guess too large
+    /// only reserves address space, while growing a long list copies it each time).
+    pub(crate) fn new<S: AsRef<str>>(dry: bool, prefix: &[S], moves: usize) -> Record {
         let mut r = Record {
+            items: Vec::with_capacity(moves),
+            item_lines: Vec::with_capacity(moves),
             dry,
             ..Record::default()
         };
@@ -133,7 +137,7 @@ mod tests {
 
     #[test]
     fn only_the_last_sweep_of_a_run_stays() {
-        let mut r = Record::new(false, &["%"]);
+        let mut r = Record::new(false, &["%"], 4);
         r.moved(item(Kind::HSweep), "G00 X1 Y1".into(), 0);
         r.comment("(c)".into(), 1);
         r.moved(item(Kind::HSweep), "G00 X2 Y2".into(), 2);
@@ -154,7 +158,7 @@ mod tests {
 
     #[test]
     fn a_dry_record_counts_lines_and_keeps_moves_only() {
-        let mut r = Record::new(true, &["%"]);
+        let mut r = Record::new(true, &["%"], 4);
         r.moved(item(Kind::HSweep), "G00 X1 Y1".into(), 0);
         r.moved(item(Kind::HSweep), "G00 X2 Y2".into(), 0);
         r.comment("(c)".into(), 0);
