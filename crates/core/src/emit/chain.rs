@@ -210,6 +210,21 @@ pub fn pass_depths(first: f64, bottom: f64, infeed: f64) -> Vec<f64> {
     out
 }
 
+/// Every pass of every segment once, level by level in list order, each forward (the
+/// editor's quick check: see `emit_quick`).
+fn level_order(passes: &[Vec<f64>]) -> Vec<Step> {
+    let levels = passes.iter().map(Vec::len).max().unwrap_or(0);
+    (0..levels)
+        .flat_map(|k| {
+            passes
+                .iter()
+                .enumerate()
+                .filter(move |(_, p)| k < p.len())
+                .map(|(si, _)| (si, true))
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -228,19 +243,4 @@ mod tests {
         // a mark below the first pass gets a single pass at D
         assert_eq!(pass_depths(0.8, 1.5, 1.2), vec![1.5]);
     }
-}
-
-/// Every pass of every segment once, level by level in list order, each forward (the
-/// editor's quick check: see `emit_quick`).
-fn level_order(passes: &[Vec<f64>]) -> Vec<Step> {
-    let levels = passes.iter().map(Vec::len).max().unwrap_or(0);
-    (0..levels)
-        .flat_map(|k| {
-            passes
-                .iter()
-                .enumerate()
-                .filter(move |(_, p)| k < p.len())
-                .map(|(si, _)| (si, true))
-        })
-        .collect()
 }
