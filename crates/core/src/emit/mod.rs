@@ -572,9 +572,15 @@ fn emit_with<S: AsRef<str>>(
     })
 }
 
-/// A first guess of the moves of a model: about four per chain segment (two passes of a
-/// sweep and a cut), at most a million.
+/// A first guess of the moves of a model: about twelve per chain segment (three passes of a
+/// cut, a drill and sweeps), at most two million. Reserving is free on 64 bits (pages are
+/// only taken when written); the browser's memory is what it reserves: four, at most 65,536.
 fn expected_moves(model: &Model) -> usize {
+    let (per_segment, most) = if cfg!(target_pointer_width = "32") {
+        (4, 1 << 16)
+    } else {
+        (12, 1 << 21)
+    };
     let segments: usize = model
         .elements
         .iter()
@@ -583,7 +589,7 @@ fn expected_moves(model: &Model) -> usize {
             _ => 1,
         })
         .sum();
-    segments.saturating_mul(4).min(1 << 20)
+    segments.saturating_mul(per_segment).min(most)
 }
 
 pub(crate) struct Emitted {

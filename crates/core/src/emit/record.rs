@@ -43,13 +43,13 @@ impl Record {
         let mut r = Record {
             items: Vec::with_capacity(moves),
             item_lines: Vec::with_capacity(moves),
-            // the lines, a comment and a move of about 60 bytes each a move: reserved, not
+            // the lines, a comment and a move of about 40 bytes each a move: reserved, not
             // touched, so that a long text is not copied each time it grows (on 64 bits,
             // where reserving is free; the browser's memory is what it reserves)
             text: String::with_capacity(if dry || cfg!(target_pointer_width = "32") {
                 0
             } else {
-                moves.saturating_mul(128)
+                moves.saturating_mul(48)
             }),
             dry,
             ..Record::default()
