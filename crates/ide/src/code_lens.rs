@@ -1,6 +1,6 @@
 //! Code lenses: the statistics of each path, with the preview as command.
 
-use crate::preview::preview_of;
+use crate::preview::preview_of_until;
 use crate::{Analysis, Workspace};
 
 #[derive(Debug, Clone, PartialEq)]
@@ -14,6 +14,16 @@ pub struct Lens {
 /// settings `millpath compile` asks for, the statistics come from the placeholders (F150,
 /// S15): the lens says so instead of showing them as real.
 pub fn code_lenses(a: &Analysis, ws: &Workspace) -> Vec<Lens> {
+    code_lenses_until(a, ws, &|| false).unwrap_or_default()
+}
+
+/// [`code_lenses`] that gives up (`None`) when `stop()` turns true, inside the compile of
+/// each path's statistics too (a cancelled request stops its work).
+pub fn code_lenses_until(
+    a: &Analysis,
+    ws: &Workspace,
+    stop: &dyn Fn() -> bool,
+) -> Option<Vec<Lens>> {
     let placeholders = (!a.settings.missing_machine().is_empty()).then(|| {
         if crate::common::de(a) {
             " · ⚠ Maschinenwerte fehlen (Platzhalter)"
@@ -24,7 +34,7 @@ pub fn code_lenses(a: &Analysis, ws: &Workspace) -> Vec<Lens> {
     a.ast
         .paths()
         .map(|p| {
-            let title = match preview_of(a, ws, Some(&p.name.value)) {
+            let title = match preview_of_until(a, ws, Some(&p.name.value), stop)? {
                 Ok(pv) if pv.gcode.is_empty() && !pv.errors.is_empty() => pv.errors.join("; "),
                 Ok(pv) => pv
                     .stats
@@ -35,11 +45,11 @@ pub fn code_lenses(a: &Analysis, ws: &Workspace) -> Vec<Lens> {
                     .join(" · "),
                 Err(e) => e,
             };
-            Lens {
+            Some(Lens {
                 offset: p.span.start,
                 title: format!("▶ G-code · {title}{}", placeholders.unwrap_or("")),
                 path: p.name.value.clone(),
-            }
+            })
         })
         .collect()
 }

@@ -3,6 +3,7 @@
 //! formatting, code actions, semantic tokens, code lenses, rename, folding, links,
 //! highlights and selection ranges. Only `millpath-lsp` knows LSP.
 
+mod call_hierarchy;
 mod code_actions;
 mod code_lens;
 mod common;
@@ -24,12 +25,16 @@ mod provenance;
 mod rename;
 pub mod reparse;
 mod selection;
+mod semantic_delta;
 mod semantic_tokens;
 mod symbols;
 mod toolpath;
+pub mod walk;
+pub mod workspace_check;
 
+pub use call_hierarchy::{incoming_calls, outgoing_calls, prepare_call_hierarchy, Call, CallItem};
 pub use code_actions::{code_actions, Action};
-pub use code_lens::{code_lenses, Lens};
+pub use code_lens::{code_lenses, code_lenses_until, Lens};
 pub use common::{element_at, Location, TextEdit};
 pub use completion::{completion, Completion};
 pub use diagnostic_range::diagnostic_range;
@@ -42,9 +47,10 @@ pub use hover::{hover, Hover};
 pub use inlay_hints::{inlay_hints, inlay_hints_in, Hint};
 pub use navigation::{definition, references};
 pub use param_doc::param_doc;
-pub use preview::{preview, preview_of, Preview};
+pub use preview::{preview, preview_of, preview_of_until, preview_until, Preview};
 pub use rename::{prepare_rename, rename, FileEdit};
 pub use selection::selection_ranges;
+pub use semantic_delta::{apply_token_edit, relative_tokens, token_edit, RelToken, TokenEdit};
 pub use semantic_tokens::{semantic_tokens, SemToken, TOKEN_TYPES};
 pub use symbols::{document_symbols, workspace_symbols, Symbol};
 pub use toolpath::{toolpath, toolpath_html, toolpath_svg};
@@ -530,34 +536,10 @@ fn in_file(d: &Diagnostic, path: &Path) -> bool {
     }
 }
 
-/// Every drawing file below the workspace folders (text and DXF).
+/// Every drawing file below the workspace folders (text and DXF; a bounded walk, see
+/// [`walk`]) and the open buffers.
 pub fn workspace_files(ws: &Workspace) -> Vec<PathBuf> {
-    fn walk(dir: &Path, out: &mut Vec<PathBuf>, depth: usize) {
-        if depth > 12 {
-            return;
-        }
-        let Ok(rd) = std::fs::read_dir(dir) else {
-            return;
-        };
-        let mut entries: Vec<PathBuf> = rd.filter_map(|e| e.ok().map(|e| e.path())).collect();
-        entries.sort();
-        for e in entries {
-            let hidden = e
-                .file_name()
-                .is_some_and(|n| n.to_string_lossy().starts_with('.') || n == "target");
-            if e.is_dir() && !hidden {
-                walk(&e, out, depth + 1);
-            } else if is_text_file(&e)
-                || e.extension().is_some_and(|x| x.eq_ignore_ascii_case("dxf"))
-            {
-                out.push(e);
-            }
-        }
-    }
-    let mut out = Vec::new();
-    for r in &ws.roots {
-        walk(r, &mut out, 0);
-    }
+    let mut out = walk::drawing_files(&ws.roots).files;
     for p in ws.overlays.keys() {
         if !out.contains(p) {
             out.push(p.clone());

@@ -1,7 +1,7 @@
 //! The G-code preview of a path, as `millpath compile` writes it.
 
 use crate::{Analysis, Workspace};
-use millpath_core::emit::{generate_for, Controller, Output};
+use millpath_core::emit::{generate_until, Controller, Output};
 use millpath_core::{Lang, Session};
 use std::path::Path;
 
@@ -38,6 +38,17 @@ pub(crate) fn top_model(
     path: &Path,
     name: Option<&str>,
 ) -> Result<TopModel, String> {
+    top_model_until(ws, path, name, &|| false)
+}
+
+/// [`top_model`] whose session asks `stop` (a cancelled request ends the work early; the
+/// caller asks `stop` again before using the result).
+pub(crate) fn top_model_until(
+    ws: &Workspace,
+    path: &Path,
+    name: Option<&str>,
+    stop: &dyn Fn() -> bool,
+) -> Result<TopModel, String> {
     let ds = ws.settings_for(path);
     let missing = ds.missing_message();
     let lang = ds.settings.lang;
@@ -50,6 +61,7 @@ pub(crate) fn top_model(
             .join("; ")
     };
     let mut session = Session::new(ds.settings, &fs).map_err(|e| joined(&e))?;
+    session.stop = Some(stop);
     let names = session.load_file(path);
     let name = match name {
         Some(n) => n.to_string(),
@@ -110,6 +122,17 @@ fn not_built(session: &Session, names: &[String], name: &str, lang: Lang) -> Str
 /// compile` would refuse gives no G-code and its reasons in `errors` (the editors show them
 /// instead); `Err` is kept for the signature's callers and never returned.
 pub fn preview(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<Preview, String> {
+    preview_until(ws, path, name, &|| false).unwrap_or_else(|| Err("cancelled".into()))
+}
+
+/// [`preview`] that gives up (`None`) when `stop()` turns true: asked between building and
+/// generating, and by the emitter every few hundred elements or passes.
+pub fn preview_until(
+    ws: &Workspace,
+    path: &Path,
+    name: Option<&str>,
+    stop: &dyn Fn() -> bool,
+) -> Option<Result<Preview, String>> {
     let refused = |errors: Vec<String>| Preview {
         path: name.unwrap_or_default().to_string(),
         gcode: String::new(),
@@ -125,34 +148,37 @@ pub fn preview(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<Previe
         controller,
         errors,
         ..
-    } = match top_model(ws, path, name) {
+    } = match top_model_until(ws, path, name, stop) {
+        _ if stop() => return None,
         Ok(t) => t,
-        Err(e) => return Ok(refused(vec![e])),
+        Err(e) => return Some(Ok(refused(vec![e]))),
     };
     let name = model.name().to_string();
     let file_name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let g = match generate_for(
+    let g = match generate_until(
         &model,
         &file_name,
         &millpath_core::banner(),
         sweep_speed,
         lang,
         &controller,
+        Some(stop),
     ) {
+        _ if stop() => return None,
         Ok(g) => g,
         Err(e) => {
             let mut all = errors;
             all.extend(e.iter().map(|d| d.message(lang)));
             let mut r = refused(all);
             r.path = name;
-            return Ok(r);
+            return Some(Ok(r));
         }
     };
     let stats = g.stats.lines(lang).to_vec();
-    Ok(match g.output {
+    Some(Ok(match g.output {
         Output::Milling(gcode) => Preview {
             path: name,
             gcode,
@@ -173,7 +199,7 @@ pub fn preview(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<Previe
             stats,
             errors,
         },
-    })
+    }))
 }
 
 pub(crate) fn messages(session: &Session, lang: Lang) -> Vec<String> {
@@ -188,13 +214,23 @@ pub(crate) fn messages(session: &Session, lang: Lang) -> Vec<String> {
 
 /// [`preview`] computed once per analysis: `ws` must be the workspace `a` was made from.
 pub fn preview_of(a: &Analysis, ws: &Workspace, name: Option<&str>) -> Result<Preview, String> {
+    preview_of_until(a, ws, name, &|| false).unwrap_or_else(|| Err("cancelled".into()))
+}
+
+/// [`preview_of`] that gives up (`None`, nothing remembered) when `stop()` turns true.
+pub fn preview_of_until(
+    a: &Analysis,
+    ws: &Workspace,
+    name: Option<&str>,
+    stop: &dyn Fn() -> bool,
+) -> Option<Result<Preview, String>> {
     let key = name.map(str::to_string);
     if let Some(p) = a.previews.lock().ok().and_then(|c| c.get(&key).cloned()) {
-        return p;
+        return Some(p);
     }
-    let p = preview(ws, &a.path, name);
+    let p = preview_until(ws, &a.path, name, stop)?;
     if let Ok(mut c) = a.previews.lock() {
         c.insert(key, p.clone());
     }
-    p
+    Some(p)
 }

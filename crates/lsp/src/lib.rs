@@ -3,8 +3,10 @@
 //! data (`conv`), keeps the open documents and their shared analyses (`state`), and has one
 //! file per group of handlers (`handlers/`), each turning a request into an ide call.
 
+mod cancel;
 mod conv;
 mod handlers;
+mod results;
 mod state;
 
 pub use conv::apply_edit;
@@ -108,6 +110,55 @@ impl LanguageServer for Backend {
         handlers::semantic_tokens::semantic_tokens_full(self, params).await
     }
 
+    async fn semantic_tokens_full_delta(
+        &self,
+        params: SemanticTokensDeltaParams,
+    ) -> Result<Option<SemanticTokensFullDeltaResult>> {
+        handlers::semantic_tokens::semantic_tokens_full_delta(self, params).await
+    }
+
+    async fn semantic_tokens_range(
+        &self,
+        params: SemanticTokensRangeParams,
+    ) -> Result<Option<SemanticTokensRangeResult>> {
+        handlers::semantic_tokens::semantic_tokens_range(self, params).await
+    }
+
+    async fn diagnostic(
+        &self,
+        params: DocumentDiagnosticParams,
+    ) -> Result<DocumentDiagnosticReportResult> {
+        handlers::pull_diagnostics::diagnostic(self, params).await
+    }
+
+    async fn workspace_diagnostic(
+        &self,
+        params: WorkspaceDiagnosticParams,
+    ) -> Result<WorkspaceDiagnosticReportResult> {
+        handlers::pull_diagnostics::workspace_diagnostic(self, params).await
+    }
+
+    async fn prepare_call_hierarchy(
+        &self,
+        params: CallHierarchyPrepareParams,
+    ) -> Result<Option<Vec<CallHierarchyItem>>> {
+        handlers::call_hierarchy::prepare_call_hierarchy(self, params).await
+    }
+
+    async fn incoming_calls(
+        &self,
+        params: CallHierarchyIncomingCallsParams,
+    ) -> Result<Option<Vec<CallHierarchyIncomingCall>>> {
+        handlers::call_hierarchy::incoming_calls(self, params).await
+    }
+
+    async fn outgoing_calls(
+        &self,
+        params: CallHierarchyOutgoingCallsParams,
+    ) -> Result<Option<Vec<CallHierarchyOutgoingCall>>> {
+        handlers::call_hierarchy::outgoing_calls(self, params).await
+    }
+
     async fn code_lens(&self, params: CodeLensParams) -> Result<Option<Vec<CodeLens>>> {
         handlers::code_lens::code_lens(self, params).await
     }
@@ -169,6 +220,7 @@ pub fn service() -> (LspService<Backend>, tower_lsp_server::ClientSocket) {
             last: HashMap::new(),
             debounce: Duration::ZERO,
             watch_files: false,
+            results: Default::default(),
         })),
     })
     .custom_method("millpath/gcodePreview", Backend::gcode_preview)

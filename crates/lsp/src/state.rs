@@ -36,6 +36,8 @@ pub(crate) struct State {
     pub(crate) debounce: Duration,
     /// The client can register `workspace/didChangeWatchedFiles` dynamically.
     pub(crate) watch_files: bool,
+    /// Semantic tokens and pulled diagnostics kept between requests; pull or push.
+    pub(crate) results: crate::results::Results,
 }
 
 pub struct Backend {
@@ -215,6 +217,11 @@ impl Backend {
                 }
             }
             todo.retain(|d| Self::bump(&mut st, d).is_some());
+            // a client that pulls is told to pull again
+            if st.results.pull && st.results.refresh && !todo.is_empty() {
+                let client = self.client.clone();
+                tokio::spawn(async move { client.workspace_diagnostic_refresh().await });
+            }
         }
         for d in todo {
             self.publish_later(d);
@@ -226,15 +233,20 @@ impl Backend {
     pub(crate) fn publish_later(&self, path: PathBuf) {
         let Some(uri) = to_uri(&path) else { return };
         // the client's version of exactly this generation
-        let Ok((generation, debounce, version)) = self.state.lock().map(|s| {
+        let Ok((generation, debounce, version, pull)) = self.state.lock().map(|s| {
             (
                 s.generation.get(&path).copied().unwrap_or(0),
                 s.debounce,
                 s.versions.get(&path).copied(),
+                s.results.pull,
             )
         }) else {
             return;
         };
+        // the client asks for them (`textDocument/diagnostic`)
+        if pull {
+            return;
+        }
         let this = Backend {
             client: self.client.clone(),
             state: self.state.clone(),

@@ -30,7 +30,8 @@ pub mod toolpath;
 
 pub use dialect::{Controller, Dialect};
 pub use program::{
-    check, check_for, check_until, generate, generate_for, quick_check_until, Generated, Output,
+    check, check_for, check_until, generate, generate_for, generate_until, quick_check_until,
+    Generated, Output,
 };
 pub use toolpath::{toolpath, Move, ProbePoint, Toolpath};
 

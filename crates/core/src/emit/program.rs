@@ -120,6 +120,20 @@ pub fn generate_for(
     lang: Lang,
     ctl: &Controller,
 ) -> Result<Generated, Vec<Diagnostic>> {
+    generate_until(model, file_name, banner, sweep_speed, lang, ctl, None)
+}
+
+/// [`generate_for`] that gives up when `stop()` turns true (the editor's preview of a
+/// cancelled request): `Err` without diagnostics then.
+pub fn generate_until(
+    model: &Model,
+    file_name: &str,
+    banner: &str,
+    sweep_speed: f64,
+    lang: Lang,
+    ctl: &Controller,
+    stop: Option<&dyn Fn() -> bool>,
+) -> Result<Generated, Vec<Diagnostic>> {
     let prologue = ctl.prologue(banner, file_name, model, start_height(model), true);
     let Emitted {
         rec,
@@ -128,7 +142,7 @@ pub fn generate_for(
         sources,
         split,
         ..
-    } = emit_after(model, false, ctl, None, &prologue)?;
+    } = emit_after(model, false, ctl, stop, &prologue)?;
     let s = model.params.s;
     let items = &rec.items;
 

@@ -13,9 +13,11 @@ pub(crate) async fn code_lens(
 ) -> Result<Option<Vec<CodeLens>>> {
     let uri = params.text_document.uri;
     let (a, ws) = b.analysis(&uri).await?;
+    // a cancelled request stops the compile of the statistics as well
+    let (_guard, cancelled) = crate::cancel::on_drop();
     blocking(move || {
         Some(
-            millpath_ide::code_lenses(&a, &ws)
+            millpath_ide::code_lenses_until(&a, &ws, &|| cancelled.get())?
                 .into_iter()
                 .map(|l| {
                     let p = pos(a.index.pos(l.offset));

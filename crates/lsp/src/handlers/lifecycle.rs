@@ -28,6 +28,19 @@ pub(crate) async fn initialize(b: &Backend, params: InitializeParams) -> Result<
             .and_then(|w| w.did_change_watched_files.as_ref())
             .and_then(|d| d.dynamic_registration)
             .unwrap_or(false);
+        // a client that pulls diagnostics gets none pushed (VS Code would show both)
+        st.results.pull = params
+            .capabilities
+            .text_document
+            .as_ref()
+            .is_some_and(|t| t.diagnostic.is_some());
+        st.results.refresh = params
+            .capabilities
+            .workspace
+            .as_ref()
+            .and_then(|w| w.diagnostics.as_ref())
+            .and_then(|d| d.refresh_support)
+            .unwrap_or(false);
         let folders = params.workspace_folders.unwrap_or_default();
         for f in &folders {
             if let Some(p) = to_path(&f.uri) {
@@ -113,11 +126,18 @@ pub(crate) async fn initialize(b: &Backend, params: InitializeParams) -> Result<
                             .collect(),
                         token_modifiers: vec![],
                     },
-                    full: Some(SemanticTokensFullOptions::Bool(true)),
-                    range: Some(false),
+                    full: Some(SemanticTokensFullOptions::Delta { delta: Some(true) }),
+                    range: Some(true),
                     ..Default::default()
                 }),
             ),
+            call_hierarchy_provider: Some(CallHierarchyServerCapability::Simple(true)),
+            diagnostic_provider: Some(DiagnosticServerCapabilities::Options(DiagnosticOptions {
+                identifier: Some("millpath".into()),
+                inter_file_dependencies: true,
+                workspace_diagnostics: true,
+                work_done_progress_options: Default::default(),
+            })),
             ..ServerCapabilities::default()
         },
         offset_encoding: None,

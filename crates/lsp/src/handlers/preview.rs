@@ -32,13 +32,18 @@ impl Backend {
     pub async fn gcode_preview(&self, params: PreviewParams) -> Result<PreviewResult> {
         let (a, ws) = self.analysis(&params.text_document.uri).await?;
         let name = params.path;
-        let pv = blocking(move || millpath_ide::preview_of(&a, &ws, name.as_deref()))
-            .await?
-            .map_err(|e| {
-                let mut err = Error::invalid_request();
-                err.message = e.into();
-                err
-            })?;
+        // a cancelled request stops the compile as well
+        let (_guard, cancelled) = crate::cancel::on_drop();
+        let pv = blocking(move || {
+            millpath_ide::preview_of_until(&a, &ws, name.as_deref(), &|| cancelled.get())
+        })
+        .await?
+        .ok_or_else(crate::cancel::request_cancelled)?
+        .map_err(|e| {
+            let mut err = Error::invalid_request();
+            err.message = e.into();
+            err
+        })?;
         Ok(PreviewResult {
             path: pv.path,
             gcode: pv.gcode,
