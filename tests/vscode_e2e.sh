@@ -29,6 +29,9 @@ trap cleanup EXIT
 ws="$tmp/workspace"
 mkdir -p "$ws" "$tmp/user/User" "$tmp/extensions"
 cp examples/text/*.mpath examples/text/millpath.toml examples/plate/1234.1P.dxf "$ws/"
+# a drawing with an error that is never opened: the workspace pull shows it in Problems
+printf 'path 3002.1P {\n  start (0, 0)  M10x3 O2 T3 I1,5 B-0,2\n  end (50, 0)\n  sweep (0, 0) -> (10, 10)\n  mill (10, 10) -> (40, 10)  O-3\n  sweep (40, 10) -> (50, 0)\n}\n' >"$tmp/3002.mpath"
+"$bin" text2dxf "$tmp/3002.mpath" -o "$ws/3002.dxf" >/dev/null
 cat > "$tmp/user/User/settings.json" <<'JSON'
 {
   "security.workspace.trust.enabled": false,

@@ -34,6 +34,7 @@ local ok, err = pcall(function()
   vim.cmd('runtime! ftdetect/*.lua')
   require('millpath').setup({ cmd = { bin, 'lsp' } })
   vim.cmd('edit ' .. file)
+  local main = vim.api.nvim_get_current_buf()
   check('filetype', vim.bo.filetype == 'millpath', vim.bo.filetype)
 
   vim.wait(15000, function() return #vim.diagnostic.get(0) > 0 end, 50)
@@ -49,6 +50,10 @@ local ok, err = pcall(function()
 
   local get = vim.lsp.get_clients or vim.lsp.get_active_clients
   local client = get({ name = 'millpath' })[1]
+  -- Neovim pulls diagnostics (textDocument/diagnostic) from a server that offers them
+  local provider = client.server_capabilities.diagnosticProvider
+  check('diagnostics by pull', provider and provider.workspaceDiagnostics == true
+    and client.capabilities.textDocument.diagnostic ~= nil, vim.inspect(provider))
   local function request(method, params)
     local res = client:request_sync(method, params, 10000, 0)
     return res and res.result, res and res.err
@@ -195,6 +200,29 @@ local ok, err = pcall(function()
   -- document highlight: both uses of the name in the project
   local hl = request('textDocument/documentHighlight', { textDocument = { uri = vim.uri_from_fname(project) }, position = { line = 4, character = 28 } })
   check('document highlight of the embedding', hl and #hl == 1 and hl[1].range.start.line == 4 and hl[1].range.start.character == 26, vim.inspect(hl))
+
+  -- call hierarchy over subpath embedding, through Neovim's own commands (quickfix list)
+  vim.cmd('silent! wall')
+  vim.api.nvim_set_current_buf(main)
+  vim.api.nvim_win_set_cursor(0, { 1, 7 })
+  vim.fn.setqflist({}, 'r')
+  vim.lsp.buf.incoming_calls()
+  vim.wait(10000, function() return #vim.fn.getqflist() > 0 end, 50)
+  local qf = vim.fn.getqflist()
+  local function at(e) return e and { vim.api.nvim_buf_get_name(e.bufnr), e.lnum, e.col, e.text } end
+  check('incoming calls: the project embeds the path (at its >NAME)', #qf == 1
+    and vim.api.nvim_buf_get_name(qf[1].bufnr) == project and qf[1].lnum == 5 and qf[1].col == 27
+    and qf[1].text == '2040.1P', vim.inspect(vim.tbl_map(at, qf)))
+  vim.cmd('cclose')
+  vim.cmd('edit ' .. project)
+  vim.api.nvim_win_set_cursor(0, { 1, 7 })
+  vim.fn.setqflist({}, 'r')
+  vim.lsp.buf.outgoing_calls()
+  vim.wait(10000, function() return #vim.fn.getqflist() > 0 end, 50)
+  qf = vim.fn.getqflist()
+  check('outgoing calls: the project embeds 2030.7Q', #qf == 1 and qf[1].text == '2030.7Q'
+    and vim.api.nvim_buf_get_name(qf[1].bufnr) == file and qf[1].lnum == 5, vim.inspect(vim.tbl_map(at, qf)))
+  vim.cmd('cclose')
 end)
 if not ok then
   check('no Lua error', false, err)

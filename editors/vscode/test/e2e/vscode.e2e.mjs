@@ -186,6 +186,22 @@ try {
     return `${logs.length} extension host log(s) clean`;
   });
 
+  await check('Problems shows the error of a DXF that was never opened (workspace diagnostics)', 'workspace-problems', async () => {
+    await showProblems();
+    const p = await until(async () => {
+      const t = await problems();
+      return /3002\.dxf/.test(t) && /Unsupported O value/.test(t) && t;
+    }, 30000);
+    expect(p, `problems: ${await problems()}`);
+    const tabs = await page.locator('.tab[aria-label*="3002.dxf"]').count();
+    expect(tabs === 0, `3002.dxf is open in ${tabs} tab(s)`);
+    // pulled only, never pushed as well: the error is listed once
+    const times = (p.match(/Unsupported O value/g) || []).length;
+    expect(times === 1, `listed ${times} times: ${p}`);
+    return p.split('\n').find((l) => /Unsupported O value/.test(l));
+  });
+  await page.locator('.tab[aria-label*="2001.mpath"]').first().click();
+
   await check('syntax highlighting colours the tokens', 'highlighting', async () => {
     const colours = await until(async () => {
       const c = await page.locator('.editor-group-container.active .view-line span span').evaluateAll((spans) =>
@@ -251,6 +267,10 @@ try {
       return /B value missing/.test(t) && t;
     }, 20000);
     expect(p, `problems: ${await problems()}`);
+    // pulled, not pushed as well (VS Code would list a pushed copy beside the pulled one)
+    await sleep(1500);
+    const twice = ((await problems()).match(/B value missing/g) || []).length;
+    expect(twice === 1, `listed ${twice} times`);
     return p.split('\n').find((l) => /B value missing/.test(l));
   });
 
