@@ -638,3 +638,84 @@ fn cancellation_stops_the_work_of_lenses_and_preview() {
         .contains("G-code"));
     assert!(c.shutdown().success());
 }
+
+/// Parity: one workspace pull over each folder of the examples and the shared drawings
+/// gives, per drawing, the (code, message, line) set `millpath check --format json` reports.
+#[test]
+fn workspace_pull_equals_check_for_every_drawing() {
+    let manifest = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut dirs = vec![
+        manifest.join("../../examples/text"),
+        manifest.join("../../examples/plate"),
+    ];
+    for s in ["conformance/fixtures", "samples"] {
+        let p = manifest.join("../../../shared").join(s);
+        if p.is_dir() {
+            dirs.push(p);
+        } else {
+            eprintln!("skipping {}: not present", p.display());
+        }
+    }
+    let mut mismatches = Vec::new();
+    let mut checked = 0;
+    for dir in dirs {
+        let dir = dir.canonicalize().unwrap();
+        let mut c = start(&dir, true);
+        let r = c.request("workspace/diagnostic", json!({ "previousResultIds": [] }));
+        let reports = ok(&r)["items"].as_array().unwrap().clone();
+        assert!(c.shutdown().success());
+        for rep in reports {
+            let f = PathBuf::from(decode_uri(rep["uri"].as_str().unwrap()).replace("file://", ""));
+            if f.parent() != Some(dir.as_path()) {
+                continue;
+            }
+            let out = std::process::Command::new(BIN)
+                .args(["check", "--format", "json"])
+                .arg(&f)
+                .current_dir(&dir)
+                .output()
+                .unwrap();
+            let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+            let fname = f.display().to_string();
+            let want: std::collections::BTreeSet<(String, String, Option<u64>)> = v["diagnostics"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .filter(|d| {
+                    d["location"]["file"].is_null() || d["location"]["file"] == fname.as_str()
+                })
+                .map(|d| {
+                    (
+                        d["code"].as_str().unwrap().to_string(),
+                        d["message"].as_str().unwrap().to_string(),
+                        d["location"]["line"].as_u64(),
+                    )
+                })
+                .collect();
+            let got: std::collections::BTreeSet<(String, String, Option<u64>)> = rep["items"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|x| {
+                    let key = (
+                        x["code"].as_str().unwrap_or("").to_string(),
+                        x["message"].as_str().unwrap_or("").to_string(),
+                        Some(x["range"]["start"]["line"].as_u64().unwrap() + 1),
+                    );
+                    // a line only where check gives one (paths and files have none)
+                    if want.contains(&key) {
+                        key
+                    } else {
+                        (key.0, key.1, None)
+                    }
+                })
+                .collect();
+            if got != want {
+                mismatches.push(format!("{fname}:\n  check: {want:?}\n  pull: {got:?}"));
+            }
+            checked += 1;
+        }
+    }
+    assert!(checked >= 4, "{checked}");
+    assert!(mismatches.is_empty(), "{}", mismatches.join("\n"));
+}
