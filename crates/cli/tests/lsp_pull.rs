@@ -558,10 +558,10 @@ fn cpu_time(pid: u32) -> Option<Duration> {
     Some(Duration::from_millis(ticks * 10))
 }
 
-/// A cancelled code lens or preview request answers -32800 at once, and its compile stops
+/// A cancelled code lens, preview or toolpath request answers -32800 at once, and its compile stops
 /// (the server's CPU goes idle instead of finishing the work); the server stays healthy.
 #[test]
-fn cancellation_stops_the_work_of_lenses_and_preview() {
+fn cancellation_stops_the_work_of_lenses_preview_and_toolpath() {
     if cpu_time(std::process::id()).is_none() {
         eprintln!("skipping: no /proc");
         return;
@@ -599,6 +599,10 @@ fn cancellation_stops_the_work_of_lenses_and_preview() {
         (
             "millpath/gcodePreview",
             json!({ "textDocument": { "uri": u }, "path": "7000.30P" }),
+        ),
+        (
+            "millpath/toolpath",
+            json!({ "textDocument": { "uri": u }, "path": "7000.31P" }),
         ),
     ] {
         let id = c.send_request(method, params);

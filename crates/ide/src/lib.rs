@@ -53,7 +53,7 @@ pub use selection::selection_ranges;
 pub use semantic_delta::{apply_token_edit, relative_tokens, token_edit, RelToken, TokenEdit};
 pub use semantic_tokens::{semantic_tokens, SemToken, TOKEN_TYPES};
 pub use symbols::{document_symbols, workspace_symbols, Symbol};
-pub use toolpath::{toolpath, toolpath_html, toolpath_svg};
+pub use toolpath::{toolpath, toolpath_html, toolpath_svg, toolpath_until};
 
 use millpath_core::diag::{Diagnostic, FileRef, Origin};
 use millpath_core::front::drawing::{DrawnObject, RawPath};

@@ -32,17 +32,9 @@ pub(crate) struct TopModel {
     pub cut_cell: Option<f64>,
 }
 
-/// Builds `name` (default: the first path of the file) with the file's settings.
-pub(crate) fn top_model(
-    ws: &Workspace,
-    path: &Path,
-    name: Option<&str>,
-) -> Result<TopModel, String> {
-    top_model_until(ws, path, name, &|| false)
-}
-
-/// [`top_model`] whose session asks `stop` (a cancelled request ends the work early; the
-/// caller asks `stop` again before using the result).
+/// Builds `name` (default: the first path of the file) with the file's settings; the
+/// session asks `stop` (a cancelled request ends the work early; the caller asks `stop`
+/// again before using the result).
 pub(crate) fn top_model_until(
     ws: &Workspace,
     path: &Path,

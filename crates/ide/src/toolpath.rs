@@ -1,6 +1,6 @@
 //! The toolpath view: moves as JSON, the standalone page and the SVG top view.
 
-use crate::preview::{top_model, TopModel};
+use crate::preview::{top_model_until, TopModel};
 use crate::Workspace;
 use millpath_core::diag::Origin;
 use std::path::{Path, PathBuf};
@@ -24,27 +24,66 @@ pub fn toolpath(
     path: &Path,
     name: Option<&str>,
 ) -> Result<serde_json::Value, String> {
+    toolpath_until(ws, path, name, &|| false).unwrap_or_else(|| Err("cancelled".into()))
+}
+
+/// [`toolpath`] that gives up (`None`) when `stop()` turns true: inside the emitter of the
+/// moves and of the written program, and between the stages.
+pub fn toolpath_until(
+    ws: &Workspace,
+    path: &Path,
+    name: Option<&str>,
+    stop: &dyn Fn() -> bool,
+) -> Option<Result<serde_json::Value, String>> {
+    let built = top_model_until(ws, path, name, stop);
+    if stop() {
+        return None;
+    }
+    let tp = built.map(|t| {
+        let moves =
+            millpath_core::emit::toolpath_until(&t.model, &t.controller, t.sweep_speed, Some(stop));
+        (t, moves)
+    });
+    if stop() {
+        return None;
+    }
+    let program = match &tp {
+        Ok((t, _)) => written(&t.model, path, &t.controller, t.sweep_speed, t.lang, stop),
+        Err(_) => None,
+    };
+    if stop() {
+        return None;
+    }
+    Some(tp.and_then(|(t, moves)| toolpath_json(ws, path, t, moves, program)))
+}
+
+/// The JSON of [`toolpath`] from the built model, its moves and its written program.
+fn toolpath_json(
+    ws: &Workspace,
+    path: &Path,
+    built: TopModel,
+    moves: Result<millpath_core::emit::Toolpath, Vec<millpath_core::Diagnostic>>,
+    program: Option<String>,
+) -> Result<serde_json::Value, String> {
     use serde_json::json;
     // `errors`: missing machine settings (placeholders in use), shown by the view
     let TopModel {
         model,
         lang,
         errors,
-        sweep_speed,
         controller,
         clamps,
         cut_cell,
         ..
-    } = top_model(ws, path, name)?;
+    } = built;
     let name = model.name().to_string();
-    let tp = millpath_core::emit::toolpath(&model, &controller, sweep_speed).map_err(|e| {
+    let tp = moves.map_err(|e| {
         e.iter()
             .map(|d| d.message(lang))
             .collect::<Vec<_>>()
             .join("; ")
     })?;
     // the written program: its moves against the clamps, its stock for the cut part
-    let program = written(&model, path, &controller, sweep_speed, lang);
     let hits = clamp_hits(program.as_deref(), &model, &controller, &clamps);
     let cut = program.as_deref().and_then(|p| {
         let (top, tool) = (model.params.t, model.params.o);
@@ -179,19 +218,21 @@ fn written(
     controller: &millpath_core::emit::Controller,
     sweep_speed: f64,
     lang: millpath_core::Lang,
+    stop: &dyn Fn() -> bool,
 ) -> Option<String> {
     let file_name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
     let banner = millpath_core::banner();
-    let g = millpath_core::emit::generate_for(
+    let g = millpath_core::emit::generate_until(
         model,
         &file_name,
         &banner,
         sweep_speed,
         lang,
         controller,
+        Some(stop),
     )
     .ok()?;
     Some(match g.output {

@@ -33,7 +33,7 @@ pub use program::{
     check, check_for, check_until, generate, generate_for, generate_until, quick_check_until,
     Generated, Output,
 };
-pub use toolpath::{toolpath, Move, ProbePoint, Toolpath};
+pub use toolpath::{toolpath, toolpath_until, Move, ProbePoint, Toolpath};
 
 /// Items (moves and comments) one program may hold: far beyond any real part, and a bound on
 /// the memory a hostile drawing can make the emitter take.
@@ -261,7 +261,7 @@ impl<'a> Emitter<'a> {
         self.rec.moved(item, text, self.source.unwrap_or(NO_SOURCE));
     }
     /// Asks [`Emitter::stop`] now and then; once it says stop, every loop ends (as when
-    /// the list is full) and [`emit`] returns no result.
+    /// the list is full) and [`emit_until`] returns no result.
     pub(crate) fn stop_now(&mut self) -> bool {
         if let Some(stop) = self.stop {
             self.until_stop_check = self.until_stop_check.saturating_sub(1);
@@ -405,12 +405,7 @@ fn missing_values(model: &Model, out: &mut Vec<Diagnostic>, depth: usize) {
 }
 
 /// The body moves of a model (dry: without texts) for a controller, its probes and start
-/// height.
-pub(crate) fn emit(model: &Model, dry: bool, ctl: &Controller) -> Result<Emitted, Vec<Diagnostic>> {
-    emit_until(model, dry, ctl, None)
-}
-
-/// [`emit`] that gives up when `stop()` turns true: `Err` without diagnostics then.
+/// height; gives up when `stop()` turns true: `Err` without diagnostics then.
 pub(crate) fn emit_until(
     model: &Model,
     dry: bool,

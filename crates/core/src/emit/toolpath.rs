@@ -6,7 +6,7 @@ use crate::diag::{Diagnostic, Origin};
 use crate::emit::stats::Stats;
 use crate::emit::timing::item_times;
 use crate::emit::Kind;
-use crate::emit::{emit, Controller};
+use crate::emit::{emit_until, Controller};
 use crate::geom::{P2, P3};
 use crate::model::*;
 
@@ -60,7 +60,17 @@ pub fn toolpath(
     ctl: &Controller,
     sweep_speed: f64,
 ) -> Result<Toolpath, Vec<Diagnostic>> {
-    let e = emit(model, false, ctl)?;
+    toolpath_until(model, ctl, sweep_speed, None)
+}
+
+/// [`toolpath`] that gives up when `stop()` turns true (`Err` without diagnostics then).
+pub fn toolpath_until(
+    model: &Model,
+    ctl: &Controller,
+    sweep_speed: f64,
+    stop: Option<&dyn Fn() -> bool>,
+) -> Result<Toolpath, Vec<Diagnostic>> {
+    let e = emit_until(model, false, ctl, stop)?;
     let start = P3 {
         x: 0.0,
         y: 0.0,

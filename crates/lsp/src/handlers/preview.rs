@@ -59,12 +59,16 @@ impl Backend {
             .ok_or_else(|| Error::invalid_params("not a file URI"))?;
         let ws = self.snapshot();
         let name = params.path;
-        blocking(move || millpath_ide::toolpath(&ws, &path, name.as_deref()))
-            .await?
-            .map_err(|e| {
-                let mut err = Error::invalid_request();
-                err.message = e.into();
-                err
-            })
+        let (_guard, cancelled) = crate::cancel::on_drop();
+        blocking(move || {
+            millpath_ide::toolpath_until(&ws, &path, name.as_deref(), &|| cancelled.get())
+        })
+        .await?
+        .ok_or_else(crate::cancel::request_cancelled)?
+        .map_err(|e| {
+            let mut err = Error::invalid_request();
+            err.message = e.into();
+            err
+        })
     }
 }
