@@ -31,6 +31,7 @@ pub fn code_lenses(a: &Analysis, ws: &Workspace) -> Vec<Lens> {
                     .iter()
                     .map(|s| s.split_whitespace().collect::<Vec<_>>().join(" "))
                     .take(4)
+                    .chain([format!("⏱ {}", pv.time)])
                     .collect::<Vec<_>>()
                     .join(" · "),
                 Err(e) => e,

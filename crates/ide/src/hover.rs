@@ -111,14 +111,15 @@ pub(crate) fn derived_facts(a: &Analysis, el: &Element, rows: &[Row], german: bo
             let first = value(rows, 'W').unwrap_or(t - i);
             let passes = pass_depths(first, b, i);
             let list: Vec<String> = passes.iter().map(|z| millpath_core::geom::f3(*z)).collect();
-            let minutes = len * passes.len() as f64 / feed * 1.4;
+            // the reference's estimate (length / F · 1.4), as h:mm:ss like every exact time
+            let seconds = len * passes.len() as f64 / feed * 1.4 * 60.0;
             out.push_str(&format!(
-                "\n{}: {} · {} {} mm · ca. {:.1} min",
+                "\n{}: {} · {} {} mm · ca. {}",
                 if german { "Durchgänge" } else { "passes" },
                 list.join(", "),
                 if german { "Länge" } else { "length" },
                 millpath_core::geom::f3(len),
-                minutes
+                millpath_core::emit::stats::hms(seconds)
             ));
         }
     } else if let Some(len) = length {

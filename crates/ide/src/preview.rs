@@ -15,6 +15,9 @@ pub struct Preview {
     pub z_txt: Option<String>,
     /// The five statistics lines.
     pub stats: Vec<String>,
+    /// The exact estimated time, `h:mm:ss` (the statistics keep whole minutes); empty when
+    /// the path is refused.
+    pub time: String,
     /// Errors that would stop `millpath compile` from writing the files.
     pub errors: Vec<String>,
 }
@@ -116,6 +119,7 @@ pub fn preview(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<Previe
         probing: None,
         z_txt: None,
         stats: Vec::new(),
+        time: String::new(),
         errors,
     };
     let TopModel {
@@ -152,6 +156,7 @@ pub fn preview(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<Previe
         }
     };
     let stats = g.stats.lines(lang).to_vec();
+    let time = millpath_core::emit::stats::hms(g.stats.seconds());
     Ok(match g.output {
         Output::Milling(gcode) => Preview {
             path: name,
@@ -159,6 +164,7 @@ pub fn preview(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<Previe
             probing: None,
             z_txt: None,
             stats,
+            time,
             errors,
         },
         Output::Probing {
@@ -171,6 +177,7 @@ pub fn preview(ws: &Workspace, path: &Path, name: Option<&str>) -> Result<Previe
             probing: Some(probing),
             z_txt: Some(z_txt),
             stats,
+            time,
             errors,
         },
     })

@@ -72,8 +72,9 @@ fn hover_shows_inherited_values_and_their_origin() {
         h.markdown
     );
     assert!(
+        // three passes of 20 mm at F300, the reference's ×1.4: 16.8 s
         h.markdown
-            .contains("passes: 1.500, 0.000, -0.200 · length 20.000 mm"),
+            .contains("passes: 1.500, 0.000, -0.200 · length 20.000 mm · ca. 0:00:17"),
         "{}",
         h.markdown
     );
@@ -333,6 +334,14 @@ fn semantic_tokens_and_code_lenses() {
         "{}",
         lenses[0].title
     );
+    // the exact time, as the preview (and compile's summary) has it
+    let pv = millpath_ide::preview_of(&a, &ws, None).unwrap();
+    assert!(pv.time.starts_with("0:0"), "{}", pv.time);
+    assert!(
+        lenses[0].title.ends_with(&format!(" · ⏱ {}", pv.time)),
+        "{}",
+        lenses[0].title
+    );
 }
 
 #[test]
@@ -370,6 +379,13 @@ fn toolpath_for_the_view() {
         }
     }
     assert_eq!(tp["stats"][0], preview.stats[0]);
+    // the exact time beside the seconds, as the preview has it
+    assert_eq!(tp["time"], preview.time.as_str());
+    let s = tp["seconds"].as_f64().unwrap();
+    assert_eq!(
+        tp["time"].as_str().unwrap(),
+        millpath_core::emit::stats::hms(s)
+    );
     assert!(toolpath(&ws, &p(dir.path(), "2010.mpath"), Some("9.9Q")).is_err());
 }
 
