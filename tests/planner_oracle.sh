@@ -12,6 +12,9 @@
 #   tests/planner_oracle.sh            regenerate the figures
 #   tests/planner_oracle.sh --check    run the planner and compare with the recorded figures
 #                                      (fails when a figure moved by more than 0.5 %)
+# PLANNER_SPEEDUP=K runs the simulated machine K times faster than the wall clock (every speed
+# K times, every acceleration K² times, the servo period 1/K): the planner then visits the
+# same points in the same servo cycles, so the figures are the same (see oracle.py).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -78,7 +81,7 @@ PY
 )
 # names relative to $tmp: synthetic/…, examples/…, shared/…
 (cd "$tmp" && /usr/bin/python3 "$root/tests/planner/oracle.py" --vel "$vel" --acc "$acc" \
-  --tolerance "$tol" "${programs[@]#"$tmp/"}") 2> >(grep -v "tool mmap" >&2) > "$tmp/times.tsv"
+  --tolerance "$tol" --speedup "${PLANNER_SPEEDUP:-1}" "${programs[@]#"$tmp/"}") 2> >(grep -v "tool mmap" >&2) > "$tmp/times.tsv"
 
 if [ "$check" = --check ]; then
   /usr/bin/python3 - "$out" "$tmp/times.tsv" <<'PY'

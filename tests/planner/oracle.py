@@ -12,6 +12,7 @@ or as a user; see tests/planner_oracle.sh.
 import argparse
 import os
 import pwd
+import re
 import subprocess
 import sys
 import tempfile
@@ -92,8 +93,11 @@ def triple(text):
     return parts * 3 if len(parts) == 1 else parts
 
 
-def write_config(d, vel, acc):
-    """The INI of a machine with `vel` (mm/min) and `acc` (mm/s²) per axis."""
+def write_config(d, vel, acc, k):
+    """The INI of a machine with `vel` (mm/min) and `acc` (mm/s²) per axis, run `k` times
+    faster than the wall clock (see `speed_up`)."""
+    vel = [v * k for v in vel]
+    acc = [a * k * k for a in acc]
     axes = "".join(
         AXIS.format(name=n, joint=j, v=vel[j] / 60.0, a=acc[j])
         for j, n in enumerate("XYZ")
@@ -105,8 +109,8 @@ def write_config(d, vel, acc):
         f.write(
             INI.format(
                 dir=d,
-                period=PERIOD_NS,
-                ramp=RAMP_FREQ,
+                period=PERIOD_NS // k,
+                ramp=RAMP_FREQ * k,
                 hal=os.path.join(HERE, "sim.hal"),
                 vmax=max(vel) / 60.0 * 2.0,
                 amax=max(acc) * 2.0,
@@ -116,9 +120,31 @@ def write_config(d, vel, acc):
     return ini
 
 
+FEED = re.compile(r"([Ff])\s*([-+]?(?:\d+\.?\d*|\.\d+))")
+
+
+def speed_up(text, k):
+    """The program with every F word `k` times larger (comments left alone).
+
+    The planner moves the same way `k` times faster when every speed is `k` times larger,
+    every acceleration `k²` times, the blend ramp's frequency `k` times and the servo period
+    `k` times shorter: it visits the same points in the same servo cycles. The oracle counts
+    cycles of the unscaled period, so its figures are the unscaled machine's.
+    """
+    if k == 1:
+        return text
+    out = []
+    for line in text.splitlines(keepends=True):
+        parts = re.split(r"(\([^)]*\)|;.*)", line)
+        for i in range(0, len(parts), 2):
+            parts[i] = FEED.sub(lambda m: f"{m.group(1)}{float(m.group(2)) * k:.6f}", parts[i])
+        out.append("".join(parts))
+    return "".join(out)
+
+
 class Sampler(threading.Thread):
-    """Reads halsampler's lines (`sample velocity program`) and keeps, per program, the
-    first and last sample in motion."""
+    """Reads halsampler's lines (`sample velocity program line`) and keeps, per program,
+    the first and last sample in motion (and with `keep`, every sample)."""
 
     def __init__(self, env, keep):
         super().__init__(daemon=True)
@@ -133,13 +159,13 @@ class Sampler(threading.Thread):
     def run(self):
         for line in self.proc.stdout:
             parts = line.split()
-            if len(parts) != 3:
+            if len(parts) != 4:
                 continue
-            n, v, prog = int(parts[0]), float(parts[1]), int(parts[2])
+            n, v, prog, at = int(parts[0]), float(parts[1]), int(parts[2]), int(parts[3])
             with self.lock:
                 self.last = n
                 if prog and self.keep is not None:
-                    self.keep.setdefault(prog, []).append(v)
+                    self.keep.setdefault(prog, []).append((v, at))
                 if prog and abs(v) > 1e-9:
                     first, _ = self.spans.get(prog, (n, n))
                     self.spans[prog] = (first, n)
@@ -147,6 +173,24 @@ class Sampler(threading.Thread):
     def sample(self):
         with self.lock:
             return self.last
+
+
+def start_of(prog, default):
+    """Where the estimate starts the program: above the origin at the height of its first
+    rapid in Z (millpath's programs begin with `G00 Z<sweep height>` and the estimate
+    starts there), else `default`."""
+    with open(prog) as f:
+        for line in f:
+            code = re.sub(r"\([^)]*\)|;.*", "", line).upper()
+            if not code.strip() or code.strip() == "%":
+                continue
+            if re.search(r"\bG0*0\b", code) and "Z" in code and "X" not in code:
+                m = re.search(r"Z\s*([-+]?[\d.]+)", code)
+                if m:
+                    return [0.0, 0.0, float(m.group(1))]
+            if re.search(r"[XYZ]", code):
+                break
+    return default
 
 
 def wait_for(what, check, limit):
@@ -162,9 +206,22 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--vel", required=True, help="max velocity mm/min: one or x,y,z")
     ap.add_argument("--acc", required=True, help="max acceleration mm/s²: one or x,y,z")
-    ap.add_argument("--start", default="0,0,10", help="where each program starts: x,y,z")
+    ap.add_argument(
+        "--start",
+        default="0,0,10",
+        help="where a program starts (x,y,z) when it does not begin with a rapid in Z",
+    )
+    ap.add_argument(
+        "--speedup",
+        type=int,
+        default=1,
+        help="run k times faster than the wall clock (same figures; the machine must keep up)",
+    )
     ap.add_argument("--tolerance", type=float, default=0.05, help="G64 P, mm")
-    ap.add_argument("--profiles", help="folder to write each program's speed profile to")
+    ap.add_argument(
+        "--profiles",
+        help="folder to write each program's profile to: speed and program line per cycle",
+    )
     ap.add_argument("programs", nargs="+")
     args = ap.parse_args()
     vel, acc, start = triple(args.vel), triple(args.acc), triple(args.start)
@@ -179,7 +236,10 @@ def main():
         env["RTAPI_UID"] = str(pwd.getpwnam(user).pw_uid)
         os.chmod(d, 0o777)
     os.environ.update(env)
-    ini = write_config(d, vel, acc)
+    k = args.speedup
+    if k < 1 or PERIOD_NS % k:
+        raise SystemExit("planner oracle: --speedup must divide 1000000")
+    ini = write_config(d, vel, acc, k)
     log = open(os.path.join(d, "linuxcnc.log"), "w")
     lcnc = subprocess.Popen(
         ["linuxcnc", "-r", ini], stdin=subprocess.PIPE, stdout=log, stderr=log, env=env, cwd=d
@@ -217,7 +277,7 @@ def main():
             # every program starts at rest at the same place (where the estimate starts)
             cmd.mode(linuxcnc.MODE_MDI)
             cmd.wait_complete()
-            cmd.mdi("G90 G0 X{} Y{} Z{}".format(*start))
+            cmd.mdi("G90 G0 X{} Y{} Z{}".format(*start_of(prog, start)))
             cmd.wait_complete()
             time.sleep(0.2)
             wait_for("the start position", idle, 60)
@@ -231,7 +291,8 @@ def main():
                 text = src.read()
                 # after a leading `%` (which must stay the first line)
                 head = text[: text.index("\n") + 1] if text.startswith("%") else ""
-                dst.write(head + f"G64 P{args.tolerance}\n" + text[len(head) :])
+                body = head + f"G64 P{args.tolerance}\n" + text[len(head) :]
+                dst.write(speed_up(body, k))
             cmd.program_open(copy)
             cmd.wait_complete()
             cmd.auto(linuxcnc.AUTO_RUN, 0)
@@ -266,7 +327,8 @@ def main():
                 os.makedirs(args.profiles, exist_ok=True)
                 out = os.path.join(args.profiles, prog.replace("/", "_") + ".vel")
                 with open(out, "w") as f:
-                    f.writelines(f"{v}\n" for v in keep.pop(n, []))
+                    # the line numbers count the G64 line the copy starts with
+                    f.writelines(f"{v}\t{at - 1}\n" for v, at in keep.pop(n, []))
     finally:
         if sampler is not None:
             sampler.proc.terminate()

@@ -69,7 +69,7 @@ fn words(line: &str) -> Vec<(char, f64)> {
 fn items_of(gcode: &str, start: [f64; 3]) -> Vec<Item> {
     let (mut pos, mut motion, mut feed) = (start, 0, 0.0);
     let mut out = Vec::new();
-    for line in gcode.lines() {
+    for (number, line) in gcode.lines().enumerate() {
         let w = words(line);
         let mut to = pos;
         let (mut i, mut j, mut moved) = (0.0, 0.0, false);
@@ -128,12 +128,32 @@ fn items_of(gcode: &str, start: [f64; 3]) -> Vec<Item> {
                 z: Some(to[2]),
                 arc,
             },
-            source: None,
+            // the line number (1-based), for the per-line comparison
+            source: Some(number as u32 + 1),
             shape: Default::default(),
         });
         pos = to;
     }
     out
+}
+
+/// Where the oracle starts a program (as millpath's estimate starts its own): at rest above
+/// the origin at the height of the first rapid in Z, if the program begins with one.
+fn start_of(gcode: &str, default_z: f64) -> P3 {
+    let at = |z| P3 { x: 0.0, y: 0.0, z };
+    for line in gcode.lines() {
+        let w = words(line);
+        let has = |l: char| w.iter().any(|(c, _)| *c == l);
+        if !(has('X') || has('Y') || has('Z')) {
+            continue;
+        }
+        let rapid = w.iter().any(|&(c, v)| c == 'G' && v == 0.0);
+        return match w.iter().find(|(c, _)| *c == 'Z') {
+            Some(&(_, z)) if rapid && !has('X') && !has('Y') => at(z),
+            _ => at(default_z),
+        };
+    }
+    at(default_z)
 }
 
 fn seconds(s: &Stats) -> f64 {
@@ -143,12 +163,7 @@ fn seconds(s: &Stats) -> f64 {
 /// A synthetic program's estimate.
 fn synthetic(name: &str, s: &Settings) -> f64 {
     let text = std::fs::read_to_string(oracle_dir().join("programs").join(name)).unwrap();
-    // the oracle starts every program at rest at the sweep height above the origin
-    let start = P3 {
-        x: 0.0,
-        y: 0.0,
-        z: s.sweep_height,
-    };
+    let start = start_of(&text, s.sweep_height);
     seconds(&Stats::timed(
         &items_of(&text, [start.x, start.y, start.z]),
         s.sweep_speed,
@@ -263,4 +278,22 @@ fn the_gcode_reader_reads_what_the_programs_say() {
     let q = std::f64::consts::FRAC_PI_2 * 5.0;
     assert!((items[2].len - q).abs() < 1e-9, "{}", items[2].len);
     assert!((items[3].len - 4.0 * q).abs() < 1e-9, "{}", items[3].len);
+}
+
+/// `PLANNER_PROGRAM=FILE cargo test -p millpath-core --test planner_oracle -- --ignored`:
+/// the model's time of each line of a program (to set beside the oracle's `--profiles`).
+#[test]
+#[ignore]
+fn print_the_time_of_each_line() {
+    let Some(file) = std::env::var_os("PLANNER_PROGRAM") else {
+        return;
+    };
+    let s = settings();
+    let text = std::fs::read_to_string(file).unwrap();
+    let start = start_of(&text, s.sweep_height);
+    let items = items_of(&text, [start.x, start.y, start.z]);
+    let times = millpath_core::emit::timing::item_times(&items, start, &s.machine().unwrap());
+    for (it, t) in items.iter().zip(times) {
+        println!("{}\t{t:.4}\t{}", it.source.unwrap(), it.text.trim());
+    }
 }

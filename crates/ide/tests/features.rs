@@ -52,6 +52,27 @@ fn diagnostics_of_a_missing_b_value_with_range() {
 }
 
 #[test]
+fn hover_on_a_path_name_shows_its_statistics_and_exact_time() {
+    let (dir, ws) = setup();
+    let a = analyze(&ws, &p(dir.path(), "2001.mpath"));
+    let h = hover(&a, &ws, at(PART, "2001.1P") + 2).unwrap();
+    let pv = millpath_ide::preview_of(&a, &ws, Some("2001.1P")).unwrap();
+    assert!(
+        h.markdown.starts_with("**path** `2001.1P`"),
+        "{}",
+        h.markdown
+    );
+    assert!(
+        h.markdown
+            .contains(&format!("Estimated time: **{}**", pv.time)),
+        "{}",
+        h.markdown
+    );
+    assert!(h.markdown.contains(&pv.stats[0]), "{}", h.markdown);
+    assert_eq!(&PART[h.start..h.end], "2001.1P");
+}
+
+#[test]
 fn hover_shows_inherited_values_and_their_origin() {
     let (dir, ws) = setup();
     let a = analyze(&ws, &p(dir.path(), "2001.mpath"));

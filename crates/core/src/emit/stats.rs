@@ -1,6 +1,6 @@
 //! Statistics: lengths, times and command count (reference-output.md §14). The times are the
 //! reference's (length / F · 1.4) unless machine limits are set: then they come from the
-//! trapezoidal planner in `timing.rs`, and a sixth line names that model.
+//! model of LinuxCNC's planner in `timing/`, and a sixth line names that model.
 
 use crate::diag::Lang;
 use crate::emit::timing::{plan, Machine};
@@ -53,7 +53,7 @@ impl Stats {
         s
     }
 
-    /// [`Stats::of`], with the times of the trapezoidal model when `machine` is set (the tool
+    /// [`Stats::of`], with the times of the LinuxCNC planner model when `machine` is set (the tool
     /// starting at rest at `start`).
     pub fn timed(items: &[Item], sweep_speed: f64, start: P3, machine: Option<&Machine>) -> Stats {
         let mut s = Stats::of(items, sweep_speed);
@@ -83,7 +83,7 @@ impl Stats {
         format!("{label} {}", hms(self.seconds()))
     }
 
-    /// The line after the five naming the time model, e.g. `Time model: trapezoidal,
+    /// The line after the five naming the time model, e.g. `Time model: LinuxCNC planner,
     /// v=X5000/Y5000/Z1000 mm/min, a=X500/Y500/Z200 mm/s^2, G64 P0.05`; `None` for the
     /// reference's model (whose output has five lines).
     pub fn model_line(&self, lang: Lang) -> Option<String> {
@@ -92,8 +92,8 @@ impl Stats {
             format!("X{}/Y{}/Z{}", fmt_num(a.x), fmt_num(a.y), fmt_num(a.z))
         };
         let label = match lang {
-            Lang::En => "Time model: trapezoidal",
-            Lang::De => "Zeitmodell: Trapez",
+            Lang::En => "Time model: LinuxCNC planner",
+            Lang::De => "Zeitmodell: LinuxCNC-Planer",
         };
         Some(format!(
             "{label}, v={} mm/min, a={} mm/s^2, G64 P{}",

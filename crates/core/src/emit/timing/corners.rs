@@ -95,7 +95,7 @@ pub(super) fn join(prev: &Seg, prev_left: f64, next: &Seg, m: &Machine) -> Join 
     }
     let kink_vel = v_max * KINK_RATIO / scale;
     let arc = blend_arc(prev, prev_left, next, m, acc);
-    let parabolic = parabolic_speed(prev, next, m.path_tolerance);
+    let (parabolic, v_blend) = parabolic_speed(prev, next, m.path_tolerance);
     // the planner takes the fastest: the parabolic blend counts half (it halves the
     // acceleration of both moves), ties go to the earlier kind
     let arc_speed = arc.map_or(0.0, |a| match a {
@@ -105,7 +105,7 @@ pub(super) fn join(prev: &Seg, prev_left: f64, next: &Seg, m: &Machine) -> Join 
     let perf = [parabolic / 2.0, kink_vel, arc_speed];
     let best = (0..3).fold(0, |b, i| if perf[i] > perf[b] { i } else { b });
     match best {
-        0 => Join::Parabolic { v: parabolic },
+        0 => Join::Parabolic { v: v_blend },
         1 => Join::Tangent {
             kink_vel,
             reduce: KINK_RATIO,
@@ -114,8 +114,9 @@ pub(super) fn join(prev: &Seg, prev_left: f64, next: &Seg, m: &Machine) -> Join 
     }
 }
 
-/// The blend arc (blendmath.c `blendInit3FromLineLine`, `blendComputeParameters`); the
-/// planner's arc blends with arcs are approximated by the same arc on their end tangents.
+/// The blend arc (blendmath.c `blendInit3FromLineLine`, `blendComputeParameters`). With
+/// an arc the planner blends only in the arc's own plane (a helix or a line leaving the plane
+/// gets none), and at most over a third of the arc; the arc's curvature is left out.
 fn blend_arc(prev: &Seg, prev_left: f64, next: &Seg, m: &Machine, acc: [f64; 3]) -> Option<Join> {
     let (u1, u2) = (prev.u1, next.u0);
     let b = cross(u1, u2);
@@ -124,6 +125,11 @@ fn blend_arc(prev: &Seg, prev_left: f64, next: &Seg, m: &Machine, acc: [f64; 3])
         return None;
     }
     let normal = [b[0] / bl, b[1] / bl, b[2] / bl];
+    // the arcs are in XY: the blend's plane must be theirs (pmUnitCartsColinear)
+    if (prev.circular || next.circular) && normal[0].hypot(normal[1]) > 1e-6 {
+        return None;
+    }
+    let share = |s: &Seg| if s.circular { 1.0 / 3.0 } else { BLEND_SHARE };
     // θ: half the angle between the moves (π/2 straight on), φ: the turn
     let theta = (-dot(u1, u2)).clamp(-1.0, 1.0).acos() / 2.0;
     let phi = PI - 2.0 * theta;
@@ -152,8 +158,8 @@ fn blend_arc(prev: &Seg, prev_left: f64, next: &Seg, m: &Machine, acc: [f64; 3])
         v1 * v2 * phi.sin() / base
     };
     let v_goal = v_req.min(alt.max(in_plane(normal, vel)));
-    let l1 = prev_left.min(prev.len * BLEND_SHARE);
-    let l2 = next.len * BLEND_SHARE;
+    let l1 = prev_left.min(prev.len * share(prev));
+    let l2 = next.len * share(next);
     let h_tol = tolerance / (1.0 - theta.sin());
     let d_tol = theta.cos() * h_tol;
     let d_geom = l1.min(l2).min(d_tol);
@@ -178,9 +184,10 @@ fn blend_arc(prev: &Seg, prev_left: f64, next: &Seg, m: &Machine, acc: [f64; 3])
     })
 }
 
-/// The net speed of a parabolic blend (tp.c `tpComputeBlendVelocity`); neither move has its
-/// final length yet, so only half of each counts.
-fn parabolic_speed(prev: &Seg, next: &Seg, tolerance: f64) -> f64 {
+/// A parabolic blend (tp.c `tpComputeBlendVelocity`): its net speed along the corner (how
+/// the planner rates it) and the speed the moves hand over at; neither move has its final
+/// length yet, so only half of each counts.
+fn parabolic_speed(prev: &Seg, next: &Seg, tolerance: f64) -> (f64, f64) {
     let a1 = prev.acc * 0.5 * if prev.circular { 0.5 } else { 1.0 };
     let a2 = next.acc * if next.circular { 0.5 } else { 1.0 };
     let reach1 = (a1 * prev.len / 2.0).sqrt().min(prev.cap());
@@ -196,10 +203,6 @@ fn parabolic_speed(prev: &Seg, next: &Seg, tolerance: f64) -> f64 {
         vb1 = vb1.min(v);
         vb2 = vb2.min(v);
     }
-    let v = theta.sin() * (vb1 + vb2) / 2.0;
-    if v.is_finite() {
-        v.max(0.0)
-    } else {
-        0.0
-    }
+    let sane = |v: f64| if v.is_finite() { v.max(0.0) } else { 0.0 };
+    (sane(theta.sin() * (vb1 + vb2) / 2.0), sane(vb1.min(vb2)))
 }

@@ -122,7 +122,7 @@ pub fn plan(items: &[Item], start: P3, m: &Machine) -> Times {
 pub fn item_times(items: &[Item], start: P3, m: &Machine) -> Vec<f64> {
     let mut out = vec![0.0; items.len()];
     for (item, _, t) in planned(items, start, m) {
-        out[item] = t;
+        out[item] += t;
     }
     out
 }

@@ -42,6 +42,10 @@ fn limits(s: &Seg, before: Option<&Join>, after: Option<&Join>) -> (f64, f64) {
     if !s.circular {
         return (acc, s.cap());
     }
+    // the last move is never finalised: an arc keeps the tangential half it starts with
+    if after.is_none() {
+        return (acc * 0.5, s.cap());
+    }
     // arcs: the speed within the sideways share, and the tangential acceleration what is
     // left of `acc` at the arc's top speed (tc.c `pmCircleActualMaxVel`)
     let cutoff = (NORMAL_SHARE * acc * s.r_eff).sqrt();

@@ -64,6 +64,10 @@ fn axis_time(d: [f64; 3], limit: &Axes) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// Moves shorter than this (mm) are not moves: the programs are written to 0.001 mm, so such
+/// a move is none in the program (e.g. from a start a hair above the first sweep height).
+const MIN_MOVE: f64 = 5e-4;
+
 /// The moves of `items` (starting at `start`); moves without length or with a degenerate
 /// speed are left out (they take no time and do not break a blend).
 pub(super) fn segments(items: &[Item], start: P3, m: &Machine) -> Vec<Seg> {
@@ -100,7 +104,7 @@ pub(super) fn segments(items: &[Item], start: P3, m: &Machine) -> Vec<Seg> {
             seg.vmax.min(it.feed / 60.0)
         };
         let ok = |v: f64| v > 0.0 && v.is_finite();
-        if seg.len > 1e-9 && ok(req) && ok(seg.vmax) && ok(seg.acc) {
+        if seg.len > MIN_MOVE && ok(req) && ok(seg.vmax) && ok(seg.acc) {
             out.push(Seg {
                 item,
                 bucket,
