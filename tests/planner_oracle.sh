@@ -7,7 +7,8 @@
 # The set: the synthetic programs of tests/planner/programs (see synthetic.py), and the
 # examples and some shared drawings compiled in the linuxcnc dialect with the machine of
 # tests/planner/millpath.toml (the shared drawings are GPL: compiled here, never committed;
-# skipped when ../shared is absent). The planner runs in real time: about 8 minutes.
+# skipped when ../shared is absent). The planner runs in real time: about 13 minutes; with
+# PLANNER_SPEEDUP=20 (as CI runs it, with --check) under a minute, same figures to 1–4 ms.
 #
 #   tests/planner_oracle.sh            regenerate the figures
 #   tests/planner_oracle.sh --check    run the planner and compare with the recorded figures
