@@ -407,3 +407,117 @@ fn millpath_toml_machine_table() {
         .apply(&mut s, &mut Have::default());
     assert_eq!(s.machine(), None);
 }
+
+/// Random programs of lines, arcs, helixes and sweeps (a fixed linear congruential sequence):
+/// every estimate is finite, no faster than the whole length at the highest speed allowed,
+/// and the moves' own times add up to the statistics'.
+#[test]
+fn random_programs_get_sane_times() {
+    use millpath_core::emit::timing::{item_times, plan};
+    let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
+    let mut next = move || {
+        seed = seed
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for _ in 0..200 {
+        let mut items = Vec::new();
+        let (mut x, mut y, mut z) = (0.0f64, 0.0f64, 0.0f64);
+        let mut length = 0.0;
+        for _ in 0..(1 + (next() * 60.0) as usize) {
+            let feed = 50.0 + next() * 5000.0;
+            let kind = next();
+            if kind < 0.5 {
+                // a line or a sweep, sometimes tiny, sometimes straight back
+                let scale = if next() < 0.2 { 1e-3 } else { 20.0 };
+                let (nx, ny, nz) = (
+                    x + (next() - 0.5) * scale,
+                    y + (next() - 0.5) * scale,
+                    z + if next() < 0.3 {
+                        (next() - 0.5) * 5.0
+                    } else {
+                        0.0
+                    },
+                );
+                let d = ((nx - x).powi(2) + (ny - y).powi(2) + (nz - z).powi(2)).sqrt();
+                let k = if kind < 0.15 {
+                    Kind::HSweep
+                } else {
+                    Kind::Mill
+                };
+                items.push(item(
+                    k,
+                    d,
+                    feed,
+                    Target {
+                        x: Some(nx),
+                        y: Some(ny),
+                        z: Some(nz),
+                        arc: None,
+                    },
+                ));
+                (x, y, z) = (nx, ny, nz);
+                length += d;
+            } else {
+                // an arc or helix around a centre beside the tool, any sweep
+                let r = 0.05 + next() * 30.0;
+                let a0 = next() * std::f64::consts::TAU;
+                let sweep = 0.01 + next() * std::f64::consts::TAU;
+                let ccw = next() < 0.5;
+                let c = P2 {
+                    x: x - r * a0.cos(),
+                    y: y - r * a0.sin(),
+                };
+                let a1 = if ccw { a0 + sweep } else { a0 - sweep };
+                let nz = z + if next() < 0.4 { -next() * 3.0 } else { 0.0 };
+                let (nx, ny) = (c.x + r * a1.cos(), c.y + r * a1.sin());
+                items.push(item(
+                    Kind::Mill,
+                    r * sweep,
+                    feed,
+                    Target {
+                        x: Some(nx),
+                        y: Some(ny),
+                        z: Some(nz),
+                        arc: Some((c, ccw)),
+                    },
+                ));
+                length += ((r * sweep).powi(2) + (nz - z).powi(2)).sqrt();
+                (x, y, z) = (nx, ny, nz);
+            }
+        }
+        let m = Machine {
+            max_velocity: Axes {
+                x: 1000.0 + next() * 9000.0,
+                y: 1000.0 + next() * 9000.0,
+                z: 500.0 + next() * 3000.0,
+            },
+            max_acceleration: Axes {
+                x: 50.0 + next() * 2000.0,
+                y: 50.0 + next() * 2000.0,
+                z: 20.0 + next() * 1000.0,
+            },
+            path_tolerance: next() * 0.5,
+        };
+        let t = plan(&items, ORIGIN, &m);
+        let total = t.mill + t.drill + t.sweep;
+        assert!(total.is_finite() && total >= 0.0, "{total}");
+        // nothing moves faster than the fastest axis along any direction (√3·max V)
+        let fastest =
+            3f64.sqrt() * m.max_velocity.x.max(m.max_velocity.y).max(m.max_velocity.z) / 60.0;
+        // (moves below the program's 0.001 mm take no time)
+        let length = (length - items.len() as f64 * 1e-3).max(0.0);
+        assert!(
+            total >= length / fastest * (1.0 - 1e-9),
+            "{total} < {length}/{fastest}"
+        );
+        let each = item_times(&items, ORIGIN, &m);
+        assert!(each.iter().all(|t| t.is_finite() && *t >= 0.0));
+        let sum: f64 = each.iter().sum();
+        assert!(
+            (sum - total).abs() <= 1e-9 * total.max(1.0),
+            "{sum} {total}"
+        );
+    }
+}
