@@ -41,6 +41,7 @@ pub fn code_lenses_until(
                     .iter()
                     .map(|s| s.split_whitespace().collect::<Vec<_>>().join(" "))
                     .take(4)
+                    .chain([format!("⏱ {}", pv.time)])
                     .collect::<Vec<_>>()
                     .join(" · "),
                 Err(e) => e,

@@ -17,6 +17,13 @@ pub struct Hover {
 
 /// Hover: a parameter letter, a subpath name, or an element with its effective values.
 pub fn hover(a: &Analysis, ws: &Workspace, offset: usize) -> Option<Hover> {
+    if let Some(p) = a
+        .ast
+        .paths()
+        .find(|p| p.name.span.start <= offset && offset <= p.name.span.end)
+    {
+        return path_hover(a, ws, &p.name.value, p.name.span.clone());
+    }
     let (_, el) = element_at(a, offset)?;
     let german = de(a);
     if let Some(p) = el
@@ -80,6 +87,44 @@ pub fn hover(a: &Analysis, ws: &Workspace, offset: usize) -> Option<Hover> {
     })
 }
 
+/// A path's name: its statistics as `millpath compile` writes them and the exact estimated
+/// time (or why it cannot be compiled).
+fn path_hover(
+    a: &Analysis,
+    ws: &Workspace,
+    name: &str,
+    span: std::ops::Range<usize>,
+) -> Option<Hover> {
+    let german = de(a);
+    let pv = crate::preview::preview_of(a, ws, Some(name)).ok()?;
+    let mut md = format!("**{}** `{name}`\n\n", if german { "Pfad" } else { "path" });
+    if pv.gcode.is_empty() && !pv.errors.is_empty() {
+        md.push_str(&pv.errors.join("\n\n"));
+    } else {
+        let model = match (a.settings.settings.machine().is_some(), german) {
+            (true, false) => "LinuxCNC's planner with the `[machine]` limits",
+            (true, true) => "LinuxCNC-Planer mit den `[machine]`-Grenzen",
+            (false, false) => "the reference's length / F · 1.4",
+            (false, true) => "Referenzformel Länge / F · 1,4",
+        };
+        md.push_str(&format!(
+            "{}: **{}** ({model})\n\n```text\n{}\n```\n",
+            if german {
+                "Geschätzte Zeit"
+            } else {
+                "Estimated time"
+            },
+            pv.time,
+            pv.stats.join("\n")
+        ));
+    }
+    Some(Hover {
+        markdown: md,
+        start: span.start,
+        end: span.end,
+    })
+}
+
 /// A table cell: `|` would split it, a line break end the row.
 fn cell(s: &str) -> String {
     s.replace('|', "\\|").replace(['\n', '\r'], " ")
@@ -111,14 +156,15 @@ pub(crate) fn derived_facts(a: &Analysis, el: &Element, rows: &[Row], german: bo
             let first = value(rows, 'W').unwrap_or(t - i);
             let passes = pass_depths(first, b, i);
             let list: Vec<String> = passes.iter().map(|z| millpath_core::geom::f3(*z)).collect();
-            let minutes = len * passes.len() as f64 / feed * 1.4;
+            // the reference's estimate (length / F · 1.4), as h:mm:ss like every exact time
+            let seconds = len * passes.len() as f64 / feed * 1.4 * 60.0;
             out.push_str(&format!(
-                "\n{}: {} · {} {} mm · ca. {:.1} min",
+                "\n{}: {} · {} {} mm · ca. {}",
                 if german { "Durchgänge" } else { "passes" },
                 list.join(", "),
                 if german { "Länge" } else { "length" },
                 millpath_core::geom::f3(len),
-                minutes
+                millpath_core::emit::stats::hms(seconds)
             ));
         }
     } else if let Some(len) = length {

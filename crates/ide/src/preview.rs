@@ -15,6 +15,9 @@ pub struct Preview {
     pub z_txt: Option<String>,
     /// The five statistics lines.
     pub stats: Vec<String>,
+    /// The exact estimated time, `h:mm:ss` (the statistics keep whole minutes); empty when
+    /// the path is refused.
+    pub time: String,
     /// Errors that would stop `millpath compile` from writing the files.
     pub errors: Vec<String>,
 }
@@ -131,6 +134,7 @@ pub fn preview_until(
         probing: None,
         z_txt: None,
         stats: Vec::new(),
+        time: String::new(),
         errors,
     };
     let TopModel {
@@ -170,6 +174,7 @@ pub fn preview_until(
         }
     };
     let stats = g.stats.lines(lang).to_vec();
+    let time = millpath_core::emit::stats::hms(g.stats.seconds());
     Some(Ok(match g.output {
         Output::Milling(gcode) => Preview {
             path: name,
@@ -177,6 +182,7 @@ pub fn preview_until(
             probing: None,
             z_txt: None,
             stats,
+            time,
             errors,
         },
         Output::Probing {
@@ -189,6 +195,7 @@ pub fn preview_until(
             probing: Some(probing),
             z_txt: Some(z_txt),
             stats,
+            time,
             errors,
         },
     }))

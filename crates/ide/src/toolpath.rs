@@ -186,6 +186,7 @@ fn toolpath_json(
     let mut stat_lines = tp.stats.lines(lang).to_vec();
     stat_lines.extend(stats.model_line(lang));
     stat_lines.extend(stats.split_line(lang));
+    stat_lines.push(stats.time_line(lang));
     let mut data = json!({
         "path": name,
         "file": path.display().to_string(),
@@ -196,7 +197,8 @@ fn toolpath_json(
         "tool": { "diameter": r3(model.params.o) },
         "stock": { "top": r3(model.params.t) },
         "stats": stat_lines,
-        "seconds": r3((stats.mill_min + stats.drill_min + stats.sweep_min) * 60.0),
+        "seconds": r3(stats.seconds()),
+        "time": millpath_core::emit::stats::hms(stats.seconds()),
         "bounds": { "minX": r3(minx), "minY": r3(miny), "maxX": r3(maxx), "maxY": r3(maxy), "minZ": r3(minz), "maxZ": r3(maxz) },
         "warnings": errors,
         "heightmap": serde_json::Value::Null,

@@ -52,6 +52,27 @@ fn diagnostics_of_a_missing_b_value_with_range() {
 }
 
 #[test]
+fn hover_on_a_path_name_shows_its_statistics_and_exact_time() {
+    let (dir, ws) = setup();
+    let a = analyze(&ws, &p(dir.path(), "2001.mpath"));
+    let h = hover(&a, &ws, at(PART, "2001.1P") + 2).unwrap();
+    let pv = millpath_ide::preview_of(&a, &ws, Some("2001.1P")).unwrap();
+    assert!(
+        h.markdown.starts_with("**path** `2001.1P`"),
+        "{}",
+        h.markdown
+    );
+    assert!(
+        h.markdown
+            .contains(&format!("Estimated time: **{}**", pv.time)),
+        "{}",
+        h.markdown
+    );
+    assert!(h.markdown.contains(&pv.stats[0]), "{}", h.markdown);
+    assert_eq!(&PART[h.start..h.end], "2001.1P");
+}
+
+#[test]
 fn hover_shows_inherited_values_and_their_origin() {
     let (dir, ws) = setup();
     let a = analyze(&ws, &p(dir.path(), "2001.mpath"));
@@ -72,8 +93,9 @@ fn hover_shows_inherited_values_and_their_origin() {
         h.markdown
     );
     assert!(
+        // three passes of 20 mm at F300, the reference's ×1.4: 16.8 s
         h.markdown
-            .contains("passes: 1.500, 0.000, -0.200 · length 20.000 mm"),
+            .contains("passes: 1.500, 0.000, -0.200 · length 20.000 mm · ca. 0:00:17"),
         "{}",
         h.markdown
     );
@@ -333,6 +355,14 @@ fn semantic_tokens_and_code_lenses() {
         "{}",
         lenses[0].title
     );
+    // the exact time, as the preview (and compile's summary) has it
+    let pv = millpath_ide::preview_of(&a, &ws, None).unwrap();
+    assert!(pv.time.starts_with("0:0"), "{}", pv.time);
+    assert!(
+        lenses[0].title.ends_with(&format!(" · ⏱ {}", pv.time)),
+        "{}",
+        lenses[0].title
+    );
 }
 
 #[test]
@@ -370,6 +400,13 @@ fn toolpath_for_the_view() {
         }
     }
     assert_eq!(tp["stats"][0], preview.stats[0]);
+    // the exact time beside the seconds, as the preview has it
+    assert_eq!(tp["time"], preview.time.as_str());
+    let s = tp["seconds"].as_f64().unwrap();
+    assert_eq!(
+        tp["time"].as_str().unwrap(),
+        millpath_core::emit::stats::hms(s)
+    );
     assert!(toolpath(&ws, &p(dir.path(), "2010.mpath"), Some("9.9Q")).is_err());
 }
 

@@ -169,6 +169,7 @@ impl Playground {
                     probing: None,
                     z_txt: None,
                     stats: Vec::new(),
+                    time: String::new(),
                     errors: vec![e],
                 }
             });

@@ -457,10 +457,11 @@ function legend() {
 }
 
 // ---- playback ----
+// h:mm:ss.s, as millpath writes every exact time (h:mm:ss)
 function fmtTime(s) {
-  s = Math.max(0, s);
-  const m = Math.floor(s / 60), r = s - 60 * m;
-  return `${m}:${r < 10 ? '0' : ''}${r.toFixed(1)}`;
+  const tenths = Math.round(Math.max(0, Number.isFinite(s) ? s : 0) * 10);
+  const h = Math.floor(tenths / 36000), m = Math.floor(tenths / 600) % 60, r = (tenths % 600) / 10;
+  return `${h}:${m < 10 ? '0' : ''}${m}:${r < 10 ? '0' : ''}${r.toFixed(1)}`;
 }
 function setTime(t, follow = true) {
   if (!st.data || !st.world) return null;

@@ -134,7 +134,7 @@ export async function activate(ctx: vscode.ExtensionContext): Promise<void> {
           status.text = `$(error) ${r.path || name || 'millpath'}: no G-code`;
           status.tooltip = r.errors.join('\n');
         } else {
-          status.text = `$(tools) ${statusText(r.path, r.stats)}`;
+          status.text = `$(tools) ${statusText(r.path, r.stats, r.time)}`;
           status.tooltip = r.stats.join('\n');
         }
       } catch {

@@ -103,8 +103,12 @@ function unquote(s: string): string {
   return s.startsWith('"') ? s.slice(1, -1).replace(/\\(.)/g, '$1') : s;
 }
 
-/** Status-bar text from the five statistics lines: `path · 115 mm · 2 min · 8 commands`. */
-export function statusText(path: string, stats: string[]): string {
+/**
+ * Status-bar text from the five statistics lines and the exact time (`h:mm:ss`, from a server
+ * that sends it): `path · 115 mm · 0:01:47 · 8 commands`; without the exact time the
+ * statistics' whole minutes, `≈2 min`.
+ */
+export function statusText(path: string, stats: string[], time?: string): string {
   const num = (line: string | undefined, re: RegExp) => (line ? re.exec(line)?.[1] : undefined);
   const total = stats[3];
   const mm = num(total, /(\d+)\s*mm/);
@@ -112,7 +116,8 @@ export function statusText(path: string, stats: string[]): string {
   const count = num(stats[4], /(\d+)\s*$/);
   const parts = [path];
   if (mm) parts.push(`${mm} mm`);
-  if (min) parts.push(`≈${min} min`);
+  if (time && /^\d+:\d\d:\d\d$/.test(time)) parts.push(time);
+  else if (min) parts.push(`≈${min} min`);
   if (count) parts.push(`${count} commands`);
   return parts.join(' · ');
 }
@@ -122,6 +127,8 @@ export interface PreviewResult {
   path: string;
   gcode: string;
   stats: string[];
+  /** The exact estimated time, `h:mm:ss` (empty when the path is refused). */
+  time?: string;
   errors: string[];
 }
 

@@ -53,6 +53,10 @@ test('status text from statistics lines (English and German)', () => {
   assert.equal(logic.statusText('8999.1P', en), '8999.1P · 185 mm · ≈2 min · 8 commands');
   const de = ['Fräslänge:     115 mm   ca.  2 min', 'Bohrungen:       4 mm   ca.  1 min', 'Leerfahrten:    66 mm   ca.  1 min', 'Summe:         185 mm   ca.  2 min', 'Befehlszahl: 8'];
   assert.equal(logic.statusText('8999.1P', de), '8999.1P · 185 mm · ≈2 min · 8 commands');
+  // the exact time instead of the whole minutes when the server sends it
+  assert.equal(logic.statusText('8999.1P', en, '0:01:47'), '8999.1P · 185 mm · 0:01:47 · 8 commands');
+  assert.equal(logic.statusText('8999.1P', en, ''), '8999.1P · 185 mm · ≈2 min · 8 commands');
+  assert.equal(logic.statusText('8999.1P', en, 'soon'), '8999.1P · 185 mm · ≈2 min · 8 commands');
 });
 
 test('preview text: the G-code, or the errors instead of it', () => {

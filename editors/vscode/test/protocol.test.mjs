@@ -2,7 +2,7 @@
 // preview and toolpath requests) with vscode-jsonrpc.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { spawn, execFileSync } from 'node:child_process';
+import { spawn, spawnSync } from 'node:child_process';
 import { mkdtempSync, writeFileSync, readFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, dirname } from 'node:path';
@@ -51,9 +51,13 @@ test('initialize with the extension options, preview and toolpath', async () => 
   assert.match(pv.probing, /G38\.3 Z0 F50\.000/);
   assert.equal(pv.stats.length, 5);
   assert.match(logic.statusText(pv.path, pv.stats), /^2020\.1P · \d+ mm/);
-  // and it is what `millpath compile` writes with the same settings
-  execFileSync(bin, ['compile', '-f', '300', '-v', '1000', '-s', '10', '-z', '50', '--lang', 'en', file], { stdio: 'ignore' });
+  // the exact time, which the status bar shows instead of the whole minutes
+  assert.match(pv.time, /^\d+:\d\d:\d\d$/);
+  assert.match(logic.statusText(pv.path, pv.stats, pv.time), new RegExp(`^2020\\.1P · \\d+ mm · ${pv.time} · \\d+ commands$`));
+  // and it is what `millpath compile` writes with the same settings (its summary: the same time)
+  const summary = spawnSync(bin, ['compile', '-f', '300', '-v', '1000', '-s', '10', '-z', '50', '--lang', 'en', file], { encoding: 'utf8' }).stderr;
   assert.equal(pv.gcode, readFileSync(join(dir, '2020_Clean.gcode'), 'utf8'));
+  assert.match(summary, new RegExp(`Estimated time: ${pv.time}\\n`));
 
   // a path compile would refuse: a result (not an error) whose errors the preview shows
   const refused = await conn.sendRequest('millpath/gcodePreview', { textDocument: { uri }, path: '2020.1p' });

@@ -67,6 +67,9 @@ test('every move of the program is drawn', { skip, timeout: 120000 }, async () =
   // the statistics' command count is the program's move count
   assert.match(data.stats[4], new RegExp(`\\b${data.moves.length}$`));
   assert.match(await page.locator('#stats').textContent(), /Milling length/);
+  // the exact estimated time ends the statistics, as compile's summary has it
+  assert.match(data.time, /^\d+:\d\d:\d\d$/);
+  assert.match(await page.locator('#stats').textContent(), new RegExp(`Estimated time: ${data.time}$`));
   // a numeric depth legend: the top and the bottom of the cuts in mm
   const b = data.bounds;
   assert.equal(b.minZ, -0.2);
@@ -119,6 +122,8 @@ test('playback puts the tool where the program is at a given time', { skip, time
   // the readout names the position, the feed and the line
   const readout = await page.locator('#readout').textContent();
   assert.match(readout, new RegExp(`X ${m.to[0].toFixed(3)} Y ${m.to[1].toFixed(3)}`));
+  // elapsed and remaining time as h:mm:ss.s
+  assert.match(readout, /\d+:\d\d:\d\d\.\d \/ −\d+:\d\d:\d\d\.\d$/);
   // the play button runs the program to its end
   const total = data.moves.reduce((s, mv) => s + mv.t, 0);
   await page.selectOption('#speed', '1000');

@@ -5,13 +5,16 @@ use crate::inputs::{collect_files, is_drawing};
 use crate::output::print_human;
 use crate::{out, report, workers};
 use millpath_core::diag::{Diagnostic, Msg, Origin, Severity};
+use millpath_core::emit::stats::hms;
 use millpath_core::{compile_file, Lang, OsFileSystem, Session, Settings};
 use std::path::{Path, PathBuf};
 
-/// What checking one file gives: its progress lines and its diagnostics, in order.
+/// What checking one file gives: its progress lines and its diagnostics, in order, and the
+/// estimated time of each path it planned.
 pub struct FileCheck {
     pub info: Vec<String>,
     pub diags: Vec<Diagnostic>,
+    pub times: Vec<(String, f64)>,
 }
 
 /// The session that checks one file. Each file gets its own (files are checked on their own,
@@ -27,10 +30,15 @@ fn check_session<'a>(
 pub fn check_file(settings: &Settings, input: &Path) -> Result<FileCheck, Vec<Diagnostic>> {
     let fs = OsFileSystem;
     let mut session = check_session(settings, &fs)?;
-    compile_file(&mut session, input, &millpath_core::banner());
+    let outcome = compile_file(&mut session, input, &millpath_core::banner());
     Ok(FileCheck {
         info: std::mem::take(&mut session.info),
         diags: std::mem::take(&mut session.diags.list),
+        times: outcome
+            .stats
+            .iter()
+            .map(|(path, s)| (path.clone(), s.seconds()))
+            .collect(),
     })
 }
 
@@ -114,12 +122,22 @@ pub fn run(m: &MachineArgs, format: Format, quiet: bool, paths: &[PathBuf]) -> u
         return 3;
     }
     let mut all = Vec::new();
+    // the estimated time of every planned path, for the JSON report
+    let mut times = Vec::new();
     // Printed in input order, whatever order the workers finished in; gathered first and
     // written at once (a write per line cost more than reading a small drawing).
     let mut info = String::new();
-    for result in check_all(&settings, &inputs, quiet) {
+    for (input, result) in inputs.iter().zip(check_all(&settings, &inputs, quiet)) {
         match result {
             Ok(file) => {
+                for (path, seconds) in file.times {
+                    times.push(serde_json::json!({
+                        "file": input.display().to_string(),
+                        "path": path,
+                        "seconds": seconds,
+                        "time": hms(seconds),
+                    }));
+                }
                 // --quiet: the report only
                 if format == Format::Human && !quiet {
                     for line in file.info {
@@ -164,9 +182,27 @@ pub fn run(m: &MachineArgs, format: Format, quiet: bool, paths: &[PathBuf]) -> u
                 }
             );
         }
+        Format::Json => print_json(&all, inputs.len(), &times, lang),
         _ => print_report(format, &all, inputs.len(), lang),
     }
     u8::from(errors > 0)
+}
+
+/// The JSON report with the estimated time of each path (`times`: file, path, seconds and
+/// `h:mm:ss`; with `[machine]` LinuxCNC's planner model, else the reference's).
+fn print_json(all: &[Diagnostic], files: usize, times: &[serde_json::Value], lang: Lang) {
+    let errors = all.iter().filter(|d| d.severity == Severity::Error).count();
+    let v: Vec<serde_json::Value> = all.iter().map(|d| report::json_value(d, lang)).collect();
+    outln!(
+        "{}",
+        serde_json::to_string_pretty(&serde_json::json!({
+            "files": files,
+            "errors": errors,
+            "diagnostics": v,
+            "times": times,
+        }))
+        .unwrap_or_default()
+    );
 }
 
 /// The machine-readable reports (JSON, GitHub annotations, SARIF) of `files` checked files.

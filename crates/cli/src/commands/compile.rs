@@ -75,8 +75,12 @@ fn compile_one(settings: &Settings, input: &Path) -> bool {
     let written = write_drawing_outputs(input, &outcome, lang, &mut write_errors);
     if written {
         print_stats(&outcome, lang);
+        // the exact estimate (the statistics above keep the reference's whole minutes);
+        // like the volume, not in pathdxf2gcode's output, which stays the reference's
+        for (_, s) in &outcome.stats {
+            eprintln!("  {}", s.time_line(lang));
+        }
         if let Some(v) = outcome.removed_volume {
-            // not in pathdxf2gcode's output, which stays the reference's
             let label = if lang == Lang::De {
                 "Abgetragenes Volumen"
             } else {

@@ -1,6 +1,6 @@
 //! Statistics: lengths, times and command count (reference-output.md §14). The times are the
 //! reference's (length / F · 1.4) unless machine limits are set: then they come from the
-//! trapezoidal planner in `timing.rs`, and a sixth line names that model.
+//! model of LinuxCNC's planner in `timing/`, and a sixth line names that model.
 
 use crate::diag::Lang;
 use crate::emit::timing::{plan, Machine};
@@ -53,7 +53,7 @@ impl Stats {
         s
     }
 
-    /// [`Stats::of`], with the times of the trapezoidal model when `machine` is set (the tool
+    /// [`Stats::of`], with the times of the LinuxCNC planner model when `machine` is set (the tool
     /// starting at rest at `start`).
     pub fn timed(items: &[Item], sweep_speed: f64, start: P3, machine: Option<&Machine>) -> Stats {
         let mut s = Stats::of(items, sweep_speed);
@@ -67,7 +67,23 @@ impl Stats {
         s
     }
 
-    /// The line after the five naming the time model, e.g. `Time model: trapezoidal,
+    /// The estimated time of the whole program in seconds (the sum of the three lines'
+    /// times, unrounded).
+    pub fn seconds(&self) -> f64 {
+        (self.mill_min + self.drill_min + self.sweep_min) * 60.0
+    }
+
+    /// The exact estimate for the summaries beside the reference's statistics, e.g.
+    /// `Estimated time: 0:02:05` (the statistics lines keep their whole minutes).
+    pub fn time_line(&self, lang: Lang) -> String {
+        let label = match lang {
+            Lang::En => "Estimated time:",
+            Lang::De => "Geschätzte Zeit:",
+        };
+        format!("{label} {}", hms(self.seconds()))
+    }
+
+    /// The line after the five naming the time model, e.g. `Time model: LinuxCNC planner,
     /// v=X5000/Y5000/Z1000 mm/min, a=X500/Y500/Z200 mm/s^2, G64 P0.05`; `None` for the
     /// reference's model (whose output has five lines).
     pub fn model_line(&self, lang: Lang) -> Option<String> {
@@ -76,8 +92,8 @@ impl Stats {
             format!("X{}/Y{}/Z{}", fmt_num(a.x), fmt_num(a.y), fmt_num(a.z))
         };
         let label = match lang {
-            Lang::En => "Time model: trapezoidal",
-            Lang::De => "Zeitmodell: Trapez",
+            Lang::En => "Time model: LinuxCNC planner",
+            Lang::De => "Zeitmodell: LinuxCNC-Planer",
         };
         Some(format!(
             "{label}, v={} mm/min, a={} mm/s^2, G64 P{}",
@@ -135,9 +151,42 @@ impl Stats {
     }
 }
 
+/// A duration as `h:mm:ss`, rounded to the second (`0:00:00` for what is not a finite
+/// positive number; hours are not wrapped).
+pub fn hms(seconds: f64) -> String {
+    let s = if seconds.is_finite() && seconds > 0.0 {
+        // beyond a hundred years nothing is meaningful; keep the cast exact
+        seconds.round().min(3.2e9) as u64
+    } else {
+        0
+    };
+    format!("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn exact_times() {
+        assert_eq!(hms(0.0), "0:00:00");
+        assert_eq!(hms(0.49), "0:00:00");
+        assert_eq!(hms(0.5), "0:00:01");
+        assert_eq!(hms(125.4), "0:02:05");
+        assert_eq!(hms(3600.0 * 27.0 + 61.0), "27:01:01");
+        assert_eq!(hms(f64::NAN), "0:00:00");
+        assert_eq!(hms(-3.0), "0:00:00");
+        assert_eq!(hms(f64::INFINITY), "0:00:00");
+        let s = Stats {
+            mill_min: 1.0,
+            drill_min: 0.5,
+            sweep_min: 0.6,
+            ..Stats::default()
+        };
+        assert!((s.seconds() - 126.0).abs() < 1e-9);
+        assert_eq!(s.time_line(Lang::En), "Estimated time: 0:02:06");
+        assert_eq!(s.time_line(Lang::De), "Geschätzte Zeit: 0:02:06");
+    }
 
     #[test]
     fn statistics_lines() {

@@ -59,7 +59,7 @@ pub struct Settings {
     pub spindle_dwell: f64,
     /// Maximum velocity per axis (mm/min) for the time estimates; `None`: `/v` on every axis.
     pub max_velocity: Option<Axes>,
-    /// MAX_ACCELERATION per axis (mm/s²). Set: the statistics use the trapezoidal time model
+    /// MAX_ACCELERATION per axis (mm/s²). Set: the statistics use the LinuxCNC planner time model
     /// (`emit/timing.rs`); `None`: the reference's model.
     pub max_acceleration: Option<Axes>,
     /// G64 P (mm): how far a blended corner may leave the path, for the time estimates.

@@ -25,6 +25,8 @@ pub struct PreviewResult {
     pub probing: Option<String>,
     pub z_txt: Option<String>,
     pub stats: Vec<String>,
+    /// The exact estimated time, `h:mm:ss` (empty when the path is refused).
+    pub time: String,
     pub errors: Vec<String>,
 }
 
@@ -50,6 +52,7 @@ impl Backend {
             probing: pv.probing,
             z_txt: pv.z_txt,
             stats: pv.stats,
+            time: pv.time,
             errors: pv.errors,
         })
     }
