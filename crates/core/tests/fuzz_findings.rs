@@ -132,3 +132,48 @@ fn parameters_on_a_move_or_an_end_marker_are_refused() {
         assert!(refusal.iter().any(|d| d.msg == Msg::NoTextHere));
     }
 }
+
+/// A `bars helix` in a turned subpath: its bar profile was turned with the subpath while the
+/// helix's semicircles end at the circle's south point in output coordinates, so the first
+/// bar arc began away from the tool (the second opinion: "arc radius differs at start and
+/// end"; linuxcnc and grbl refused). The profile now starts where the tool is.
+#[test]
+fn a_bars_helix_in_a_turned_subpath_starts_its_bars_where_the_tool_is() {
+    let part = "path 2001.1P {
+  start (0, 0)  T3 O2 M3 I1 B-0,2 D1 P2 U5
+  bars helix (0, 0) d8
+  sweep (0, 0) -> (10, 0)
+  end (10, 0)
+}
+";
+    for to in ["(10, 0)", "(0, 10)", "(-10, 0)", "(6, -8)"] {
+        let top = format!(
+            "path 1000.1P {{
+  start (0, 0)  T3 O2 M3 I1 B-0,2
+  end {to}
+  sub (0, 0) -> {to}  >2001.1P
+}}
+"
+        );
+        for dialect in [Dialect::Reference, Dialect::LinuxCnc, Dialect::Grbl] {
+            let run = compile_with(
+                &[
+                    ("1000.mpath", top.clone()),
+                    ("2001.mpath", part.to_string()),
+                ],
+                "1000.mpath",
+                millpath_core::Settings {
+                    dialect,
+                    ..settings()
+                },
+            );
+            assert!(
+                !run.diags.iter().any(|d| d.msg == Msg::SecondOpinion),
+                "{to} {dialect}: {:?}",
+                run.messages()
+            );
+            let g = run.output("_Milling.gcode");
+            assert!(g.contains("Support.Bar"), "{to} {dialect}: no bars");
+        }
+    }
+}
