@@ -4,7 +4,8 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 root=..
-mkdir -p corpus/dxf_read corpus/text_parse corpus/format_idempotent corpus/compile
+# drawing (structure-aware) starts from nothing: any bytes make a drawing
+mkdir -p corpus/dxf_read corpus/text_parse corpus/format_idempotent corpus/compile corpus/drawing
 for f in "$root"/examples/*/*.dxf; do
   cp "$f" "corpus/dxf_read/$(basename "$f")"
   # the compile target reads one leading byte: even = DXF
