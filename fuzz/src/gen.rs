@@ -5,6 +5,10 @@
 //! 1e300, negative counts, decimal commas, variables, letters where they do not belong): the
 //! compiler must refuse those with located errors, the same in both front-ends.
 //!
+//! Sizes are bounded for speed (the second opinion's stock grid grows with the area over the
+//! bit's diameter, its work with the passes): steps of at most 8 mm, bits of 1.5 mm and up, at
+//! most 5 mm of material in passes of 1 mm and more, unless a hostile value says otherwise.
+//!
 //! The drawing is an `ast::File` per file, written by the formatter (the text front-end) and
 //! by `text2dxf` (the DXF front-end).
 
@@ -208,8 +212,8 @@ fn cutting_kind(u: &mut Unstructured) -> Result<Kind> {
 
 /// A step on the 0.5 mm grid, never zero.
 fn delta(u: &mut Unstructured) -> Result<(f64, f64)> {
-    let dx = f64::from(u.int_in_range(-24i8..=24)?) / 2.0;
-    let dy = f64::from(u.int_in_range(-24i8..=24)?) / 2.0;
+    let dx = f64::from(u.int_in_range(-16i8..=16)?) / 2.0;
+    let dy = f64::from(u.int_in_range(-16i8..=16)?) / 2.0;
     Ok(if dx == 0.0 && dy == 0.0 {
         (1.0, 0.0)
     } else {
@@ -229,7 +233,7 @@ fn on_circle(c: Point, r: f64, deg: i32) -> Point {
 
 /// An arc from the walk's point, a quarter, half or three quarters of a circle, either way.
 fn arc_from(u: &mut Unstructured, at: Point) -> Result<(Geometry, Point)> {
-    let r = f64::from(u.int_in_range(1u8..=16)?) / 2.0;
+    let r = f64::from(u.int_in_range(1u8..=12)?) / 2.0;
     let a = 90 * i32::from(u.int_in_range(0u8..=3)?);
     let sweep = 90 * i32::from(u.int_in_range(1u8..=3)?);
     let ccw: bool = u.arbitrary()?;
@@ -264,8 +268,8 @@ struct Common {
 
 fn common(u: &mut Unstructured) -> Result<Common> {
     Ok(Common {
-        t: number(u, &[3.0, 2.5, 5.0, 10.0])?,
-        o: number(u, &[2.0, 1.0, 3.0, 0.5, 6.0])?,
+        t: number(u, &[3.0, 2.5, 5.0, 4.0])?,
+        o: number(u, &[2.0, 3.0, 1.5, 6.0])?,
         m: if u.ratio(15, 16)? {
             Some(u.choose(&["10x3", "3", "Alu"])?.to_string())
         } else {
@@ -290,7 +294,7 @@ fn path(
         start.push(format!("M{m}"));
     }
     if var != Some('I') {
-        start.push(format!("I{}", number(u, &[1.0, 1.5, 0.5, 2.0, 3.0])?));
+        start.push(format!("I{}", number(u, &[1.0, 1.5, 2.0, 3.0])?));
     }
     match var {
         Some(v) => {
@@ -436,7 +440,7 @@ fn step(u: &mut Unstructured, w: &mut Walk, parts: &[Part]) -> Result<()> {
                     w.push(kind.clone(), Geometry::Line(pair[0], pair[1]), params);
                 }
             } else {
-                let r = f64::from(u.int_in_range(1u8..=12)?) / 2.0;
+                let r = f64::from(u.int_in_range(1u8..=8)?) / 2.0;
                 let c = pt(at.x + r, at.y);
                 w.push(
                     kind.clone(),
