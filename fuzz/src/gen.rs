@@ -197,7 +197,7 @@ fn letters_of(kind: &Kind) -> &'static [u8] {
     match kind {
         Kind::Mill | Kind::Mark | Kind::Bars => AT_SEGMENT,
         Kind::Sweep => AT_SWEEP,
-        // a move takes no text (refused, MP198): the empty list means "any letter, rarely"
+        // a move takes no text (refused, NoTextHere): the empty list means "any letter, rarely"
         _ => b"",
     }
 }
