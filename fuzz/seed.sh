@@ -4,7 +4,8 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 root=..
-mkdir -p corpus/dxf_read corpus/text_parse corpus/format_idempotent corpus/compile
+# drawing (structure-aware) starts from nothing: any bytes make a drawing
+mkdir -p corpus/dxf_read corpus/text_parse corpus/format_idempotent corpus/compile corpus/drawing
 for f in "$root"/examples/*/*.dxf; do
   cp "$f" "corpus/dxf_read/$(basename "$f")"
   # the compile target reads one leading byte: even = DXF
@@ -20,4 +21,9 @@ done
 # small hostile seeds of our own
 printf 'path 1000.1P {\n  start (0, 0)  O2 T2 INaN B-0,3\n  end (20, 0)\n  mill (0, 0) -> (20, 0)\n}\n' > corpus/text_parse/nan.mpath
 printf '\x01path 1000.1P {\n  start (0, 0)  O2 T2 I-1 B-0,1\n  end (30, 0)\n  sweep (0, 0) -> (10, 0)\n  helix (10, 0) d8\n  sweep (10, 0) -> (30, 0)\n}\n' > corpus/compile/helix-negative-i.mpath
+# drawing: a few long inputs, so that libFuzzer's length control starts long enough for
+# drawings with parts, subpaths and probes (short inputs run out of decisions early)
+for i in $(seq 1 32); do
+  [ -f "corpus/drawing/seed-random-$i" ] || head -c 700 /dev/urandom > "corpus/drawing/seed-random-$i"
+done
 echo "seeded: $(find corpus -type f | wc -l) files"

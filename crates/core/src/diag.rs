@@ -394,6 +394,8 @@ messages! {
     ClampHit = "The tool (diameter {3} mm, from its tip upward) runs into clamp '{0}' at G-code line {1} '{2}'", "Das Werkzeug (Durchmesser {3} mm, von der Spitze aufwärts) fährt in die Spannpratze '{0}' bei G-Code-Zeile {1} '{2}'";
     ClampTooMany = "millpath.toml declares {0} clamps, more than {1}", "millpath.toml gibt {0} Spannpratzen an, mehr als {1}";
     ClampEmpty = "Clamp '{0}': min must be below max on {1} (min {2}, max {3})", "Spannpratze '{0}': min muss auf {1} unter max liegen (min {2}, max {3})";
+    // found by fuzzing both front-ends (issue 25)
+    NoTextHere = "A {0} element takes no parameters: a DXF cannot attach a text to it ('{1}')", "Ein {0}-Element nimmt keine Parameter: eine DXF kann ihm keinen Text zuordnen ('{1}')";
 }
 
 impl Msg {

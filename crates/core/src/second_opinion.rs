@@ -9,23 +9,26 @@ use crate::emit::program::LineSources;
 use crate::model::{Element, Model};
 use millpath_verify::{verify, Clamp, Dialect, FindingKind, Options, Severity};
 
-/// The material top, tool diameter and deepest drawn depth the checker needs. Subpaths raised
-/// by H lift the top: the stock's top is the highest of them (nothing above it is material).
+/// The material top, tool diameter and deepest drawn depth the checker needs. The checker's
+/// stock is one block, but a subpath's H moves its material top (T + H): every part of the
+/// program comes down to its own top, so the block's top is the lowest of them. A block as
+/// high as the highest would put the rest's approaches "into material" and refuse valid
+/// programs (found by fuzzing); above a raised part the block is air, as it is above any cut.
 pub fn stock_of(model: &Model) -> (f64, f64, Option<f64>) {
-    fn highest_top(m: &Model, h: f64, depth: usize) -> f64 {
+    fn lowest_top(m: &Model, h: f64, depth: usize) -> f64 {
         m.elements
             .iter()
             .filter_map(|e| match e {
                 Element::Subpath(emb) if depth < 10 => emb
                     .target
                     .as_ref()
-                    .map(|t| highest_top(t, h + emb.h, depth + 1)),
+                    .map(|t| lowest_top(t, h + emb.h, depth + 1)),
                 _ => None,
             })
-            .fold(h + m.params.t, f64::max)
+            .fold(h + m.params.t, f64::min)
     }
     (
-        highest_top(model, 0.0, 0),
+        lowest_top(model, 0.0, 0),
         model.params.o,
         lowest_depth(model, 0.0, 0),
     )

@@ -133,7 +133,7 @@ impl DxfWriter {
         for (code, v) in [(10, at.0), (20, at.1), (30, 0.0), (40, height)] {
             self.pair(code, num(v));
         }
-        self.pair(1, value);
+        self.pair(1, escape_non_ascii(value));
         self.pair(72, 1);
         for (code, v) in [(11, at.0), (21, at.1), (31, 0.0)] {
             self.pair(code, num(v));
@@ -152,7 +152,13 @@ impl DxfWriter {
         }
         self.pair(71, 5);
         self.pair(72, 1);
-        self.pair(1, lines.join("\\P"));
+        let mut value = escape_non_ascii(&lines.join("\\P"));
+        if ends_with_escape(&value) {
+            // readers decode an escape only when a character follows it (as the reference
+            // does): an empty MTEXT group is that character and adds no text
+            value.push_str("{}");
+        }
+        self.pair(1, value);
         self
     }
 
@@ -491,6 +497,34 @@ impl Out {
         self.pair(330, format!("{owner:X}"));
         self.pair(100, "AcDbSymbolTableRecord");
         self.pair(100, subclass);
+    }
+}
+
+/// A text value for the file's code page (`ANSI_1252`, whose files readers decode byte by
+/// byte): characters beyond ASCII as `\U+XXXX` escapes, as AutoCAD writes them. Characters
+/// beyond the Basic Multilingual Plane have no such escape and stay as they are.
+fn escape_non_ascii(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        let code = u32::from(c);
+        if c.is_ascii() || code > 0xFFFF {
+            out.push(c);
+        } else {
+            let _ = write!(out, "\\U+{code:04X}");
+        }
+    }
+    out
+}
+
+/// Whether a value ends with a `\U+XXXX` escape.
+fn ends_with_escape(s: &str) -> bool {
+    let b = s.as_bytes();
+    b.len() >= 7 && {
+        let tail = &b[b.len() - 7..];
+        tail[0] == b'\\'
+            && tail[1] == b'U'
+            && tail[2] == b'+'
+            && tail[3..].iter().all(u8::is_ascii_hexdigit)
     }
 }
 

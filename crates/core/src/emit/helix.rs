@@ -2,7 +2,7 @@
 
 use crate::emit::{bounded_passes, missing, Emitter, Frame, Kind, Skip, Target};
 use crate::front::drawing::Style;
-use crate::geom::{gt, le, Geom, F3, P2, P3};
+use crate::geom::{gt, le, Geom, Transform, F3, P2, P3};
 use crate::model::*;
 
 impl Emitter<'_> {
@@ -69,7 +69,18 @@ impl Emitter<'_> {
         if let (Style::Support, Some(pieces)) = (hx.style, &hx.bars) {
             let b = hx.b.ok_or_else(|| missing("B", &hx.origin))?;
             let dd = hx.d.ok_or_else(|| missing("D", &hx.origin))?;
-            let pieces: Vec<Geom> = pieces.iter().map(|g| g.transform(&fr.t)).collect();
+            // the semicircles end at the circle's south point in output coordinates, where
+            // the profile must begin: its pieces move with a subpath but do not turn with it
+            // (deliberate difference: turned, the first arc began away from the tool, an arc
+            // whose radius differs at its ends; found by fuzzing)
+            let shift = Transform {
+                from_start: hx.c,
+                from_end: hx.c,
+                to_start: c,
+                to_end: c,
+                angle: 0.0,
+            };
+            let pieces: Vec<Geom> = pieces.iter().map(|g| g.transform(&shift)).collect();
             while gt(done, h + b) && !self.full {
                 let z = (done - infeed).max(h + b);
                 // deliberate difference: bar depths are raised by h like everything else

@@ -216,6 +216,18 @@ pub struct DrawingFile {
     pub version: String,
 }
 
+/// Whether a drawn element can carry a parameter text: in a DXF, texts are never assigned
+/// to HIDDEN elements (`move`) or end markers (PHANTOM Ø 2), so a text file may not give
+/// them one either.
+pub fn takes_text(linetype: &str, shape: &Shape) -> bool {
+    match shape {
+        Shape::Circle { r, .. } => {
+            !(linetype == "HIDDEN" || (linetype == "PHANTOM" && near(*r, 1.0)))
+        }
+        Shape::Path(_) => linetype != "HIDDEN",
+    }
+}
+
 /// Start-text checks and `@` resolution, per file (reference-input.md §4.5, §5.1).
 pub fn resolve_start_texts(
     paths: &mut [RawPath],

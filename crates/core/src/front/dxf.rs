@@ -248,12 +248,7 @@ pub fn dxf_objects(
             }
         };
         let origin = ctx.origin(e, layer, &path, pos);
-        let candidate = match &shape {
-            Shape::Circle { r, .. } => {
-                !(linetype == "HIDDEN" || (linetype == "PHANTOM" && near(*r, 1.0)))
-            }
-            Shape::Path(_) => linetype != "HIDDEN",
-        };
+        let candidate = crate::front::drawing::takes_text(&linetype, &shape);
         objs.push(Obj {
             ent: e,
             layer,

@@ -3,7 +3,7 @@
 
 use crate::args;
 use crate::diag::{arg_per_lang, Diagnostic, Diags, FileRef, Msg, Origin};
-use crate::front::drawing::{DrawnObject, Shape};
+use crate::front::drawing::{takes_text, DrawnObject, Shape};
 use crate::geom::{normalize_angle, Geom, P2};
 use crate::params::ParamText;
 use millpath_syntax::error::or_list;
@@ -186,6 +186,16 @@ pub fn objects_of(
                 }
             }
             let text = if el.params.is_empty() {
+                None
+            } else if !takes_text(&linetype, &shape) {
+                // the DXF of this text could not attach it: refused, never silently dropped
+                let span = el.params[0].span.start..el.params[el.params.len() - 1].span.end;
+                let joined: Vec<&str> = el.params.iter().map(|p| p.value.as_str()).collect();
+                diags.error(
+                    Msg::NoTextHere,
+                    lines.origin(file, &span),
+                    args![el.kind.value.words(), joined.join(" ")],
+                );
                 None
             } else {
                 let span = el.params[0].span.start..el.params[el.params.len() - 1].span.end;
