@@ -436,12 +436,16 @@ pub(crate) fn emit_quick(
     match emit_with(model, true, ctl, stop, no_prefix, true) {
         Ok(e)
             if e.quick_steps.saturating_mul(SWEEP_LINES)
-                >= MAX_ITEMS - e.rec.lines.min(MAX_ITEMS) =>
+                < MAX_ITEMS - e.rec.lines.min(MAX_ITEMS) =>
         {
-            emit_with(model, true, ctl, stop, no_prefix, false)
+            return Ok(e)
         }
-        r => r,
+        Ok(_) => {}
+        // the quick order's own sweeps may be what reached the bound
+        Err(errs) if errs.iter().any(|d| d.msg == Msg::TooManyMoves) => {}
+        Err(errs) => return Err(errs),
     }
+    emit_with(model, true, ctl, stop, no_prefix, false)
 }
 
 /// Lines one sweep between two passes can take at most (`safe_sweep`: its comment, two

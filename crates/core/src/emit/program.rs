@@ -68,10 +68,7 @@ pub fn check_until(
     stop: Option<&dyn Fn() -> bool>,
 ) -> Result<Stats, Vec<Diagnostic>> {
     let e = emit_until(model, true, ctl, stop)?;
-    // the editor's check refuses a height map as compile does
-    if let Some(hm) = &ctl.heightmap {
-        grid_of(hm, ctl, model, &e.rec.items, &e.probes).map_err(|d| vec![d])?;
-    }
+    refuse_bad_grid(model, ctl, &e)?;
     let mut stats = Stats::timed(&e.rec.items, sweep_speed, start(e.sx), ctl.machine.as_ref());
     stats.split = e.split;
     Ok(stats)
@@ -85,11 +82,17 @@ pub fn quick_check_until(
     stop: Option<&dyn Fn() -> bool>,
 ) -> Result<(), Vec<Diagnostic>> {
     let e = emit_quick(model, ctl, stop)?;
-    // the editor's check refuses a height map as compile does
-    if let Some(hm) = &ctl.heightmap {
-        grid_of(hm, ctl, model, &e.rec.items, &e.probes).map_err(|d| vec![d])?;
+    refuse_bad_grid(model, ctl, &e)
+}
+
+/// A check refuses a height map's grid as compile does.
+fn refuse_bad_grid(model: &Model, ctl: &Controller, e: &Emitted) -> Result<(), Vec<Diagnostic>> {
+    match &ctl.heightmap {
+        Some(hm) => grid_of(hm, ctl, model, &e.rec.items, &e.probes)
+            .map(|_| ())
+            .map_err(|d| vec![d]),
+        None => Ok(()),
     }
-    Ok(())
 }
 
 /// Generates the G-code of a top-level model as the reference does. `Err` holds the errors

@@ -41,11 +41,7 @@ impl Backend {
         })
         .await?
         .ok_or_else(crate::cancel::request_cancelled)?
-        .map_err(|e| {
-            let mut err = Error::invalid_request();
-            err.message = e.into();
-            err
-        })?;
+        .map_err(refused)?;
         Ok(PreviewResult {
             path: pv.path,
             gcode: pv.gcode,
@@ -68,10 +64,13 @@ impl Backend {
         })
         .await?
         .ok_or_else(crate::cancel::request_cancelled)?
-        .map_err(|e| {
-            let mut err = Error::invalid_request();
-            err.message = e.into();
-            err
-        })
+        .map_err(refused)
     }
+}
+
+/// A path the preview or the toolpath cannot show: an error answer with the reason.
+fn refused(reason: String) -> Error {
+    let mut err = Error::invalid_request();
+    err.message = reason.into();
+    err
 }
