@@ -70,6 +70,47 @@ fn a_sweep_over_a_clamp_at_sweep_height_refuses_and_a_lower_clamp_passes() {
     }
 }
 
+/// The message lines (`error[…]: …`) of a command's output.
+fn message_lines(text: &str) -> Vec<String> {
+    text.lines()
+        .filter(|l| l.starts_with("error[") || l.starts_with("warning["))
+        .map(str::to_string)
+        .collect()
+}
+
+/// `check` keeps no program text (the checker reads each line as it is written, the lines
+/// its findings point at come from a second emission): its messages name the same G-code
+/// line, number and text, as compile's, which checks the written text.
+#[test]
+fn check_names_the_same_gcode_line_as_compile() {
+    let dir = tempfile::tempdir().unwrap();
+    for dialect in DIALECTS {
+        // two boxes: the first sweep's and the cut's
+        project(
+            dir.path(),
+            dialect,
+            &[
+                ("vice", [4.0, -3.0, 0.0], [6.0, 3.0, 10.0]),
+                ("stop", [29.0, -2.0, -5.0], [31.0, 2.0, 5.0]),
+            ],
+        );
+        let (status, compiled) = compile(dir.path());
+        assert_eq!(status, 1, "{dialect}: {compiled}");
+        let (status, checked) = status_and_text(dir.path(), &["check", "3001.mpath"]);
+        assert_eq!(status, 1, "{dialect}: {checked}");
+        let (compiled, checked) = (message_lines(&compiled), message_lines(&checked));
+        assert!(compiled.len() >= 2, "{dialect}: {compiled:?}");
+        // a G-code line's text in the message: `line N 'G0…'`
+        assert!(
+            compiled
+                .iter()
+                .all(|l| l.contains("line") && l.contains("'G0")),
+            "{dialect}: {compiled:?}"
+        );
+        assert_eq!(checked, compiled, "{dialect}");
+    }
+}
+
 #[test]
 fn a_cut_grazing_a_clamp_closer_than_the_tool_radius_refuses() {
     let dir = tempfile::tempdir().unwrap();

@@ -396,6 +396,8 @@ messages! {
     ClampEmpty = "Clamp '{0}': min must be below max on {1} (min {2}, max {3})", "Spannpratze '{0}': min muss auf {1} unter max liegen (min {2}, max {3})";
     // found by fuzzing both front-ends (issue 25)
     NoTextHere = "A {0} element takes no parameters: a DXF cannot attach a text to it ('{1}')", "Ein {0}-Element nimmt keine Parameter: eine DXF kann ihm keinen Text zuordnen ('{1}')";
+    // memory proportional to the input (issue 25)
+    TooManyLines = "The program would have more than {0} lines", "Das Programm hätte mehr als {0} Zeilen";
 }
 
 impl Msg {

@@ -280,33 +280,80 @@ fn generate_and_review_as(
     banner: &str,
     clamps_only: bool,
 ) -> Option<(emit::Generated, Option<f64>)> {
-    let generated = match generate_for(
-        model,
-        file_name,
-        banner,
-        session.settings.sweep_speed,
-        session.lang(),
-        &Controller::for_model(&session.settings, model),
-    ) {
-        Ok(g) => g,
-        Err(errs) => {
-            errs.into_iter().for_each(|e| session.diags.push(e));
-            return None;
-        }
+    let ctl = Controller::for_model(&session.settings, model);
+    let generate = |sink| {
+        emit::generate_into(
+            model,
+            file_name,
+            banner,
+            session.settings.sweep_speed,
+            session.lang(),
+            &ctl,
+            session.stop,
+            sink,
+        )
     };
-    let program = match &generated.output {
-        Output::Milling(g) => g,
-        Output::Probing { clean, .. } => clean,
-    };
-    let review = second_opinion::review(
-        program,
+    let reviewer = second_opinion::Reviewer::new(
         model,
-        &generated.line_sources,
-        session.lang(),
         session.settings.dialect,
         &session.settings.clamps,
         clamps_only,
     );
+    // a check keeps no text: the checker reads each line as it is written
+    let keep_text = !session.settings.check;
+    let (generated, review) = if keep_text {
+        let generated = generate_for(
+            model,
+            file_name,
+            banner,
+            session.settings.sweep_speed,
+            session.lang(),
+            &ctl,
+        );
+        let generated = match generated {
+            Ok(g) => g,
+            Err(errs) => {
+                errs.into_iter().for_each(|e| session.diags.push(e));
+                return None;
+            }
+        };
+        let program = match &generated.output {
+            Output::Milling(g) => g,
+            Output::Probing { clean, .. } => clean,
+        };
+        let review = second_opinion::review(
+            program,
+            model,
+            &generated.line_sources,
+            session.lang(),
+            session.settings.dialect,
+            &session.settings.clamps,
+            clamps_only,
+        );
+        (generated, review)
+    } else {
+        let (generated, sink) = match generate(Box::new(reviewer)) {
+            Ok(g) => g,
+            Err(errs) => {
+                errs.into_iter().for_each(|e| session.diags.push(e));
+                return None;
+            }
+        };
+        let any: Box<dyn std::any::Any> = sink;
+        let reviewer = any.downcast::<second_opinion::Reviewer>().ok()?;
+        let review = reviewer.finish(model, &generated.line_sources, session.lang(), |wanted| {
+            // the few lines findings point at, from a second emission
+            let capture = Box::new(second_opinion::LineCapture::new(wanted));
+            let Ok((_, sink)) = generate(capture) else {
+                return Default::default();
+            };
+            let any: Box<dyn std::any::Any> = sink;
+            any.downcast::<second_opinion::LineCapture>()
+                .map(|c| c.texts)
+                .unwrap_or_default()
+        });
+        (generated, review)
+    };
     for d in review.diagnostics {
         session.diags.push(d);
     }

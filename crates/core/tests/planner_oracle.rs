@@ -119,7 +119,6 @@ fn items_of(gcode: &str, start: [f64; 3]) -> Vec<Item> {
         };
         out.push(Item {
             kind,
-            text: line.to_string(),
             len,
             feed,
             target: Target {
@@ -293,7 +292,9 @@ fn print_the_time_of_each_line() {
     let start = start_of(&text, s.sweep_height);
     let items = items_of(&text, [start.x, start.y, start.z]);
     let times = millpath_core::emit::timing::item_times(&items, start, &s.machine().unwrap());
+    let lines: Vec<&str> = text.lines().collect();
     for (it, t) in items.iter().zip(times) {
-        println!("{}\t{t:.4}\t{}", it.source.unwrap(), it.text.trim());
+        let no = it.source.unwrap() as usize;
+        println!("{no}\t{t:.4}\t{}", lines[no - 1].trim());
     }
 }

@@ -36,7 +36,6 @@ const ORIGIN: P3 = P3 {
 fn item(kind: Kind, len: f64, feed: f64, target: Target) -> Item {
     Item {
         kind,
-        text: String::new(),
         len,
         feed,
         target,

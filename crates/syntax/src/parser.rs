@@ -291,6 +291,8 @@ pub fn parse(src: &str) -> (File, Vec<SyntaxError>) {
         }
         errors.push(describe(&e, span, src));
     }
+    // the tokens are the largest thing a parse holds: gone before the tree is finished
+    drop(toks);
     let items = out
         .unwrap_or_default()
         .into_iter()

@@ -30,6 +30,7 @@ mod machine;
 mod parse;
 mod stock;
 mod stock_view;
+mod stream;
 pub mod surface;
 mod surface_frame;
 
@@ -41,10 +42,11 @@ pub use finding::{
 };
 pub use parse::{parse_line, Block, Word, MAX_MAGNITUDE};
 pub use stock_view::{StockView, ViewRequest};
+pub use stream::Verifier;
 pub use surface::{HeightMap, SurfaceProblem};
 pub use surface_frame::{ROUNDING as SURFACE_ROUNDING, SPLIT_TOLERANCE};
 
-use machine::{Machine, MoveKind, Raw};
+use machine::{MoveKind, Raw};
 use stock::{GridGeom, Stock};
 
 /// Whose rules decide the feed-rate checks (and a few strictness details).
@@ -246,22 +248,16 @@ pub fn verify(program: &str, options: &Options) -> Report {
     verify_on_surface(program, options, None)
 }
 
-/// The texts of the lines `wanted` (1-based, at most `count`), found in one pass.
-fn line_texts(
-    body: &str,
-    wanted: impl Iterator<Item = usize>,
-    count: usize,
-) -> std::collections::HashMap<usize, &str> {
-    let wanted: std::collections::HashSet<usize> = wanted.filter(|&l| l <= count).collect();
+/// The texts of the lines `wanted` of a program (1-based, sorted), found in one pass.
+pub fn line_texts(body: &str, wanted: &[usize]) -> std::collections::HashMap<usize, String> {
     let mut texts = std::collections::HashMap::with_capacity(wanted.len());
-    if wanted.is_empty() {
-        return texts;
-    }
-    for (idx, raw) in body.split('\n').take(count).enumerate() {
-        if wanted.contains(&(idx + 1)) {
-            texts.insert(idx + 1, raw.strip_suffix('\r').unwrap_or(raw));
-            if texts.len() == wanted.len() {
-                break;
+    let mut next = wanted.iter().copied().peekable();
+    for (idx, raw) in body.split('\n').enumerate() {
+        let Some(&want) = next.peek() else { break };
+        if want == idx + 1 {
+            texts.insert(want, raw.strip_suffix('\r').unwrap_or(raw).to_string());
+            while next.peek() == Some(&want) {
+                next.next();
             }
         }
     }
@@ -288,209 +284,31 @@ pub fn verify_on_surface(
     options: &Options,
     surface_map: Option<&HeightMap>,
 ) -> Report {
-    let limits = options.limits;
-    let mut m = Machine::new(options.dialect);
-    // lines read, and the last that is not blank (the texts of findings are looked up at the
-    // end: a program can have millions of lines)
-    let (mut line_count, mut last_text) = (0usize, None);
+    let max_lines = options.limits.max_lines;
     let body = program.strip_suffix('\n').unwrap_or(program);
     // adjust-z's programs: heights back to the drawing's frame (adjusted.rs)
-    let (surface, problems) = adjusted::Surface::scan(body.split('\n').take(limits.max_lines));
-    let mut extra: Vec<Raw> = problems
-        .into_iter()
-        .map(|(line, kind)| Raw {
-            line: Some(line),
-            kind,
-            severity: Severity::Error,
-        })
-        .collect();
-    if surface.adjusted && !surface.has_values() {
-        extra.push(Raw {
-            line: None,
-            kind: FindingKind::Adjusted(AdjustedProblem::NoValues),
-            severity: Severity::Warning,
-        });
-    }
-    let rise = surface.max_rise();
+    let (surface, problems) = adjusted::Surface::scan(body.split('\n').take(max_lines));
     // a height map: given, or the program's own record (a broken one is an error)
-    let map: Option<HeightMap> = match surface_map {
-        Some(m) => Some(m.clone()),
-        None => match HeightMap::read_comments(body.split('\n').take(limits.max_lines)) {
-            Some(Ok(m)) => Some(m),
-            Some(Err((line, problem))) => {
-                extra.push(Raw {
-                    line: Some(line),
-                    kind: FindingKind::Surface(problem),
-                    severity: Severity::Error,
-                });
-                None
-            }
-            None => None,
+    let map = match surface_map {
+        Some(m) => Ok(Some(m.clone())),
+        None => match HeightMap::read_comments(body.split('\n').take(max_lines)) {
+            Some(Ok(m)) => Ok(Some(m)),
+            Some(Err(e)) => Err(e),
+            None => Ok(None),
         },
     };
-    for (idx, raw) in body.split('\n').enumerate() {
-        let no = idx + 1;
-        if idx >= limits.max_lines {
-            extra.push(Raw {
-                line: Some(no),
-                kind: FindingKind::Limit(Limit::Lines(limits.max_lines)),
-                severity: Severity::Error,
-            });
-            break;
-        }
-        let l = raw.strip_suffix('\r').unwrap_or(raw);
-        line_count = no;
-        if !l.trim().is_empty() {
-            last_text = Some(no);
-        }
-        let parsed = if l.len() > limits.max_line_len {
-            Err(FindingKind::Syntax(SyntaxError::LineTooLong(
-                limits.max_line_len,
-            )))
-        } else {
-            parse::parse_line(l)
-        };
-        match parsed {
-            Ok(mut b) if surface.adjusted => {
-                if let Err(kind) = to_drawing_frame(&mut b, &surface, rise) {
-                    extra.push(Raw {
-                        line: Some(no),
-                        kind: FindingKind::Adjusted(kind),
-                        severity: Severity::Error,
-                    });
-                }
-                m.exec(no, &b)
-            }
-            Ok(b) => m.exec(no, &b),
-            Err(kind) => {
-                if m.ended {
-                    // the controller does not read past the end
-                    m.after_end(no);
-                } else {
-                    m.findings.push(Raw {
-                        line: Some(no),
-                        kind,
-                        severity: Severity::Error,
-                    });
-                }
-            }
-        }
-        if m.findings.len() > limits.max_findings {
+    let mut v = Verifier::scanned(options.clone(), surface, problems, map);
+    for line in body.split('\n') {
+        if !v.line(line) {
             break;
         }
     }
-    if !m.ended && !m.percent_closed && m.findings.len() <= limits.max_findings {
-        m.findings.push(Raw {
-            line: last_text,
-            kind: FindingKind::MissingProgramEnd,
-            severity: Severity::Error,
-        });
-    }
-
-    // the values: options over the comment
-    let comment = m.stock.unwrap_or_default();
-    let params = StockParams {
-        top: options.top.or(comment.top).filter(|v| v.is_finite()),
-        tool: options
-            .tool
-            .or(comment.tool)
-            .filter(|v| v.is_finite() && *v > 0.0),
-        bottom: options.bottom.or(comment.bottom).filter(|v| v.is_finite()),
-    };
-    let mut findings = std::mem::take(&mut m.findings);
-    findings.extend(extra);
-    // on a height map: the moves back to the drawing's frame, within the roundings; cuts
-    // also sampled inside (a piece whose straight Z misses the surface between its ends)
-    check_clamps(&m.moves, options, params.tool, &mut findings);
-    let mut ztol = Z_TOLERANCE;
-    let mut inside: Vec<Option<(f64, f64, f64)>> = Vec::new();
-    if let Some(map) = &map {
-        let frame = surface_frame::Frame::new(map);
-        ztol += surface_frame::ROUNDING;
-        if params.bottom.is_some() {
-            inside = m.moves.iter().map(|mv| frame.lowest_inside(mv)).collect();
-        }
-        frame.to_drawing(&mut m.moves);
-    }
-    if let Some(bottom) = params.bottom {
-        let inside_tol = ztol + surface_frame::SPLIT_TOLERANCE;
-        for (k, mv) in m.moves.iter().enumerate() {
-            if mv.kind != MoveKind::Cut {
-                continue;
-            }
-            let ends = mv.from[2].min(mv.to[2]);
-            let low_inside = inside.get(k).copied().flatten().map(|l| l.0);
-            let below_ends = ends < bottom - ztol;
-            let below_inside = low_inside.is_some_and(|z| z < bottom - inside_tol);
-            if below_ends || below_inside {
-                let z = match low_inside {
-                    Some(z) if below_inside => z.min(ends),
-                    _ => ends,
-                };
-                findings.push(Raw {
-                    line: Some(mv.line),
-                    kind: FindingKind::BelowBottom { z, bottom },
-                    severity: Severity::Error,
-                });
-            }
-        }
-    }
-    let mut report = Report {
-        params,
-        lines: line_count,
-        moves: m.moves.len(),
-        surface: map,
-        ..Default::default()
-    };
-    match (params.top, params.tool) {
-        _ if options.skip_stock => {}
-        (Some(top), Some(tool)) => {
-            let stock = (top, tool, ztol);
-            run_stock(&m.moves, stock, &limits, &mut findings, &mut report);
-        }
-        (top, tool) => findings.push(Raw {
-            line: None,
-            kind: FindingKind::StockSkipped(StockSkip::MissingParams {
-                top: top.is_none(),
-                tool: tool.is_none(),
-            }),
-            severity: Severity::Note,
-        }),
-    }
-
-    if let (Some(req), Some(top), Some(tool)) = (&options.view, params.top, params.tool) {
-        let cell = report.stock.map(|s| s.cell);
-        report.view = stock_view::stock_view(&m.moves, top, tool, cell, req);
-    }
-    findings.sort_by_key(|f| f.line.unwrap_or(0));
-    if findings.len() > limits.max_findings {
-        findings.truncate(limits.max_findings);
-        findings.push(Raw {
-            line: None,
-            kind: FindingKind::Limit(Limit::Findings(limits.max_findings)),
-            severity: Severity::Note,
-        });
-    }
-    let texts = line_texts(body, findings.iter().filter_map(|f| f.line), line_count);
-    report.findings = findings
-        .into_iter()
-        .map(|f| Finding {
-            text: f
-                .line
-                .and_then(|l| texts.get(&l))
-                .map(|t| t.trim().chars().take(200).collect())
-                .unwrap_or_default(),
-            line: f.line,
-            kind: f.kind,
-            severity: f.severity,
-        })
-        .collect();
-    report
+    v.finish(|wanted| line_texts(body, wanted))
 }
 
 /// Every move against the keep-out boxes (machine coordinates: before a height map's frame),
 /// one finding per move and box it touches.
-fn check_clamps(
+pub(crate) fn check_clamps(
     moves: &[machine::Move],
     options: &Options,
     tool: Option<f64>,
@@ -530,7 +348,7 @@ fn check_clamps(
 }
 
 /// Moves the Z of a line of an adjusted program to the drawing's frame ([`adjusted`]).
-fn to_drawing_frame(
+pub(crate) fn to_drawing_frame(
     b: &mut parse::Block,
     surface: &adjusted::Surface,
     rise: f64,
@@ -549,7 +367,7 @@ fn to_drawing_frame(
 
 /// The stock model over all moves: rapids checked against it, cuts lowering it; `ztol`: how
 /// far below the stock a tool tip may pass.
-fn run_stock(
+pub(crate) fn run_stock(
     moves: &[machine::Move],
     (top, tool, ztol): (f64, f64, f64),
     limits: &Limits,

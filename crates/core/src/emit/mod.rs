@@ -5,7 +5,8 @@
 
 use crate::args;
 use crate::diag::{Diagnostic, Msg, Origin};
-use crate::emit::record::{Record, NO_SOURCE};
+use crate::emit::record::Record;
+pub use crate::emit::record::{LineSink, NO_SOURCE};
 use crate::front::drawing::Style;
 use crate::geom::{Transform, F3, P2, P3};
 use crate::model::*;
@@ -30,14 +31,18 @@ pub mod toolpath;
 
 pub use dialect::{Controller, Dialect};
 pub use program::{
-    check, check_for, check_until, generate, generate_for, generate_until, quick_check_until,
-    Generated, Output,
+    check, check_for, check_until, generate, generate_for, generate_into, generate_until,
+    quick_check_until, Generated, Output,
 };
 pub use toolpath::{toolpath, toolpath_until, Move, ProbePoint, Toolpath};
 
-/// Items (moves and comments) one program may hold: far beyond any real part, and a bound on
-/// the memory a hostile drawing can make the emitter take.
-pub(crate) const MAX_ITEMS: usize = 2_000_000;
+/// Moves one program may hold: far beyond any real part, and a bound on the memory a hostile
+/// drawing can make the emitter take (the moves are kept for the statistics and times).
+pub const MAX_ITEMS: usize = 2_000_000;
+/// Lines one program may have (moves and the comments between them). Elements write a few
+/// comments each, so this is only reached by a drawing that is nearly all comments; the
+/// lines themselves go to a file or the checker and are not kept.
+pub const MAX_LINES: usize = 4 * MAX_ITEMS;
 /// Passes of one chain segment or helix.
 pub(crate) const MAX_PASSES: f64 = 10_000.0;
 
@@ -107,7 +112,6 @@ impl Shape {
 #[derive(Debug, Clone)]
 pub struct Item {
     pub kind: Kind,
-    pub text: String,
     pub len: f64,
     pub feed: f64,
     /// Where a move goes (axes it does not name stay); for the toolpath view.
@@ -251,7 +255,6 @@ impl<'a> Emitter<'a> {
         let text = if self.dry { String::new() } else { text(self) };
         let item = Item {
             kind,
-            text: String::new(),
             len,
             feed,
             target: Target::default(),
@@ -276,7 +279,7 @@ impl<'a> Emitter<'a> {
         self.stopped
     }
     fn at_capacity(&mut self) -> bool {
-        if self.rec.lines >= MAX_ITEMS {
+        if self.rec.items.len() >= MAX_ITEMS || self.rec.lines >= MAX_LINES {
             self.full = true;
         }
         self.full
@@ -433,10 +436,10 @@ pub(crate) fn emit_quick(
     stop: Option<&dyn Fn() -> bool>,
 ) -> Result<Emitted, Vec<Diagnostic>> {
     let no_prefix: &[&str] = &[];
-    match emit_with(model, true, ctl, stop, no_prefix, true) {
+    match emit_with(model, true, ctl, stop, no_prefix, true, None) {
         Ok(e)
             if e.quick_steps.saturating_mul(SWEEP_LINES)
-                < MAX_ITEMS - e.rec.lines.min(MAX_ITEMS) =>
+                < MAX_ITEMS - e.rec.items.len().min(MAX_ITEMS) =>
         {
             return Ok(e)
         }
@@ -445,7 +448,7 @@ pub(crate) fn emit_quick(
         Err(errs) if errs.iter().any(|d| d.msg == Msg::TooManyMoves) => {}
         Err(errs) => return Err(errs),
     }
-    emit_with(model, true, ctl, stop, no_prefix, false)
+    emit_with(model, true, ctl, stop, no_prefix, false, None)
 }
 
 /// Lines one sweep between two passes can take at most (`safe_sweep`: its comment, two
@@ -460,7 +463,18 @@ pub(crate) fn emit_after<S: AsRef<str>>(
     stop: Option<&dyn Fn() -> bool>,
     prefix: &[S],
 ) -> Result<Emitted, Vec<Diagnostic>> {
-    emit_with(model, dry, ctl, stop, prefix, false)
+    emit_with(model, dry, ctl, stop, prefix, false, None)
+}
+
+/// [`emit_after`] whose lines go to `sink` instead of a text (it comes back in the record).
+pub(crate) fn emit_into<S: AsRef<str>>(
+    model: &Model,
+    ctl: &Controller,
+    stop: Option<&dyn Fn() -> bool>,
+    prefix: &[S],
+    sink: Option<Box<dyn LineSink>>,
+) -> Result<Emitted, Vec<Diagnostic>> {
+    emit_with(model, false, ctl, stop, prefix, false, sink)
 }
 
 fn emit_with<S: AsRef<str>>(
@@ -470,6 +484,7 @@ fn emit_with<S: AsRef<str>>(
     stop: Option<&dyn Fn() -> bool>,
     prefix: &[S],
     quick_order: bool,
+    sink: Option<Box<dyn LineSink>>,
 ) -> Result<Emitted, Vec<Diagnostic>> {
     if model.elements.is_empty() {
         return Err(vec![Diagnostic::error(
@@ -498,7 +513,7 @@ fn emit_with<S: AsRef<str>>(
         .collect();
     let sx = start_height(model);
     let mut em = Emitter {
-        rec: Record::new(dry, prefix, expected_moves(model)),
+        rec: Record::new(dry, prefix, expected_moves(model), sink),
         out_of_range: None,
         pos: P3 {
             x: 0.0,
@@ -550,10 +565,15 @@ fn emit_with<S: AsRef<str>>(
         return Err(Vec::new());
     }
     if em.full {
+        let (msg, bound) = if em.rec.lines >= MAX_LINES {
+            (Msg::TooManyLines, MAX_LINES)
+        } else {
+            (Msg::TooManyMoves, MAX_ITEMS)
+        };
         em.errors.push(Diagnostic::error(
-            Msg::TooManyMoves,
+            msg,
             model.raw.start_origin(),
-            args![MAX_ITEMS],
+            args![bound],
         ));
     }
     if !em.errors.is_empty() {

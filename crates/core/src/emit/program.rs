@@ -6,7 +6,7 @@ use crate::emit::as_comment;
 use crate::emit::dialect::Controller;
 use crate::emit::heightmap_program::{grid_of, grid_set, probe_close, probe_open, GridSet};
 use crate::emit::stats::Stats;
-use crate::emit::{emit_after, emit_quick, emit_until, start_height, Emitted};
+use crate::emit::{emit_into, emit_quick, emit_until, start_height, Emitted, LineSink};
 use crate::geom::{near, F3, P2, P3};
 use crate::model::*;
 use crate::probe::adjustz::{banner_index, banner_with_digest, set_digest};
@@ -137,15 +137,80 @@ pub fn generate_until(
     ctl: &Controller,
     stop: Option<&dyn Fn() -> bool>,
 ) -> Result<Generated, Vec<Diagnostic>> {
+    let job = Job {
+        model,
+        file_name,
+        banner,
+        sweep_speed,
+        lang,
+        ctl,
+        stop,
+    };
+    generate_job(&job, None).map(|(g, _)| g)
+}
+
+/// [`generate_until`] whose milling (or clean) program goes line by line to `sink` instead
+/// of a text: a check reads a long program without holding it. The program's text in the
+/// result is empty (the probing program and `_Z.txt` are there, their digest is not the
+/// real one); the sink comes back after the last line.
+#[allow(clippy::too_many_arguments)]
+pub fn generate_into(
+    model: &Model,
+    file_name: &str,
+    banner: &str,
+    sweep_speed: f64,
+    lang: Lang,
+    ctl: &Controller,
+    stop: Option<&dyn Fn() -> bool>,
+    sink: Box<dyn LineSink>,
+) -> Result<(Generated, Box<dyn LineSink>), Vec<Diagnostic>> {
+    let job = Job {
+        model,
+        file_name,
+        banner,
+        sweep_speed,
+        lang,
+        ctl,
+        stop,
+    };
+    generate_job(&job, Some(sink)).map(|(g, sink)| (g, sink.expect("the sink given")))
+}
+
+type Sink = Box<dyn LineSink>;
+
+/// What one generation is asked for.
+struct Job<'a> {
+    model: &'a Model,
+    file_name: &'a str,
+    banner: &'a str,
+    sweep_speed: f64,
+    lang: Lang,
+    ctl: &'a Controller,
+    stop: Option<&'a dyn Fn() -> bool>,
+}
+
+fn generate_job(
+    job: &Job,
+    sink: Option<Box<dyn LineSink>>,
+) -> Result<(Generated, Option<Sink>), Vec<Diagnostic>> {
+    let &Job {
+        model,
+        file_name,
+        banner,
+        sweep_speed,
+        lang,
+        ctl,
+        stop,
+    } = job;
     let prologue = ctl.prologue(banner, file_name, model, start_height(model), true);
     let Emitted {
-        rec,
+        mut rec,
         probes,
         sx,
         sources,
         split,
         ..
-    } = emit_after(model, false, ctl, stop, &prologue)?;
+    } = emit_into(model, ctl, stop, &prologue, sink)?;
     let s = model.params.s;
     let items = &rec.items;
 
@@ -171,9 +236,12 @@ pub fn generate_until(
     tail.extend(stats.split_line(lang).map(|l| format!("  ({l})")));
     tail.extend(ctl.epilogue(true));
     // the program is the emitter's text (written line by line as it went), then the tail
-    let mut body = rec.text;
-    body.reserve_exact(text_size(&tail));
-    push_lines(&mut body, &tail);
+    if rec.sink.is_none() {
+        rec.text.reserve_exact(text_size(&tail));
+    }
+    rec.write_tail(&tail);
+    let sink = rec.sink.take();
+    let body = rec.text;
     let line_sources = LineSources {
         lines: rec.line_sources,
         origins: sources,
@@ -189,18 +257,25 @@ pub fn generate_until(
         }
     };
     if let Some(GridSet { probing, z_lines }) = grid {
-        return Ok(Generated {
-            output: set(&z_lines, &probing, body),
-            stats,
-            line_sources,
-        });
+        let output = set(&z_lines, &probing, body);
+        return Ok((
+            Generated {
+                output,
+                stats,
+                line_sources,
+            },
+            sink,
+        ));
     }
     if probes.is_empty() {
-        return Ok(Generated {
-            output: Output::Milling(body),
-            stats,
-            line_sources,
-        });
+        return Ok((
+            Generated {
+                output: Output::Milling(body),
+                stats,
+                line_sources,
+            },
+            sink,
+        ));
     }
     // probing program and Z file
     let mut pl = ctl.prologue(banner, file_name, model, s, false);
@@ -244,11 +319,15 @@ pub fn generate_until(
             format!("{} {}=", as_comment(0, &inner), p.name)
         })
         .collect();
-    Ok(Generated {
-        output: set(&z_lines, &pl, body),
-        stats,
-        line_sources,
-    })
+    let output = set(&z_lines, &pl, body);
+    Ok((
+        Generated {
+            output,
+            stats,
+            line_sources,
+        },
+        sink,
+    ))
 }
 
 /// The set's digest in the banner line of both programs (the line the reference's outputs

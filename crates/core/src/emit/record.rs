@@ -8,9 +8,17 @@
 //! held back with the comments after it until the next move says whether it stays.
 
 use crate::emit::{Item, Kind};
+use std::any::Any;
+
+/// Where a program's lines go instead of a text: a consumer that reads each line as it is
+/// written (the checker), so a long program is never held whole.
+pub trait LineSink: Any {
+    /// One line (no `\n`) and the element that wrote it ([`NO_SOURCE`]: none).
+    fn line(&mut self, text: &str, source: u32);
+}
 
 /// A line no element wrote (prologue, statistics, epilogue).
-pub(crate) const NO_SOURCE: u32 = u32::MAX;
+pub const NO_SOURCE: u32 = u32::MAX;
 
 #[derive(Default)]
 pub(crate) struct Record {
@@ -18,8 +26,10 @@ pub(crate) struct Record {
     pub(crate) items: Vec<Item>,
     /// The line of each move, counted from the first line after the prefix (0-based).
     pub(crate) item_lines: Vec<u32>,
-    /// The lines written so far, each ending in `\n` (none in a dry run).
+    /// The lines written so far, each ending in `\n` (none in a dry run or with a sink).
     pub(crate) text: String,
+    /// Where the lines go instead of `text`.
+    pub(crate) sink: Option<Box<dyn LineSink>>,
     /// The element of every line of `text` (a dry run keeps none).
     pub(crate) line_sources: Vec<u32>,
     /// Lines recorded, held ones included, after the prefix.
@@ -39,18 +49,25 @@ impl Record {
     /// A record whose text starts with `prefix` (lines no element wrote).
     /// `moves`: a first guess of their number (the list grows beyond it; a guess too large
     /// only reserves address space, while growing a long list copies it each time).
-    pub(crate) fn new<S: AsRef<str>>(dry: bool, prefix: &[S], moves: usize) -> Record {
+    pub(crate) fn new<S: AsRef<str>>(
+        dry: bool,
+        prefix: &[S],
+        moves: usize,
+        sink: Option<Box<dyn LineSink>>,
+    ) -> Record {
+        let text_too = !dry && sink.is_none();
         let mut r = Record {
             items: Vec::with_capacity(moves),
             item_lines: Vec::with_capacity(moves),
             // the lines, a comment and a move of about 40 bytes each a move: reserved, not
             // touched, so that a long text is not copied each time it grows (on 64 bits,
             // where reserving is free; the browser's memory is what it reserves)
-            text: String::with_capacity(if dry || cfg!(target_pointer_width = "32") {
-                0
-            } else {
+            text: String::with_capacity(if text_too && cfg!(target_pointer_width = "64") {
                 moves.saturating_mul(48)
+            } else {
+                0
             }),
+            sink,
             dry,
             ..Record::default()
         };
@@ -109,20 +126,37 @@ impl Record {
         }
     }
 
+    /// Lines after the body that no element wrote (the statistics, the epilogue).
+    pub(crate) fn write_tail<S: AsRef<str>>(&mut self, lines: &[S]) {
+        for l in lines {
+            self.write(l.as_ref(), NO_SOURCE);
+        }
+    }
+
     fn write(&mut self, line: &str, source: u32) {
         if self.dry {
             return;
         }
-        self.text.push_str(line);
-        self.text.push('\n');
+        match &mut self.sink {
+            Some(sink) => sink.line(line, source),
+            None => {
+                self.text.push_str(line);
+                self.text.push('\n');
+            }
+        }
         self.line_sources.push(source);
     }
 
     fn write_commented(&mut self, line: &str, source: u32) {
-        if !self.dry {
-            self.text.push_str("; ");
+        match &mut self.sink {
+            Some(_) if !self.dry => self.write(&format!("; {line}"), source),
+            _ => {
+                if !self.dry {
+                    self.text.push_str("; ");
+                }
+                self.write(line, source)
+            }
         }
-        self.write(line, source);
     }
 }
 
@@ -134,7 +168,6 @@ mod tests {
     fn item(kind: Kind) -> Item {
         Item {
             kind,
-            text: String::new(),
             len: 1.0,
             feed: 1.0,
             target: Target::default(),
@@ -145,7 +178,7 @@ mod tests {
 
     #[test]
     fn only_the_last_sweep_of_a_run_stays() {
-        let mut r = Record::new(false, &["%"], 4);
+        let mut r = Record::new(false, &["%"], 4, None);
         r.moved(item(Kind::HSweep), "G00 X1 Y1".into(), 0);
         r.comment("(c)".into(), 1);
         r.moved(item(Kind::HSweep), "G00 X2 Y2".into(), 2);
@@ -164,9 +197,43 @@ mod tests {
         assert_eq!(r.lines, 6);
     }
 
+    /// Collects what a sink is given.
+    #[derive(Default)]
+    struct Lines(Vec<(String, u32)>);
+    impl LineSink for Lines {
+        fn line(&mut self, text: &str, source: u32) {
+            self.0.push((text.to_string(), source));
+        }
+    }
+
+    #[test]
+    fn a_sink_gets_the_lines_the_text_would_hold() {
+        let run = |r: &mut Record| {
+            r.moved(item(Kind::HSweep), "G00 X1 Y1".into(), 0);
+            r.comment("(c)".into(), 1);
+            r.moved(item(Kind::HSweep), "G00 X2 Y2".into(), 2);
+            r.moved(item(Kind::Mill), "G01 X3".into(), 3);
+            r.finish();
+            r.write_tail(&["M30"]);
+        };
+        let mut text = Record::new(false, &["%"], 4, None);
+        run(&mut text);
+        let mut sunk = Record::new(false, &["%"], 4, Some(Box::new(Lines::default())));
+        run(&mut sunk);
+        assert!(sunk.text.is_empty(), "no text is kept beside a sink");
+        let any: Box<dyn Any> = sunk.sink.take().unwrap();
+        let lines = any.downcast::<Lines>().unwrap().0;
+        let joined: String = lines.iter().map(|(l, _)| format!("{l}\n")).collect();
+        assert_eq!(joined, text.text);
+        let sources: Vec<u32> = lines.iter().map(|(_, s)| *s).collect();
+        assert_eq!(sources, text.line_sources);
+        assert_eq!(sunk.line_sources, text.line_sources);
+        assert_eq!(sunk.item_lines, text.item_lines);
+    }
+
     #[test]
     fn a_dry_record_counts_lines_and_keeps_moves_only() {
-        let mut r = Record::new(true, &["%"], 4);
+        let mut r = Record::new(true, &["%"], 4, None);
         r.moved(item(Kind::HSweep), "G00 X1 Y1".into(), 0);
         r.moved(item(Kind::HSweep), "G00 X2 Y2".into(), 0);
         r.comment("(c)".into(), 0);

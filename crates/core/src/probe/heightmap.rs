@@ -301,7 +301,6 @@ mod tests {
     fn item(kind: Kind, target: Target) -> Item {
         Item {
             kind,
-            text: String::new(),
             len: 0.0,
             feed: 100.0,
             target,
