@@ -55,13 +55,13 @@ pub fn hit(mv: &Move, r: f64, clamps: &[Clamp]) -> Option<usize> {
         return None;
     }
     let (from, arc) = if known(&mv.from) {
-        (mv.from, mv.arc)
+        (mv.from, mv.arc.as_deref())
     } else {
         (mv.to, None)
     };
     clamps
         .iter()
-        .position(|c| touches(from, mv.to, arc.as_ref(), r, c))
+        .position(|c| touches(from, mv.to, arc, r, c))
 }
 
 /// The part `[s0, s1]` of a move whose Z (linear from `z0` to `z1`) is at most `top`.
@@ -347,7 +347,7 @@ mod tests {
                 kind: MoveKind::Cut,
                 from: [x0, y0, z],
                 to: [x1, y1, z],
-                arc: Some(g),
+                arc: Some(Box::new(g)),
             }
         };
         // a circle around the box, farther than the radius from its corners

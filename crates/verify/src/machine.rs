@@ -57,14 +57,15 @@ impl ArcGeo {
 }
 
 /// One executed move. Unknown coordinates are NaN.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Move {
     /// 1-based line.
     pub line: usize,
     pub kind: MoveKind,
     pub from: [f64; 3],
     pub to: [f64; 3],
-    pub arc: Option<ArcGeo>,
+    /// Boxed: most moves are lines, and a program can have millions of moves.
+    pub arc: Option<Box<ArcGeo>>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -568,7 +569,7 @@ impl Machine {
                             kind: MoveKind::Cut,
                             from,
                             to,
-                            arc: Some(arc),
+                            arc: Some(Box::new(arc)),
                         });
                     } else {
                         self.unknown_start(line, m);

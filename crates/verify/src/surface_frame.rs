@@ -112,7 +112,7 @@ mod tests {
             kind: MoveKind::Cut,
             from,
             to,
-            arc,
+            arc: arc.map(Box::new),
         }
     }
 
