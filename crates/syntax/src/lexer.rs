@@ -52,28 +52,13 @@ impl std::fmt::Display for Token<'_> {
     }
 }
 
-/// All tokens with their byte ranges; lexer errors become [`Token::Error`].
+/// All tokens with their byte ranges; lexer errors become [`Token::Error`]. (The parser
+/// keeps them smaller: `tokens.rs`.)
 pub fn lex(src: &str) -> Vec<(Token<'_>, Range<usize>)> {
-    let mut toks = Vec::with_capacity(token_room(src));
-    toks.extend(
-        Token::lexer(src)
-            .spanned()
-            .map(|(t, span)| (t.unwrap_or(Token::Error), span)),
-    );
-    toks
-}
-
-/// Room for the tokens of `src`, so that a long list does not grow (growing a list of
-/// millions copies it, and for a moment holds it twice): drawings have about 0.4 tokens a
-/// byte, so room for one every two bytes (only input like `((((` needs more, and grows). On
-/// 64 bits reserving costs only address space, the pages written are taken; a 32-bit target
-/// (the browser) reserves real memory and starts smaller.
-fn token_room(src: &str) -> usize {
-    if cfg!(target_pointer_width = "64") {
-        src.len() / 2 + 16
-    } else {
-        src.len() / 4
-    }
+    Token::lexer(src)
+        .spanned()
+        .map(|(t, span)| (t.unwrap_or(Token::Error), span))
+        .collect()
 }
 
 /// Undoes the quoting of a [`Token::Str`].

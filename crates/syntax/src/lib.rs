@@ -6,6 +6,7 @@ pub mod error;
 pub mod format;
 pub mod lexer;
 pub mod parser;
+mod tokens;
 
 pub use ast::*;
 pub use error::{ErrorKind, Expected, Found, SyntaxError};

@@ -5,8 +5,8 @@ use crate::ast::*;
 use crate::ast::{Span, Spanned};
 pub use crate::error::SyntaxError;
 use crate::error::{decimal_comma, nearest, ErrorKind, Expected, Found, KIND_WORDS};
-use crate::lexer::{lex, split_params, unquote, Token};
-use chumsky::input::{Input as _, MappedInput};
+use crate::lexer::{split_params, unquote, Token};
+use crate::tokens::{TokenList, Tokens};
 use chumsky::prelude::*;
 
 /// Custom errors travel through chumsky as text: a tag, then the offending word.
@@ -14,7 +14,7 @@ const NOT_A_NUMBER: &str = "number\u{1f}";
 const MISSING_BRACE: &str = "brace\u{1f}";
 
 type Extra<'t, 's> = extra::Err<Rich<'t, Token<'s>, SimpleSpan>>;
-type In<'t, 's> = MappedInput<'t, Token<'s>, SimpleSpan, &'t [(Token<'s>, SimpleSpan)]>;
+type In<'t, 's> = Tokens<'t, 's>;
 
 /// Byte range of a span; empty matches can come back inverted, which is normalised here so
 /// that every span can be used to slice the source.
@@ -268,20 +268,16 @@ fn file_parser<'t, 's: 't>() -> impl Parser<'t, In<'t, 's>, Vec<RawItem>, Extra<
 
 /// Parses a file. The tree is always returned; errors are listed beside it.
 pub fn parse(src: &str) -> (File, Vec<SyntaxError>) {
-    let toks: Vec<(Token, SimpleSpan)> = lex(src)
-        .into_iter()
-        .map(|(t, r)| (t, SimpleSpan::from(r)))
-        .collect();
+    let toks = TokenList::lex(src);
     let mut errors: Vec<SyntaxError> = toks
         .iter()
         .filter(|(t, _)| *t == Token::Error)
         .map(|(_, s)| SyntaxError {
-            span: range(*s),
-            kind: ErrorKind::UnexpectedChar(src[range(*s)].to_string()),
+            kind: ErrorKind::UnexpectedChar(src[s.clone()].to_string()),
+            span: s,
         })
         .collect();
-    let eoi = SimpleSpan::from(src.len()..src.len());
-    let input = toks.as_slice().split_token_span(eoi);
+    let input = toks.input();
     let (out, errs) = file_parser().parse(input).into_output_errors();
     for e in errs {
         let span = range(*e.span());

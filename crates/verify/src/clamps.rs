@@ -59,9 +59,7 @@ pub fn hit(mv: &Move, r: f64, clamps: &[Clamp]) -> Option<usize> {
     } else {
         (mv.to, None)
     };
-    clamps
-        .iter()
-        .position(|c| touches(from, mv.to, arc, r, c))
+    clamps.iter().position(|c| touches(from, mv.to, arc, r, c))
 }
 
 /// The part `[s0, s1]` of a move whose Z (linear from `z0` to `z1`) is at most `top`.
