@@ -94,11 +94,19 @@ fn sibling(path: &Path, what: &str) -> std::path::PathBuf {
     dir.join(format!(".{name}.{}.{what}", std::process::id()))
 }
 
+/// What one file of a set holds: a text, or a temporary file it was written to already
+/// (core's staged program).
+#[derive(Clone, Copy)]
+pub enum Content<'a> {
+    Text(&'a str),
+    Staged(&'a Path),
+}
+
 /// Writes the files of one drawing all or none: every content into a temporary file first,
 /// then the old files moved aside and the new ones renamed into place. When any step fails,
 /// the new files are taken away and the old ones put back, so the folder holds the old set
 /// or the new one, never a mix. `Err` names the file that failed.
-pub fn write_set(files: &[(&Path, &str)]) -> Result<(), (std::path::PathBuf, std::io::Error)> {
+pub fn write_set(files: &[(&Path, Content)]) -> Result<(), (std::path::PathBuf, std::io::Error)> {
     let mut temps = Vec::new();
     let cleanup = |temps: &[std::path::PathBuf]| {
         for t in temps {
@@ -106,12 +114,19 @@ pub fn write_set(files: &[(&Path, &str)]) -> Result<(), (std::path::PathBuf, std
         }
     };
     for (path, content) in files {
-        let tmp = sibling(path, "tmp");
-        let result = (|| {
-            let mut f = std::fs::File::create(&tmp)?;
-            f.write_all(content.as_bytes())?;
-            f.sync_all()
-        })();
+        let (tmp, result) = match content {
+            Content::Text(text) => {
+                let tmp = sibling(path, "tmp");
+                let result = (|| {
+                    let mut f = std::fs::File::create(&tmp)?;
+                    f.write_all(text.as_bytes())?;
+                    f.sync_all()
+                })();
+                (tmp, result)
+            }
+            // written as it was generated (and synced): only renamed
+            Content::Staged(staged) => (staged.to_path_buf(), Ok(())),
+        };
         temps.push(tmp);
         if let Err(e) = result {
             cleanup(&temps);
@@ -220,7 +235,11 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let (a, b) = (dir.path().join("x_Z.txt"), dir.path().join("x_Clean.gcode"));
         std::fs::write(&a, "old z").unwrap();
-        write_set(&[(&a, "new z"), (&b, "new clean")]).unwrap();
+        write_set(&[
+            (&a, Content::Text("new z")),
+            (&b, Content::Text("new clean")),
+        ])
+        .unwrap();
         assert_eq!(std::fs::read_to_string(&a).unwrap(), "new z");
         assert_eq!(std::fs::read_to_string(&b).unwrap(), "new clean");
         assert_eq!(names(dir.path()), ["x_Clean.gcode", "x_Z.txt"]);
@@ -237,7 +256,11 @@ mod tests {
         std::fs::create_dir(p("x_Clean.gcode")).unwrap();
         std::fs::write(p("x_Clean.gcode/keep"), "").unwrap();
         let (a, b, c) = (p("x_Probing.gcode"), p("x_Z.txt"), p("x_Clean.gcode"));
-        let err = write_set(&[(&a, "new probing"), (&b, "new z"), (&c, "new clean")]);
+        let err = write_set(&[
+            (&a, Content::Text("new probing")),
+            (&b, Content::Text("new z")),
+            (&c, Content::Text("new clean")),
+        ]);
         let (failed, _) = err.unwrap_err();
         assert_eq!(failed, c);
         assert_eq!(std::fs::read_to_string(&a).unwrap(), "old probing");
@@ -249,7 +272,11 @@ mod tests {
         );
         // a new file of a failed set is taken away again
         std::fs::remove_file(&a).unwrap();
-        assert!(write_set(&[(&a, "new probing"), (&c, "new clean")]).is_err());
+        assert!(write_set(&[
+            (&a, Content::Text("new probing")),
+            (&c, Content::Text("new clean"))
+        ])
+        .is_err());
         assert!(!a.exists());
         assert_eq!(names(dir.path()), ["x_Clean.gcode", "x_Z.txt"]);
     }

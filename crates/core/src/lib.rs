@@ -1,6 +1,8 @@
 //! millpath core: drawing model → validated path model → G-code, probing program, `_Z.txt`;
 //! and adjust-z. No file-system I/O of its own: files are read through [`FileSystem`] and
-//! outputs are returned to the caller, which writes them.
+//! outputs are returned to the caller, which writes them. The one exception is asked for by
+//! the caller: a staged program (`Settings::stage_outputs`, `stage.rs`) is written to a
+//! temporary file as it is generated, and the caller renames it.
 
 pub mod build;
 pub mod convert;
@@ -13,6 +15,7 @@ pub mod model;
 pub mod params;
 pub mod probe;
 pub mod second_opinion;
+mod stage;
 
 pub use diag::{Diagnostic, Diags, Lang, Msg, Origin, Severity};
 pub use emit::Dialect;
@@ -33,7 +36,36 @@ pub fn banner() -> String {
 #[derive(Debug, Clone, PartialEq)]
 pub struct OutputFile {
     pub path: PathBuf,
+    /// The text (empty when `staged`).
     pub content: String,
+    /// The text is in this temporary file beside `path` already (`Settings::stage_outputs`):
+    /// the caller renames it into place, or removes it.
+    pub staged: Option<PathBuf>,
+}
+
+impl OutputFile {
+    /// The first `n` lines of the text, from memory or from the staged file.
+    pub fn head(&self, n: usize) -> String {
+        use std::io::BufRead;
+        match &self.staged {
+            None => self
+                .content
+                .lines()
+                .take(n)
+                .map(|l| format!("{l}\n"))
+                .collect(),
+            Some(p) => std::fs::File::open(p)
+                .map(|f| {
+                    std::io::BufReader::new(f)
+                        .lines()
+                        .map_while(Result::ok)
+                        .take(n)
+                        .map(|l| format!("{l}\n"))
+                        .collect()
+                })
+                .unwrap_or_default(),
+        }
+    }
 }
 
 /// The result of compiling one input file.
@@ -172,7 +204,7 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
                 match emit::quick_check_until(&model, &ctl, session.stop) {
                     Ok(()) if !session.settings.clamps.is_empty() => {
                         // the clamps are checked as you type (on the program compile writes)
-                        generate_and_review_as(session, &model, &file_name, banner, true);
+                        generate_and_review_as(session, &model, &file_name, banner, true, None);
                     }
                     Ok(()) => {}
                     Err(errs) => errs.into_iter().for_each(|e| session.diags.push(e)),
@@ -187,8 +219,10 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
                     Ok(stats) => outcome.stats.push((model.name().to_string(), stats)),
                     Err(errs) => errs.into_iter().for_each(|e| session.diags.push(e)),
                 }
-            } else if let Some(g) = generate_and_review(session, &model, &file_name, banner) {
-                outcome.stats.push((model.name().to_string(), g.0.stats));
+            } else if let Some(r) = generate_and_review(session, &model, &file_name, banner) {
+                outcome
+                    .stats
+                    .push((model.name().to_string(), r.generated.stats));
             }
         }
         return outcome;
@@ -202,41 +236,77 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
     for d in emit::comment::comment_changes(&model, &file_name, session.settings.dialect) {
         session.diags.push(d);
     }
-    let Some((generated, removed_volume)) =
-        generate_and_review(session, &model, &file_name, banner)
+    let prefix = output_prefix(input, &model.params.r);
+    let with = |s: &str| PathBuf::from(format!("{}{s}", prefix.display()));
+    let stage_at = session
+        .settings
+        .stage_outputs
+        .then(|| with("_Milling.gcode"));
+    let Some(Reviewed {
+        generated,
+        removed_volume,
+        staged,
+    }) = generate_and_review_as(
+        session,
+        &model,
+        &file_name,
+        banner,
+        false,
+        stage_at.as_deref(),
+    )
     else {
         return outcome;
     };
     outcome.removed_volume = removed_volume;
     if session.diags.has_errors() {
         // a controller dialect whose checker objects: nothing is written
+        if let Some(s) = &staged {
+            s.discard();
+        }
         return outcome;
     }
-    let prefix = output_prefix(input, &model.params.r);
-    let with = |s: &str| PathBuf::from(format!("{}{s}", prefix.display()));
-    outcome.outputs = match generated.output {
-        Output::Milling(g) => vec![OutputFile {
-            path: with("_Milling.gcode"),
-            content: g,
+    let output = |path: PathBuf, content: String| OutputFile {
+        path,
+        content,
+        staged: None,
+    };
+    outcome.outputs = match (generated.output, staged) {
+        (Output::Milling(g), staged) => vec![OutputFile {
+            staged: staged.map(|s| s.path),
+            ..output(with("_Milling.gcode"), g)
         }],
-        Output::Probing {
-            probing,
-            z_txt,
-            clean,
-        } => vec![
-            OutputFile {
-                path: with("_Probing.gcode"),
-                content: probing,
+        (
+            Output::Probing {
+                probing,
+                z_txt,
+                clean,
             },
-            OutputFile {
-                path: with("_Z.txt"),
-                content: z_txt,
-            },
-            OutputFile {
-                path: with("_Clean.gcode"),
-                content: clean,
-            },
+            None,
+        ) => vec![
+            output(with("_Probing.gcode"), probing),
+            output(with("_Z.txt"), z_txt),
+            output(with("_Clean.gcode"), clean),
         ],
+        (Output::Probing { probing, z_txt, .. }, Some(mut staged)) => {
+            // the digest of a staged set: over the file, stamped into it and the probing program
+            match staged.stamp_set(banner, &z_txt) {
+                Ok(stamped) => vec![
+                    output(
+                        with("_Probing.gcode"),
+                        emit::program::stamp_banner(probing, &stamped),
+                    ),
+                    output(with("_Z.txt"), z_txt),
+                    OutputFile {
+                        staged: Some(staged.path),
+                        ..output(with("_Clean.gcode"), String::new())
+                    },
+                ],
+                Err(d) => {
+                    session.diags.push(d);
+                    return outcome;
+                }
+            }
+        }
     };
     outcome
         .stats
@@ -268,49 +338,89 @@ fn generate_and_review(
     model: &model::Model,
     file_name: &str,
     banner: &str,
-) -> Option<(emit::Generated, Option<f64>)> {
-    generate_and_review_as(session, model, file_name, banner, false)
+) -> Option<Reviewed> {
+    generate_and_review_as(session, model, file_name, banner, false, None)
+}
+
+/// A generated program and what the second opinion said.
+struct Reviewed {
+    generated: emit::Generated,
+    /// Material removed, mm³ (the checker's stock model).
+    removed_volume: Option<f64>,
+    /// Where the program is when it was staged (its text in `generated` is empty then).
+    staged: Option<stage::Staged>,
 }
 
 /// [`generate_and_review`]; `clamps_only`: without the stock model, only the clamps' findings.
+/// `stage_at`: the program goes to a temporary file beside this output as it is generated.
+/// A check keeps no text at all: the checker reads each line as it is written.
 fn generate_and_review_as(
     session: &mut Session,
     model: &model::Model,
     file_name: &str,
     banner: &str,
     clamps_only: bool,
-) -> Option<(emit::Generated, Option<f64>)> {
+    stage_at: Option<&Path>,
+) -> Option<Reviewed> {
     let ctl = Controller::for_model(&session.settings, model);
-    let generate = |sink| {
-        emit::generate_into(
-            model,
-            file_name,
-            banner,
-            session.settings.sweep_speed,
-            session.lang(),
-            &ctl,
-            session.stop,
-            sink,
-        )
-    };
     let reviewer = second_opinion::Reviewer::new(
         model,
         session.settings.dialect,
         &session.settings.clamps,
         clamps_only,
     );
-    // a check keeps no text: the checker reads each line as it is written
-    let keep_text = !session.settings.check;
-    let (generated, review) = if keep_text {
-        let generated = generate_for(
+    let lang = session.lang();
+    let generate = |sink| {
+        emit::generate_into(
             model,
             file_name,
             banner,
             session.settings.sweep_speed,
-            session.lang(),
+            lang,
             &ctl,
-        );
-        let generated = match generated {
+            session.stop,
+            sink,
+        )
+    };
+    let reviewed = if let Some(output) = stage_at {
+        let staging = match stage::Staging::new(output, reviewer) {
+            Ok(s) => s,
+            Err(d) => {
+                session.diags.push(d);
+                return None;
+            }
+        };
+        let staged_path = stage::Staging::path_for(output);
+        let (generated, sink) = match generate(Box::new(staging)) {
+            Ok(g) => g,
+            Err(errs) => {
+                let _ = std::fs::remove_file(&staged_path);
+                errs.into_iter().for_each(|e| session.diags.push(e));
+                return None;
+            }
+        };
+        let any: Box<dyn std::any::Any> = sink;
+        let staging = any.downcast::<stage::Staging>().ok()?;
+        let (staged, reviewer) = match staging.close() {
+            Ok(s) => s,
+            Err(d) => {
+                session.diags.push(d);
+                return None;
+            }
+        };
+        let review = reviewer.finish(model, &generated.line_sources, lang, |wanted| {
+            staged.line_texts(wanted)
+        });
+        (generated, review, Some(staged))
+    } else if !session.settings.check {
+        let generated = match generate_for(
+            model,
+            file_name,
+            banner,
+            session.settings.sweep_speed,
+            lang,
+            &ctl,
+        ) {
             Ok(g) => g,
             Err(errs) => {
                 errs.into_iter().for_each(|e| session.diags.push(e));
@@ -325,12 +435,12 @@ fn generate_and_review_as(
             program,
             model,
             &generated.line_sources,
-            session.lang(),
+            lang,
             session.settings.dialect,
             &session.settings.clamps,
             clamps_only,
         );
-        (generated, review)
+        (generated, review, None)
     } else {
         let (generated, sink) = match generate(Box::new(reviewer)) {
             Ok(g) => g,
@@ -341,7 +451,7 @@ fn generate_and_review_as(
         };
         let any: Box<dyn std::any::Any> = sink;
         let reviewer = any.downcast::<second_opinion::Reviewer>().ok()?;
-        let review = reviewer.finish(model, &generated.line_sources, session.lang(), |wanted| {
+        let review = reviewer.finish(model, &generated.line_sources, lang, |wanted| {
             // the few lines findings point at, from a second emission
             let capture = Box::new(second_opinion::LineCapture::new(wanted));
             let Ok((_, sink)) = generate(capture) else {
@@ -352,12 +462,17 @@ fn generate_and_review_as(
                 .map(|c| c.texts)
                 .unwrap_or_default()
         });
-        (generated, review)
+        (generated, review, None)
     };
+    let (generated, review, staged) = reviewed;
     for d in review.diagnostics {
         session.diags.push(d);
     }
-    Some((generated, review.removed_volume))
+    Some(Reviewed {
+        generated,
+        removed_volume: review.removed_volume,
+        staged,
+    })
 }
 
 #[cfg(test)]

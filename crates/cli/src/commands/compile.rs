@@ -31,7 +31,11 @@ pub fn run(m: &MachineArgs, files: &[String]) -> u8 {
     let mut each = Vec::with_capacity(inputs.len());
     for input in &inputs {
         let settings = match settings_for(m, Some(input), true) {
-            Ok(s) => s,
+            // the program goes to a temporary file as it is generated, never held whole
+            Ok(s) => Settings {
+                stage_outputs: true,
+                ..s
+            },
             Err(e) => {
                 eprintln!("{}: {e}", report::severity_word(Severity::Error, early));
                 return 2;

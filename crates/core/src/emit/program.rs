@@ -151,8 +151,8 @@ pub fn generate_until(
 
 /// [`generate_until`] whose milling (or clean) program goes line by line to `sink` instead
 /// of a text: a check reads a long program without holding it. The program's text in the
-/// result is empty (the probing program and `_Z.txt` are there, their digest is not the
-/// real one); the sink comes back after the last line.
+/// result is empty (the probing program and `_Z.txt` are there, not stamped with the set's
+/// digest: its writer does that); the sink comes back after the last line.
 #[allow(clippy::too_many_arguments)]
 pub fn generate_into(
     model: &Model,
@@ -246,10 +246,16 @@ fn generate_job(
         lines: rec.line_sources,
         origins: sources,
     };
-    // a probing set: the Z file and both programs stamped with the set's digest
+    // a probing set: the Z file and both programs stamped with the set's digest (a program
+    // that went to a sink is stamped where it went: `stage.rs`)
+    let streamed = sink.is_some();
     let set = |z_lines: &[String], probing: &[String], clean: String| {
         let z_txt = join(z_lines);
-        let (probing, clean) = stamp_set(banner, &z_txt, join(probing), clean);
+        let (probing, clean) = if streamed {
+            (join(probing), clean)
+        } else {
+            stamp_set(banner, &z_txt, join(probing), clean)
+        };
         Output::Probing {
             probing,
             z_txt,
@@ -335,26 +341,30 @@ fn generate_job(
 /// probing and clean programs.
 fn stamp_set(banner: &str, z_txt: &str, probing: String, clean: String) -> (String, String) {
     let stamped = as_comment(0, &banner_with_digest(banner, &set_digest(z_txt, &clean)));
-    let stamp = |mut text: String| {
-        let at = banner_index(&text);
-        // the banner line's bytes replaced in place (no copy of a long program)
-        let mut start = 0;
-        for _ in 0..at {
-            match text[start..].find('\n') {
-                Some(k) => start += k + 1,
-                None => return text,
-            }
+    (
+        stamp_banner(probing, &stamped),
+        stamp_banner(clean, &stamped),
+    )
+}
+
+/// `text` with its banner line replaced by `stamped` (in place: no copy of a long program).
+pub(crate) fn stamp_banner(mut text: String, stamped: &str) -> String {
+    let at = banner_index(&text);
+    let mut start = 0;
+    for _ in 0..at {
+        match text[start..].find('\n') {
+            Some(k) => start += k + 1,
+            None => return text,
         }
-        let end = text[start..].find('\n').map_or(text.len(), |k| start + k);
-        let end = if text[..end].ends_with('\r') {
-            end - 1
-        } else {
-            end
-        };
-        text.replace_range(start..end, &stamped);
-        text
+    }
+    let end = text[start..].find('\n').map_or(text.len(), |k| start + k);
+    let end = if text[..end].ends_with('\r') {
+        end - 1
+    } else {
+        end
     };
-    (stamp(probing), stamp(clean))
+    text.replace_range(start..end, stamped);
+    text
 }
 
 /// Where the body's moves start: above the origin at the start height.

@@ -38,6 +38,10 @@ pub struct Settings {
     /// written out and not given to the second opinion, whose stock simulation would take
     /// the answer past a frame on a large drawing. `millpath check` and `compile` review.
     pub quick_check: bool,
+    /// `compile`'s command line: the milling (or clean) program is written to a temporary
+    /// file beside its output while it is generated ([`crate::OutputFile::staged`]), never
+    /// held whole; the caller renames it into place with the set.
+    pub stage_outputs: bool,
     /// `/d`: further search directories, in order.
     pub search_dirs: Vec<PathBuf>,
     pub path_pattern: String,
@@ -97,6 +101,7 @@ impl Default for Settings {
             check: false,
             reference_check: false,
             quick_check: false,
+            stage_outputs: false,
             check_sweep_height: false,
             search_dirs: Vec::new(),
             path_pattern: crate::load::names::DEFAULT_PATH_PATTERN.into(),

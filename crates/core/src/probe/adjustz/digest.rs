@@ -20,7 +20,12 @@ pub const SET_WORD: &str = "set=";
 
 /// Index of the banner line: the line after a leading `%`, else the first line.
 pub fn banner_index(program: &str) -> usize {
-    usize::from(program.lines().next().is_some_and(|l| l.trim() == "%"))
+    banner_index_of_first(program.lines().next())
+}
+
+/// [`banner_index`] from a program's first line.
+pub fn banner_index_of_first(first: Option<&str>) -> usize {
+    usize::from(first.is_some_and(|l| l.trim() == "%"))
 }
 
 /// The nominal part of a `_Z.txt` line: `(comment) #n=` without the value and blanks; a line
@@ -41,6 +46,12 @@ fn nominal_z_line(line: &str) -> String {
 /// The digest of a set: `_Z.txt` (filled in or not) and `_Clean.gcode` (with or without a
 /// digest in its banner line), as 16 lower-case hex digits.
 pub fn set_digest(z_txt: &str, clean: &str) -> String {
+    set_digest_lines(z_txt, clean.lines())
+}
+
+/// [`set_digest`] over the lines of `_Clean.gcode` as they are read (a staged program is
+/// not held in memory).
+pub fn set_digest_lines<S: AsRef<str>>(z_txt: &str, clean: impl Iterator<Item = S>) -> String {
     let mut h = SipHasher24::new_with_keys(0, 0);
     h.write(b"millpath probing set 1\n");
     let z_txt = z_txt.strip_prefix('\u{feff}').unwrap_or(z_txt);
@@ -49,10 +60,11 @@ pub fn set_digest(z_txt: &str, clean: &str) -> String {
         h.write(b"\n");
     }
     h.write(b"--\n");
-    let banner = banner_index(clean);
-    for (i, line) in clean.lines().enumerate() {
+    let mut clean = clean.peekable();
+    let banner = banner_index_of_first(clean.peek().map(AsRef::as_ref));
+    for (i, line) in clean.enumerate() {
         if i != banner {
-            h.write(line.trim_end().as_bytes());
+            h.write(line.as_ref().trim_end().as_bytes());
             h.write(b"\n");
         }
     }

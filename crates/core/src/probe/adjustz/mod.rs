@@ -16,7 +16,8 @@ mod rewrite;
 mod zfile;
 
 pub use digest::{
-    banner_index, banner_with_digest, check_set, set_digest, stored_digest, SetFile, SET_WORD,
+    banner_index, banner_index_of_first, banner_with_digest, check_set, set_digest,
+    set_digest_lines, stored_digest, SetFile, SET_WORD,
 };
 pub use expr::eval;
 pub use follow::{split_summary, Followed, CHORD_TOL, MAX_LINES, SPLIT_WORD};
