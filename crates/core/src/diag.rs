@@ -573,6 +573,11 @@ pub fn arg_per_lang(en: &str, de: &str) -> String {
     format!("{en}{LANG_SEP}{de}")
 }
 
+/// Why a DXF file cannot be read, as an argument in both languages.
+pub fn dxf_error_arg(e: &millpath_dxf::DxfError) -> String {
+    arg_per_lang(&e.to_string(), &e.german())
+}
+
 /// The arguments with the wording of `lang` where they have two.
 fn args_in(args: &[String], lang: Lang) -> std::borrow::Cow<'_, [String]> {
     if !args.iter().any(|a| a.contains(LANG_SEP)) {

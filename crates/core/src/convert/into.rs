@@ -12,7 +12,7 @@ use crate::diag::{FileRef, Lang};
 use crate::front::dxf::{effective_layer, path_name_of_layer};
 use crate::front::extended::InputMode;
 use crate::load::names::Patterns;
-use crate::{args, Diagnostic, Msg, Origin};
+use crate::{Diagnostic, Msg, Origin};
 use millpath_dxf::splice::{scan, Record, Target};
 use millpath_dxf::DxfError;
 use std::collections::BTreeMap;
@@ -56,7 +56,10 @@ fn load_error(file: &Arc<FileRef>, e: DxfError) -> Diagnostic {
     Diagnostic::error(
         Msg::CannotLoadDxf,
         Origin::File(file.clone()),
-        args![file.path.display(), e],
+        vec![
+            file.path.display().to_string(),
+            crate::diag::dxf_error_arg(&e),
+        ],
     )
 }
 

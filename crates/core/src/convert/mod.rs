@@ -433,7 +433,10 @@ pub fn dxf_to_text(
         crate::Diagnostic::error(
             crate::Msg::CannotLoadDxf,
             crate::Origin::File(file.clone()),
-            crate::args![file.path.display(), e],
+            vec![
+                file.path.display().to_string(),
+                crate::diag::dxf_error_arg(&e),
+            ],
         )
     })?;
     let opts = front_options(patterns, input);
