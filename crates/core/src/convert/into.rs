@@ -84,6 +84,37 @@ pub fn text_into_dxf(
     }))
 }
 
+/// What `--into` without the extended mode keeps on the path layers of `target` that the
+/// extended mode replaces: polylines and block references. A text from `dxf2text
+/// --extended` holds them as elements, so kept they would be drawn twice.
+pub fn kept_extended_geometry(
+    target: &[u8],
+    src: &str,
+    file: &Arc<FileRef>,
+    patterns: &Patterns,
+) -> Losses {
+    let mut kept = Losses::default();
+    let Ok(t) = scan(target) else {
+        return kept;
+    };
+    let paths: Vec<String> = text_objects(src, file)
+        .map(|o| o.into_iter().map(|o| o.path).collect())
+        .unwrap_or_default();
+    let layers = PathLayers::new(patterns, &paths);
+    let extended_only = |r: &&Record| {
+        layers.replaces(r, InputMode::Extended) && !layers.replaces(r, InputMode::Reference)
+    };
+    for r in t.entities().iter().filter(extended_only) {
+        *kept
+            .entities
+            .entry(r.layer.clone())
+            .or_default()
+            .entry(r.kind.clone())
+            .or_default() += 1;
+    }
+    kept
+}
+
 /// What a plain `text2dxf` would destroy in an existing drawing: everything `--into` keeps.
 #[derive(Debug, Default, Clone, PartialEq)]
 pub struct Losses {

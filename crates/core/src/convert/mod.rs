@@ -4,7 +4,7 @@
 //! an existing drawing and keeps the rest of it (`into.rs`).
 
 mod into;
-pub use into::{overwrite_losses, text_into_dxf, Losses};
+pub use into::{kept_extended_geometry, overwrite_losses, text_into_dxf, Losses};
 
 use crate::build::traverse::walk;
 use crate::diag::{Diags, FileRef};
