@@ -169,6 +169,7 @@ pub fn settings_for(
     if let Some(p) = cfg_path {
         let cfg = config::load_in(&p, lang)?;
         cfg.apply(&mut s, &mut have);
+        s.settings_file = Some(p.clone());
         if cfg.heightmap.is_some() {
             s.heightmap_file = Some(p.clone());
         }
@@ -180,6 +181,20 @@ pub fn settings_for(
         }
     }
     heightmap_options(m, &mut s, de)?;
+    // the settings the options give: their errors are located there, not at millpath.toml
+    for (key, given) in [
+        ("feed", m.feed.is_some()),
+        ("sweep_speed", m.sweep_speed.is_some()),
+        ("sweep_height", m.sweep_height.is_some()),
+        ("probe_feed", m.probe_feed.is_some()),
+        ("plunge_feed", m.plunge_feed.is_some()),
+        ("spindle_rpm", m.spindle_rpm.is_some()),
+        ("spindle_dwell", m.spindle_dwell.is_some()),
+    ] {
+        if given {
+            s.option_keys.push(key);
+        }
+    }
     if let Some(v) = m.feed {
         s.feed = v;
         have.feed = true;

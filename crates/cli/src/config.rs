@@ -32,11 +32,21 @@ pub fn find_for(input: &Path) -> Option<PathBuf> {
 /// before the first one, also the messages about the file's other keys.
 pub fn lang_in(path: &Path) -> Option<millpath_core::Lang> {
     let text = std::fs::read_to_string(path).ok()?;
-    let table: toml::Table = text.parse().ok()?;
-    table
-        .get("lang")
-        .and_then(toml::Value::as_str)
-        .map(millpath_core::Lang::from_name)
+    let lang = |t: &toml::Table| {
+        t.get("lang")
+            .and_then(toml::Value::as_str)
+            .map(millpath_core::Lang::from_name)
+    };
+    match text.parse::<toml::Table>() {
+        Ok(table) => lang(&table),
+        // a file with a syntax error: its top-level `lang = "de"` line alone still gives
+        // the language of that error
+        Err(_) => text
+            .lines()
+            .take_while(|l| !l.trim_start().starts_with('['))
+            .filter_map(|l| l.parse::<toml::Table>().ok())
+            .find_map(|t| lang(&t)),
+    }
 }
 
 /// Reads and parses a settings file; the error text names the file and the line.
@@ -63,6 +73,9 @@ fn toml_error_de(e: &str) -> String {
         ("expected one of", "erlaubt ist einer von"),
         ("invalid type:", "falscher Typ:"),
         ("invalid value:", "falscher Wert:"),
+        ("invalid length", "falsche Länge"),
+        ("an array of length", "eine Liste der Länge"),
+        ("invalid array", "ungültige Liste"),
         ("unknown variant", "unbekannter Wert"),
         ("missing field", "fehlender Schlüssel"),
         ("duplicate key", "doppelter Schlüssel"),
@@ -110,7 +123,22 @@ mod tests {
         std::fs::write(&p, "lang = \"de\"\nfeeed = 3\n").unwrap();
         assert!(load(&p).is_err());
         assert_eq!(lang_in(&p), Some(millpath_core::Lang::De));
-        assert_eq!(find_for(dir.path()), Some(p));
+        assert_eq!(find_for(dir.path()), Some(p.clone()));
+        // a syntax error further down: the error itself in German
+        std::fs::write(&p, "lang = \"de\"\nfeed = [\n").unwrap();
+        assert_eq!(lang_in(&p), Some(millpath_core::Lang::De));
+        let e = load_in(&p, millpath_core::Lang::De).unwrap_err();
+        assert!(
+            e.contains("TOML-Fehler in Zeile 2") && e.contains("ungültige Liste"),
+            "{e}"
+        );
+        // a box of three numbers given two
+        std::fs::write(&p, "[[clamp]]\nname = \"v\"\nmin = [0, 0]\n").unwrap();
+        let e = load_in(&p, millpath_core::Lang::De).unwrap_err();
+        assert!(
+            e.contains("falsche Länge 2, erwartet eine Liste der Länge 3"),
+            "{e}"
+        );
     }
 
     #[test]

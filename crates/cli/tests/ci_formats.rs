@@ -81,6 +81,41 @@ fn nothing_to_check_is_still_a_report() {
     assert_eq!(v["files"], 0);
 }
 
+/// A feed in millpath.toml that no machine runs: exit 2 (a settings error), and still a
+/// report in the format asked for, located at millpath.toml (GitHub annotates that file).
+#[test]
+fn a_settings_error_is_a_report_at_millpath_toml() {
+    let dir = repo();
+    let parts = dir.path().join("parts");
+    std::fs::remove_file(parts.join("3001.mpath")).unwrap();
+    std::fs::write(
+        parts.join("millpath.toml"),
+        "feed = 0.0001\nsweep_speed = 1000\nsweep_height = 10\n",
+    )
+    .unwrap();
+    let o = check(dir.path(), Some(dir.path()), &["--format", "json", "parts"]);
+    assert_eq!(o.status.code(), Some(2));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["errors"], 1, "{v}");
+    assert!(v["diagnostics"][0]["message"]
+        .as_str()
+        .is_some_and(|m| m.contains("feed 0.0001 mm/min")));
+    let o = check(
+        dir.path(),
+        Some(dir.path()),
+        &["--format", "github", "parts"],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(file_props(&o.stdout), ["parts/millpath.toml"]);
+    let o = check(
+        dir.path(),
+        Some(dir.path()),
+        &["--format", "sarif", "parts"],
+    );
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(v.is_object());
+}
+
 #[test]
 fn quiet_prints_the_report_only() {
     let dir = repo();

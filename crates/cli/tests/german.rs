@@ -195,6 +195,10 @@ fn commands(dir: &Path, lang: &[&str]) -> Vec<(String, String)> {
     go(&["dxf2text", "3001.dxf", "-o", "back.mpath"]);
     go(&["dxf2text", "missing.dxf"]);
     go(&["dxf2text", "--textconv", "missing.dxf"]);
+    // why a DXF cannot be read (the DXF reader's own words)
+    go(&["compile", "broken.dxf"]);
+    go(&["dxf2text", "broken.dxf"]);
+    go(&["text2dxf", "3001.mpath", "--into", "broken.dxf"]);
     go(&["compile", "3001.mpath"]);
     go(&["verify", "3001_Milling.gcode", "bad.gcode", "missing.gcode"]);
     go(&["verify", "--tool", "0", "3001_Milling.gcode"]);
@@ -228,6 +232,8 @@ fn json_texts(v: &serde_json::Value, out: &mut Vec<String>) {
 
 fn prepare(dir: &Path) {
     std::fs::create_dir(dir.join("empty-folder")).unwrap();
+    // a DXF whose second group code is a word
+    std::fs::write(dir.join("broken.dxf"), "  0\nSECTION\nlayer\nENTITIES\n").unwrap();
     std::fs::write(
         dir.join("bad.gcode"),
         "%\nG0 Z5\nG1 X10 Y0 Z-3\nG2 X0 Y0 I1 J0\n%\n",

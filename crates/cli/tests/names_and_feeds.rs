@@ -108,6 +108,7 @@ fn a_feed_that_rounds_to_nothing_is_an_error_at_its_text() {
     let (status, text) = millpath(dir, &["compile", "--feed", "0.0001", "2001.mpath"]);
     assert_eq!(status, 2, "{text}");
     assert!(text.contains(&Msg::FeedTooSmall.code()), "{text}");
+    assert!(text.contains("--> Options"), "{text}");
     let toml = std::fs::read_to_string(dir.join("millpath.toml")).unwrap();
     std::fs::write(
         dir.join("millpath.toml"),
@@ -120,4 +121,16 @@ fn a_feed_that_rounds_to_nothing_is_an_error_at_its_text() {
         text.contains(&Msg::FeedTooSmall.code()) && text.contains("probe_feed"),
         "{text}"
     );
+    // located at the file that gave it; the same value as an option is the option's
+    let at_toml = text
+        .lines()
+        .skip_while(|l| !l.contains(&Msg::FeedTooSmall.code()))
+        .nth(1)
+        .unwrap_or_default();
+    assert!(
+        at_toml.starts_with("  --> ") && at_toml.ends_with("millpath.toml"),
+        "{text}"
+    );
+    let (_, text) = millpath(dir, &["check", "--probe-feed", "0.01", "2001.mpath"]);
+    assert!(text.contains("--> Options"), "{text}");
 }

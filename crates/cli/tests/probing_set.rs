@@ -171,3 +171,35 @@ fn verify_is_clean_on_adjusted_programs_in_every_dialect() {
         );
     }
 }
+
+/// The set opened and saved again in Notepad (a byte-order mark, CRLF): adjust-z reads past
+/// the mark and writes the program it writes from the plain files, without a mark, which
+/// LinuxCNC would reject ("Bad character"); verify names a mark in a program it is given.
+#[test]
+fn a_set_saved_with_a_byte_order_mark_adjusts_as_the_plain_set() {
+    let dir = setup();
+    let d = dir.path();
+    assert_eq!(run(d, &["compile", "2020.mpath"]).0, 0);
+    fill(d, "3.3", "2.8");
+    assert_eq!(run(d, &["adjust-z", "--max", "1", "2020"]).0, 0);
+    let plain = read(d, "2020_Milling.gcode");
+    for name in ["2020_Clean.gcode", "2020_Z.txt"] {
+        let notepad = format!("\u{feff}{}", read(d, name).replace('\n', "\r\n"));
+        std::fs::write(d.join(name), notepad).unwrap();
+    }
+    let (code, text) = run(d, &["adjust-z", "--max", "1", "2020"]);
+    assert_eq!(code, 0, "{text}");
+    let adjusted = read(d, "2020_Milling.gcode");
+    assert!(!adjusted.starts_with('\u{feff}'), "{adjusted}");
+    assert_eq!(adjusted.replace("\r\n", "\n"), plain);
+    // the program saved with a mark: verify says what it is, in both languages
+    std::fs::write(d.join("bom.gcode"), format!("\u{feff}{plain}")).unwrap();
+    let (code, text) = run(d, &["verify", "bom.gcode"]);
+    assert_eq!(code, 1, "{text}");
+    assert!(
+        text.contains("bom.gcode:1: error: a byte-order mark (U+FEFF"),
+        "{text}"
+    );
+    let (_, text) = run(d, &["verify", "--lang", "de", "bom.gcode"]);
+    assert!(text.contains("ohne BOM speichern"), "{text}");
+}

@@ -240,3 +240,89 @@ fn into_every_shared_drawing_changes_nothing_it_should_not() {
     }
     assert!(done > 0);
 }
+
+/// Entity types on a layer of a DXF's ENTITIES section (its own group 8; polyline
+/// vertices and attributes not counted).
+fn kinds_on(dxf: &str, layer: &str) -> Vec<String> {
+    let lines: Vec<&str> = dxf.lines().map(str::trim).collect();
+    let pairs: Vec<(&str, &str)> = lines.chunks_exact(2).map(|p| (p[0], p[1])).collect();
+    let start = pairs.iter().position(|p| *p == ("2", "ENTITIES"));
+    let mut kinds = Vec::new();
+    let mut current: Option<&str> = None;
+    for (code, value) in pairs.iter().skip(start.map_or(pairs.len(), |s| s + 1)) {
+        match *code {
+            "0" if *value == "ENDSEC" => break,
+            "0" => current = Some(*value).filter(|v| !["VERTEX", "SEQEND", "ATTRIB"].contains(v)),
+            "8" => {
+                if let Some(kind) = current.take() {
+                    if *value == layer {
+                        kinds.push(kind.to_string());
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    kinds.sort();
+    kinds
+}
+
+/// `--extended`: a CAD drawing with polylines and block references on its path layer, turned
+/// into text by `dxf2text --extended`, goes back with `text2dxf --extended --into`: the
+/// polylines and blocks are replaced by the text's lines and arcs (the same G-code), the
+/// ELLIPSE on a layer of notes stays. Without `--extended` they are kept, and a warning says
+/// that the paths may now be drawn twice.
+#[test]
+fn extended_into_replaces_polylines_and_blocks_and_plain_into_warns() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let cad =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/extended/drawings/cad/7001.dxf");
+    std::fs::copy(&cad, d.join("7001.dxf")).unwrap();
+    let mut compile = vec!["compile", "--extended"];
+    compile.extend(MACHINE);
+    compile.push("7001.dxf");
+    ok(&millpath(d, &compile));
+    let expected = std::fs::read(d.join("7001_Milling.gcode")).unwrap();
+    ok(&millpath(
+        d,
+        &["dxf2text", "--extended", "7001.dxf", "-o", "7001.mpath"],
+    ));
+    let original = std::fs::read_to_string(&cad).unwrap();
+    for k in ["INSERT", "LWPOLYLINE", "POLYLINE"] {
+        assert!(kinds_on(&original, "7001_1P").contains(&k.to_string()));
+    }
+
+    // with --extended: replaced, no warning, the same G-code without --extended
+    let o = millpath(
+        d,
+        &["text2dxf", "--extended", "7001.mpath", "--into", "7001.dxf"],
+    );
+    ok(&o);
+    let warning = millpath_core::Msg::IntoKeptExtended.code();
+    assert!(!String::from_utf8_lossy(&o.stderr).contains(&warning));
+    let back = std::fs::read_to_string(d.join("7001.dxf")).unwrap();
+    let kinds = kinds_on(&back, "7001_1P");
+    for k in ["INSERT", "LWPOLYLINE", "POLYLINE"] {
+        assert!(!kinds.contains(&k.to_string()), "{kinds:?}");
+    }
+    assert_eq!(kinds_on(&back, "Notes"), kinds_on(&original, "Notes"));
+    std::fs::remove_file(d.join("7001_Milling.gcode")).unwrap();
+    compile.retain(|a| *a != "--extended");
+    ok(&millpath(d, &compile));
+    assert!(std::fs::read(d.join("7001_Milling.gcode")).unwrap() == expected);
+
+    // without --extended: kept, with a warning that names them and the way out
+    std::fs::copy(&cad, d.join("7001.dxf")).unwrap();
+    let o = millpath(d, &["text2dxf", "7001.mpath", "--into", "7001.dxf"]);
+    ok(&o);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains(&format!("warning[{warning}]"))
+            && err.contains("layer 7001_1P (2 INSERT, 2 LWPOLYLINE, 1 POLYLINE)")
+            && err.contains("text2dxf --extended --into 7001.dxf"),
+        "{err}"
+    );
+    let back = std::fs::read_to_string(d.join("7001.dxf")).unwrap();
+    assert!(kinds_on(&back, "7001_1P").contains(&"LWPOLYLINE".to_string()));
+}

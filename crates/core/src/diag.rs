@@ -396,6 +396,8 @@ messages! {
     ClampEmpty = "Clamp '{0}': min must be below max on {1} (min {2}, max {3})", "Spannpratze '{0}': min muss auf {1} unter max liegen (min {2}, max {3})";
     // found by fuzzing both front-ends (issue 25)
     NoTextHere = "A {0} element takes no parameters: a DXF cannot attach a text to it ('{1}')", "Ein {0}-Element nimmt keine Parameter: eine DXF kann ihm keinen Text zuordnen ('{1}')";
+    // text2dxf --into without --extended over polylines and blocks on path layers (issue 20)
+    IntoKeptExtended = "{0} keeps on its path layers what text2dxf replaces only with --extended: {1}. If the text came from dxf2text --extended, these paths are now drawn twice: restore the drawing and run text2dxf --extended --into {0}", "{0} behält auf seinen Pfad-Layern, was text2dxf nur mit --extended ersetzt: {1}. Stammt der Text aus dxf2text --extended, sind diese Pfade jetzt doppelt gezeichnet: die Zeichnung wiederherstellen und text2dxf --extended --into {0} ausführen";
     // memory proportional to the input (issue 25)
     TooManyLines = "The program would have more than {0} lines", "Das Programm hätte mehr als {0} Zeilen";
 }
@@ -573,6 +575,11 @@ const LANG_SEP: char = '\u{1e}';
 /// both wordings, of which a message shows the one of its language.
 pub fn arg_per_lang(en: &str, de: &str) -> String {
     format!("{en}{LANG_SEP}{de}")
+}
+
+/// Why a DXF file cannot be read, as an argument in both languages.
+pub fn dxf_error_arg(e: &millpath_dxf::DxfError) -> String {
+    arg_per_lang(&e.to_string(), &e.german())
 }
 
 /// The arguments with the wording of `lang` where they have two.

@@ -212,6 +212,35 @@ impl fmt::Display for DxfError {
 
 impl std::error::Error for DxfError {}
 
+impl DxfError {
+    /// The German wording of [`Display`](fmt::Display)'s text, for German reports.
+    pub fn german(&self) -> String {
+        let line = self.line;
+        match &self.kind {
+            DxfErrorKind::Truncated => {
+                format!("Zeile {line}: die Datei endet mitten in einer Gruppe")
+            }
+            DxfErrorKind::BadGroupCode(s) => {
+                format!("Zeile {line}: '{}' ist kein Gruppencode", excerpt(s))
+            }
+            DxfErrorKind::BadNumber { code, value } => format!(
+                "Zeile {line}: Wert '{}' der Gruppe {code} ist keine Zahl",
+                excerpt(value)
+            ),
+            DxfErrorKind::Binary => {
+                "binäre DXF-Dateien werden nicht unterstützt; als ASCII-DXF exportieren".into()
+            }
+            DxfErrorKind::Utf16 { big_endian } => {
+                let which = if *big_endian { "BE" } else { "LE" };
+                format!("die Datei ist UTF-16-{which}-Text, eine DXF muss ASCII oder UTF-8 sein (PowerShell 5 schreibt mit `>` UTF-16: stattdessen mit -o DATEI schreiben)")
+            }
+            DxfErrorKind::NotDxf => {
+                format!("Zeile {line}: keine DXF-Datei (kein SECTION gefunden)")
+            }
+        }
+    }
+}
+
 /// At most 40 characters of a line, control characters escaped (`\0`, `\u{7f}`): a binary
 /// file given as DXF shows a short readable excerpt, never raw bytes.
 fn excerpt(s: &str) -> String {
@@ -229,4 +258,32 @@ fn excerpt(s: &str) -> String {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_reading_error_has_its_german_wording() {
+        let kinds = [
+            DxfErrorKind::Truncated,
+            DxfErrorKind::BadGroupCode("layer".into()),
+            DxfErrorKind::BadNumber {
+                code: 10,
+                value: "1,5".into(),
+            },
+            DxfErrorKind::Binary,
+            DxfErrorKind::NotDxf,
+            DxfErrorKind::Utf16 { big_endian: false },
+        ];
+        for kind in kinds {
+            let e = DxfError { line: 3, kind };
+            let (en, de) = (e.to_string(), e.german());
+            assert_ne!(en, de);
+            for word in ["line ", " not ", " is ", "file "] {
+                assert!(!de.contains(word), "{de}");
+            }
+        }
+    }
 }

@@ -62,6 +62,9 @@ pub enum SyntaxError {
     /// `(` inside a parenthesised comment (LinuxCNC rejects it; not fatal for the line).
     NestedComment,
     UnexpectedChar(char),
+    /// U+FEFF, mostly a byte-order mark an editor saved before the first `%`: LinuxCNC stops
+    /// there ("Bad character"), and the character cannot be seen in the line.
+    ByteOrderMark,
     MissingNumber(char),
     DuplicateWord(char),
     /// Two codes of one modal group on one line, e.g. `G00 G01`.
@@ -482,6 +485,10 @@ impl SyntaxError {
             SyntaxError::UnexpectedChar(c) => pick(
                 format!("unexpected character {c:?}; the line is not executed"),
                 format!("unerwartetes Zeichen {c:?}; die Zeile wird nicht ausgeführt"),
+            ),
+            SyntaxError::ByteOrderMark => pick(
+                "a byte-order mark (U+FEFF, invisible; saved by some Windows editors): LinuxCNC rejects the program here; save the file as UTF-8 without BOM".into(),
+                "eine Byte-Order-Markierung (U+FEFF, unsichtbar; von manchen Windows-Editoren gespeichert): LinuxCNC lehnt das Programm hier ab; die Datei als UTF-8 ohne BOM speichern".into(),
             ),
             SyntaxError::MissingNumber(l) => pick(
                 format!("word {l} without a number"),

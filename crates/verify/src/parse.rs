@@ -77,7 +77,8 @@ pub fn parse_line(line: &str) -> Result<Block, FindingKind> {
     while i < chars.len() {
         let c = chars[i];
         match c {
-            ' ' | '\t' | '\r' | '\u{feff}' => i += 1,
+            ' ' | '\t' | '\r' => i += 1,
+            '\u{feff}' => return Err(syntax(SyntaxError::ByteOrderMark)),
             '(' => {
                 let rest = &chars[i + 1..];
                 let Some(n) = rest.iter().position(|&c| c == ')') else {
@@ -260,5 +261,19 @@ mod tests {
             parse_line("G00 #1"),
             Err(FindingKind::Syntax(SyntaxError::UnexpectedChar('#')))
         ));
+    }
+
+    #[test]
+    fn a_byte_order_mark_is_named_before_a_percent_and_before_words() {
+        // rs274 stops at it ("Bad character '\357' used"), whatever follows
+        for line in ["\u{feff}%", "\u{feff}(millpath)", "G00\u{feff} X1"] {
+            assert!(
+                matches!(
+                    parse_line(line),
+                    Err(FindingKind::Syntax(SyntaxError::ByteOrderMark))
+                ),
+                "{line:?}"
+            );
+        }
     }
 }

@@ -149,7 +149,12 @@ pub fn run(m: &MachineArgs, format: Format, quiet: bool, paths: &[PathBuf]) -> u
             }
             Err(errs) => {
                 eprint!("{info}");
-                print_human(&errs, lang);
+                // settings errors (exit 2) in the format asked for: a JSON or SARIF reader
+                // gets a document, GitHub an annotation at the millpath.toml that gave them
+                match format {
+                    Format::Human => print_human(&errs, lang),
+                    _ => print_report(format, &errs, 0, lang),
+                }
                 return 2;
             }
         }

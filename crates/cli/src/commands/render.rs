@@ -25,6 +25,7 @@ pub fn run(
         Ok(mut s) => {
             if cut_cell.is_some() {
                 s.cut_cell = cut_cell;
+                s.option_keys.push("cut_cell");
             }
             s
         }

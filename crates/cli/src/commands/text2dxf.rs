@@ -46,7 +46,13 @@ pub fn run(
                 Err(e) => return fail(Msg::CannotRead, drawing, args![drawing.display(), e], lang),
             };
             let tref = FileRef::new(drawing.to_path_buf());
-            millpath_core::convert::text_into_dxf(&src, &fref, &patterns, &target, &tref, input)
+            let out = millpath_core::convert::text_into_dxf(
+                &src, &fref, &patterns, &target, &tref, input,
+            );
+            if out.is_ok() && input == InputMode::Reference {
+                warn_kept_extended(drawing, &target, &src, &fref, &patterns, lang);
+            }
+            out
         }
         None => {
             if let (Some(d), false) = (&dest, force) {
@@ -72,6 +78,27 @@ pub fn run(
             print_human(&diags, lang);
             1
         }
+    }
+}
+
+/// Warns when `--into` kept polylines or block references on the path layers that a text
+/// from `dxf2text --extended` holds as elements too.
+fn warn_kept_extended(
+    drawing: &Path,
+    target: &[u8],
+    src: &str,
+    file: &std::sync::Arc<FileRef>,
+    patterns: &millpath_core::load::names::Patterns,
+    lang: Lang,
+) {
+    let kept = millpath_core::convert::kept_extended_geometry(target, src, file, patterns);
+    if !kept.is_empty() {
+        let d = Diagnostic::warning(
+            Msg::IntoKeptExtended,
+            Origin::File(FileRef::new(drawing.to_path_buf())),
+            args![drawing.display(), kept.describe(lang)],
+        );
+        eprintln!("{}", report::human(&d, lang));
     }
 }
 
@@ -108,7 +135,10 @@ fn refuse_to_destroy(
         Err(e) => Some(fail(
             Msg::NotOursToOverwrite,
             dest,
-            args![dest.display(), e],
+            vec![
+                dest.display().to_string(),
+                millpath_core::diag::dxf_error_arg(&e),
+            ],
             lang,
         )),
     }

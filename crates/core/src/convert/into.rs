@@ -12,7 +12,7 @@ use crate::diag::{FileRef, Lang};
 use crate::front::dxf::{effective_layer, path_name_of_layer};
 use crate::front::extended::InputMode;
 use crate::load::names::Patterns;
-use crate::{args, Diagnostic, Msg, Origin};
+use crate::{Diagnostic, Msg, Origin};
 use millpath_dxf::splice::{scan, Record, Target};
 use millpath_dxf::DxfError;
 use std::collections::BTreeMap;
@@ -56,7 +56,10 @@ fn load_error(file: &Arc<FileRef>, e: DxfError) -> Diagnostic {
     Diagnostic::error(
         Msg::CannotLoadDxf,
         Origin::File(file.clone()),
-        args![file.path.display(), e],
+        vec![
+            file.path.display().to_string(),
+            crate::diag::dxf_error_arg(&e),
+        ],
     )
 }
 
@@ -79,6 +82,37 @@ pub fn text_into_dxf(
     Ok(settle(&objects, patterns, &|suffixes| {
         t.splice(&remove, &plan(&objects, suffixes).1)
     }))
+}
+
+/// What `--into` without the extended mode keeps on the path layers of `target` that the
+/// extended mode replaces: polylines and block references. A text from `dxf2text
+/// --extended` holds them as elements, so kept they would be drawn twice.
+pub fn kept_extended_geometry(
+    target: &[u8],
+    src: &str,
+    file: &Arc<FileRef>,
+    patterns: &Patterns,
+) -> Losses {
+    let mut kept = Losses::default();
+    let Ok(t) = scan(target) else {
+        return kept;
+    };
+    let paths: Vec<String> = text_objects(src, file)
+        .map(|o| o.into_iter().map(|o| o.path).collect())
+        .unwrap_or_default();
+    let layers = PathLayers::new(patterns, &paths);
+    let extended_only = |r: &&Record| {
+        layers.replaces(r, InputMode::Extended) && !layers.replaces(r, InputMode::Reference)
+    };
+    for r in t.entities().iter().filter(extended_only) {
+        *kept
+            .entities
+            .entry(r.layer.clone())
+            .or_default()
+            .entry(r.kind.clone())
+            .or_default() += 1;
+    }
+    kept
 }
 
 /// What a plain `text2dxf` would destroy in an existing drawing: everything `--into` keeps.

@@ -4,7 +4,7 @@
 //! an existing drawing and keeps the rest of it (`into.rs`).
 
 mod into;
-pub use into::{overwrite_losses, text_into_dxf, Losses};
+pub use into::{kept_extended_geometry, overwrite_losses, text_into_dxf, Losses};
 
 use crate::build::traverse::walk;
 use crate::diag::{Diags, FileRef};
@@ -433,7 +433,10 @@ pub fn dxf_to_text(
         crate::Diagnostic::error(
             crate::Msg::CannotLoadDxf,
             crate::Origin::File(file.clone()),
-            crate::args![file.path.display(), e],
+            vec![
+                file.path.display().to_string(),
+                crate::diag::dxf_error_arg(&e),
+            ],
         )
     })?;
     let opts = front_options(patterns, input);

@@ -134,7 +134,10 @@ pub fn resolve(
         diags.error(
             Msg::CannotLoadDxf,
             Origin::File(file.clone()),
-            args![file.path.display(), e],
+            vec![
+                file.path.display().to_string(),
+                crate::diag::dxf_error_arg(e),
+            ],
         );
     }
     if let Some(f) = d

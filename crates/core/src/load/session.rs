@@ -307,7 +307,10 @@ impl<'a> Session<'a> {
             Diagnostic::error(
                 Msg::CannotLoadDxf,
                 Origin::File(file.clone()),
-                args![file.path.display(), e],
+                vec![
+                    file.path.display().to_string(),
+                    crate::diag::dxf_error_arg(&e),
+                ],
             )
         })?;
         info.push(format!(

@@ -89,6 +89,11 @@ pub struct Settings {
     /// The toolpath view's cut part: cell edge in mm (`cut_cell`, `render --cut-cell`);
     /// `None`: the checker's.
     pub cut_cell: Option<f64>,
+    /// The millpath.toml these settings were read from; `None`: none (options, an editor).
+    pub settings_file: Option<PathBuf>,
+    /// Settings the command line gave (`feed`, `probe_feed`, …): their errors are located at
+    /// the options, the others' at [`Settings::settings_file`].
+    pub option_keys: Vec<&'static str>,
 }
 
 impl Default for Settings {
@@ -125,11 +130,23 @@ impl Default for Settings {
             clamps: Vec::new(),
             clamps_file: None,
             cut_cell: None,
+            settings_file: None,
+            option_keys: Vec::new(),
         }
     }
 }
 
 impl Settings {
+    /// Where an error of setting `name` is located: millpath.toml, unless an option gave it.
+    fn origin_of(&self, name: &str) -> Origin {
+        match &self.settings_file {
+            Some(p) if !self.option_keys.contains(&name) => {
+                Origin::File(crate::diag::FileRef::new(p.clone()))
+            }
+            _ => Origin::Options,
+        }
+    }
+
     /// Machine values that are not finite or beyond ±[`MAX_MAGNITUDE`], whichever way they
     /// came (options, `millpath.toml` where `nan` and `inf` are valid floats, an editor).
     pub fn number_errors(&self) -> Vec<Diagnostic> {
@@ -158,7 +175,7 @@ impl Settings {
                 };
                 Diagnostic::error(
                     Msg::SettingNotFinite,
-                    Origin::Options,
+                    self.origin_of(name),
                     args![name, shown, MAX_MAGNITUDE],
                 )
             })
@@ -174,7 +191,7 @@ impl Settings {
             if let Some(v) = v.filter(|v| finite(*v) && *v <= 0.0) {
                 errors.push(Diagnostic::error(
                     Msg::MustBePositive,
-                    Origin::Options,
+                    self.origin_of(name),
                     args![name, crate::params::fmt_num(v)],
                 ));
             }
@@ -184,12 +201,12 @@ impl Settings {
         feeds.extend(self.probe_feed.map(|z| ("probe_feed", z)));
         feeds.extend(self.plunge_feed.map(|v| ("plunge_feed", v)));
         errors.extend(feeds.into_iter().filter_map(|(name, v)| {
-            crate::build::validate::feed_too_small(name, v, &Origin::Options)
+            crate::build::validate::feed_too_small(name, v, &self.origin_of(name))
         }));
         if finite(self.spindle_dwell) && self.spindle_dwell < 0.0 {
             errors.push(Diagnostic::error(
                 Msg::OptionNegative,
-                Origin::Options,
+                self.origin_of("spindle_dwell"),
                 args!["spindle_dwell", crate::params::fmt_num(self.spindle_dwell)],
             ));
         }

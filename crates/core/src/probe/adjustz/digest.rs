@@ -91,6 +91,17 @@ pub struct SetFile<'a> {
     pub text: &'a str,
 }
 
+impl SetFile<'_> {
+    /// The file without a leading byte-order mark: an editor on Windows (Notepad) may save
+    /// `_Clean.gcode` or `_Z.txt` with one, and the reference (.NET) reads past it too.
+    pub fn without_bom(self) -> Self {
+        SetFile {
+            text: self.text.strip_prefix('\u{feff}').unwrap_or(self.text),
+            ..self
+        }
+    }
+}
+
 /// Refuses a mix: `_Clean.gcode`'s digest must be that of `_Clean.gcode` with this `_Z.txt`,
 /// and a `_Probing.gcode` with a digest must carry the same. A `_Clean.gcode` without a
 /// digest (older files, hand-made ones) is accepted as before. False after an error.

@@ -138,6 +138,8 @@ pub fn adjust_set(
         diags.push(d);
         return None;
     }
+    let (clean, z) = (clean.without_bom(), z.without_bom());
+    let probing = probing.map(SetFile::without_bom);
     let (clean_file, z_file) = (clean.name, z.name);
     let (clean_text, z_text) = (clean.text, z.text);
     if !check_set(clean, z, probing, diags) {
@@ -186,7 +188,8 @@ pub fn adjust_with_log(
     max: f64,
     diags: &mut Diags,
 ) -> Option<String> {
-    let [clean, z] = set;
+    let [clean, z] = set.map(SetFile::without_bom);
+    let (probing, log) = (probing.map(SetFile::without_bom), log.without_bom());
     let opt = MaxOption::Long;
     let Some(probing) = probing else {
         let name = format!("{}_Probing.gcode", base_path(clean.name));
@@ -370,6 +373,16 @@ mod tests {
         // trailing blank lines and CR LF are fine
         let crlf = CLEAN.replace('\n', "\r\n") + "\r\n";
         assert!(run(&crlf, Z, 1.0).0.is_some());
+    }
+
+    #[test]
+    fn a_byte_order_mark_is_read_past_and_not_written() {
+        // Notepad saves `_Clean.gcode` and `_Z.txt` with a BOM; LinuxCNC rejects one in the
+        // program adjust-z writes ("Bad character")
+        let plain = run(CLEAN, Z, 1.0).0.unwrap();
+        let (out, msgs, _) = run(&format!("\u{feff}{CLEAN}"), &format!("\u{feff}{Z}"), 1.0);
+        assert!(msgs.is_empty(), "{msgs:?}");
+        assert_eq!(out.unwrap(), plain);
     }
 
     #[test]
