@@ -55,6 +55,7 @@ pub use semantic_tokens::{semantic_tokens, SemToken, TOKEN_TYPES};
 pub use symbols::{document_symbols, workspace_symbols, Symbol};
 pub use toolpath::{toolpath, toolpath_html, toolpath_svg, toolpath_until};
 
+use millpath_core::build::traverse_memo::TraversalMemo;
 use millpath_core::diag::{Diagnostic, FileRef, Origin};
 use millpath_core::front::drawing::{DrawnObject, RawPath};
 use millpath_core::front::text::objects_of;
@@ -333,6 +334,9 @@ pub struct Analysis {
     pub(crate) chain_first: Mutex<HashMap<String, Arc<HashMap<usize, usize>>>>,
     /// Previews computed for this version (code lenses, the preview request).
     pub(crate) previews: Mutex<HashMap<Option<String>, Result<Preview, String>>>,
+    /// The walks of this analysis, for the next one of the document (an edit that changes
+    /// no geometry, kind, order or marker walks no path again).
+    pub traversals: TraversalMemo,
 }
 
 /// The workspace file system, recording what an analysis reads (its dependencies).
@@ -430,6 +434,7 @@ pub fn analyze_from(
         files: Mutex::default(),
         dirs: Mutex::default(),
     };
+    let traversals = TraversalMemo::after(prev.filter(|p| p.path == path).map(|p| &p.traversals));
     let mut check = settings.settings.clone();
     check.check = true;
     // answered while typing: no second opinion (its stock simulation is `millpath check`'s)
@@ -441,6 +446,7 @@ pub fn analyze_from(
         Ok(mut session) => {
             // a newer edit stops the compiler between elements and passes as well
             session.stop = Some(cancelled);
+            session.traversals = Some(&traversals);
             if is_text {
                 let mut local = Diags::default();
                 match session.text_paths(&ast, syntax_errors, &src, &file, &mut local) {
@@ -515,6 +521,7 @@ pub fn analyze_from(
         object_at,
         chain_first: Mutex::default(),
         previews: Mutex::default(),
+        traversals,
     })
 }
 
