@@ -37,7 +37,7 @@ pub fn element_at(a: &Analysis, offset: usize) -> Option<(&PathBlock, &Element)>
 }
 
 pub(crate) fn object_index(a: &Analysis, el: &Element) -> Option<usize> {
-    a.object_at.get(&el.span.start).copied()
+    a.object_at(el.span.start)
 }
 
 pub(crate) fn raw_path<'a>(a: &'a Analysis, name: &str) -> Option<&'a RawPath> {

@@ -65,7 +65,7 @@ use millpath_core::{compile_file, Diags, Session, Settings};
 use millpath_syntax::{parse, File};
 use std::collections::{BTreeSet, HashMap};
 use std::path::{Path, PathBuf};
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, OnceLock};
 
 pub use line_index::{LineIndex, Pos};
 
@@ -328,8 +328,9 @@ pub struct Analysis {
     pub dirs: BTreeSet<PathBuf>,
     /// The text parsed without syntax errors (the next version may reuse the tree).
     pub syntax_ok: bool,
-    /// Drawn object index by the byte offset of its element.
-    pub(crate) object_at: HashMap<usize, usize>,
+    /// Drawn object index by the byte offset of its element (made on first use: the
+    /// diagnostics do not need it).
+    pub(crate) object_at: OnceLock<HashMap<usize, usize>>,
     /// Per path: segment object → index of the first segment of its chain (computed once).
     pub(crate) chain_first: Mutex<HashMap<String, Arc<HashMap<usize, usize>>>>,
     /// Previews computed for this version (code lenses, the preview request).
@@ -493,14 +494,6 @@ pub fn analyze_from(
         ));
     }
     let index = ws.line_index(&src);
-    let object_at = objects
-        .iter()
-        .enumerate()
-        .filter_map(|(i, o)| match &o.origin {
-            Origin::Span { start, .. } => Some((*start, i)),
-            _ => None,
-        })
-        .collect();
     let mut deps = fs.files.into_inner().unwrap_or_default();
     deps.remove(path);
     // the settings: any `millpath.toml` above the file
@@ -518,7 +511,7 @@ pub fn analyze_from(
         deps,
         dirs,
         syntax_ok,
-        object_at,
+        object_at: OnceLock::new(),
         chain_first: Mutex::default(),
         previews: Mutex::default(),
         traversals,
@@ -526,6 +519,21 @@ pub fn analyze_from(
 }
 
 impl Analysis {
+    /// The drawn object of the element starting at `offset`.
+    pub(crate) fn object_at(&self, offset: usize) -> Option<usize> {
+        let map = self.object_at.get_or_init(|| {
+            self.objects
+                .iter()
+                .enumerate()
+                .filter_map(|(i, o)| match &o.origin {
+                    Origin::Span { start, .. } => Some((*start, i)),
+                    _ => None,
+                })
+                .collect()
+        });
+        map.get(&offset).copied()
+    }
+
     /// Whether a change of `changed` (a buffer or a file on disk) can change this analysis.
     pub fn depends_on(&self, changed: &Path) -> bool {
         self.deps.contains(changed) || changed.parent().is_some_and(|d| self.dirs.contains(d))
