@@ -14,6 +14,7 @@ use crate::diag::Diags;
 use crate::front::drawing::{RawPath, SegKind, Shape};
 use crate::geom::{Geom, P2};
 use std::collections::HashMap;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 
 /// A shape bit for bit (−0.0 and 0.0 differ: the canonical duplicate compares totally).
@@ -98,6 +99,8 @@ impl Entry {
 pub struct TraversalMemo {
     previous: HashMap<String, Arc<Entry>>,
     current: Mutex<HashMap<String, Arc<Entry>>>,
+    /// Walks taken from the memo instead of walking.
+    reused: AtomicUsize,
 }
 
 impl TraversalMemo {
@@ -109,7 +112,19 @@ impl TraversalMemo {
         TraversalMemo {
             previous,
             current: Mutex::default(),
+            reused: AtomicUsize::new(0),
         }
+    }
+
+    /// How many walks were taken from the memo (for tests).
+    pub fn reused(&self) -> usize {
+        self.reused.load(Ordering::Relaxed)
+    }
+
+    /// The remembered walk of a path: its steps and ties (for tests).
+    pub fn remembered(&self, name: &str) -> Option<(Vec<Step>, Vec<Tie>)> {
+        let c = self.current.lock().ok()?;
+        c.get(name).map(|e| (e.steps.clone(), e.ties.clone()))
     }
 
     /// How many walks this memo holds (for tests).
@@ -139,6 +154,7 @@ impl TraversalMemo {
             .or_else(|| self.previous.get(&raw.name).cloned())
             .filter(|e| e.fits(&key, raw));
         if let Some(e) = known {
+            self.reused.fetch_add(1, Ordering::Relaxed);
             self.keep(&raw.name, e.clone());
             return (e.steps.clone(), e.ties.clone());
         }
