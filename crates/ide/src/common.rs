@@ -41,7 +41,7 @@ pub(crate) fn object_index(a: &Analysis, el: &Element) -> Option<usize> {
 }
 
 pub(crate) fn raw_path<'a>(a: &'a Analysis, name: &str) -> Option<&'a RawPath> {
-    a.paths.iter().find(|p| p.name == name)
+    a.paths.iter().find(|p| p.name == name).map(|p| &**p)
 }
 
 pub(crate) fn segment_of<'a>(

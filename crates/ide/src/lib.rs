@@ -319,7 +319,8 @@ pub struct Analysis {
     /// `millpath check` reports for the file.
     pub diagnostics: Vec<Diagnostic>,
     pub objects: Vec<DrawnObject>,
-    pub paths: Vec<RawPath>,
+    /// The document's paths as the compiler read them (shared with its session).
+    pub paths: Vec<Arc<RawPath>>,
     pub settings: DocSettings,
     /// Every other file the analysis read or looked at (subpaths, `millpath.toml`): a change
     /// of one of them makes this analysis stale.
@@ -453,9 +454,9 @@ pub fn analyze_from(
                 match session.text_paths(&ast, syntax_errors, &src, &file, &mut local) {
                     Ok((text, p)) => {
                         objects = text.objects;
-                        paths = p.clone();
+                        paths = p.into_iter().map(Arc::new).collect::<Vec<_>>();
                         local.list.into_iter().for_each(|d| session.diags.push(d));
-                        session.add_paths(path, p);
+                        session.add_shared_paths(path, paths.clone());
                     }
                     Err(abort) => {
                         local.list.into_iter().for_each(|d| session.diags.push(d));

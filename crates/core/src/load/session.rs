@@ -153,6 +153,11 @@ impl<'a> Session<'a> {
         self.register(path, paths.into_iter().map(Arc::new).collect())
     }
 
+    /// [`Session::add_paths`] of paths the caller keeps too (the editor, without a copy).
+    pub fn add_shared_paths(&mut self, path: &Path, paths: Vec<Arc<RawPath>>) -> Vec<String> {
+        self.register(path, paths)
+    }
+
     pub(crate) fn register(&mut self, path: &Path, paths: Vec<Arc<RawPath>>) -> Vec<String> {
         let mut names = Vec::new();
         for p in paths {
