@@ -37,11 +37,11 @@ pub fn element_at(a: &Analysis, offset: usize) -> Option<(&PathBlock, &Element)>
 }
 
 pub(crate) fn object_index(a: &Analysis, el: &Element) -> Option<usize> {
-    a.object_at.get(&el.span.start).copied()
+    a.object_at(el.span.start)
 }
 
 pub(crate) fn raw_path<'a>(a: &'a Analysis, name: &str) -> Option<&'a RawPath> {
-    a.paths.iter().find(|p| p.name == name)
+    a.paths.iter().find(|p| p.name == name).map(|p| &**p)
 }
 
 pub(crate) fn segment_of<'a>(

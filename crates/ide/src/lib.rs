@@ -55,6 +55,7 @@ pub use semantic_tokens::{semantic_tokens, SemToken, TOKEN_TYPES};
 pub use symbols::{document_symbols, workspace_symbols, Symbol};
 pub use toolpath::{toolpath, toolpath_html, toolpath_svg, toolpath_until};
 
+use millpath_core::build::traverse_memo::TraversalMemo;
 use millpath_core::diag::{Diagnostic, FileRef, Origin};
 use millpath_core::front::drawing::{DrawnObject, RawPath};
 use millpath_core::front::text::objects_of;
@@ -64,7 +65,7 @@ use millpath_core::{compile_file, Diags, Session, Settings};
 use millpath_syntax::{parse, File};
 use std::collections::{BTreeSet, HashMap};
 use std::path::{Path, PathBuf};
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, OnceLock};
 
 pub use line_index::{LineIndex, Pos};
 
@@ -318,7 +319,8 @@ pub struct Analysis {
     /// `millpath check` reports for the file.
     pub diagnostics: Vec<Diagnostic>,
     pub objects: Vec<DrawnObject>,
-    pub paths: Vec<RawPath>,
+    /// The document's paths as the compiler read them (shared with its session).
+    pub paths: Vec<Arc<RawPath>>,
     pub settings: DocSettings,
     /// Every other file the analysis read or looked at (subpaths, `millpath.toml`): a change
     /// of one of them makes this analysis stale.
@@ -327,12 +329,16 @@ pub struct Analysis {
     pub dirs: BTreeSet<PathBuf>,
     /// The text parsed without syntax errors (the next version may reuse the tree).
     pub syntax_ok: bool,
-    /// Drawn object index by the byte offset of its element.
-    pub(crate) object_at: HashMap<usize, usize>,
+    /// Drawn object index by the byte offset of its element (made on first use: the
+    /// diagnostics do not need it).
+    pub(crate) object_at: OnceLock<HashMap<usize, usize>>,
     /// Per path: segment object → index of the first segment of its chain (computed once).
     pub(crate) chain_first: Mutex<HashMap<String, Arc<HashMap<usize, usize>>>>,
     /// Previews computed for this version (code lenses, the preview request).
     pub(crate) previews: Mutex<HashMap<Option<String>, Result<Preview, String>>>,
+    /// The walks of this analysis, for the next one of the document (an edit that changes
+    /// no geometry, kind, order or marker walks no path again).
+    pub traversals: TraversalMemo,
 }
 
 /// The workspace file system, recording what an analysis reads (its dependencies).
@@ -430,6 +436,7 @@ pub fn analyze_from(
         files: Mutex::default(),
         dirs: Mutex::default(),
     };
+    let traversals = TraversalMemo::after(prev.filter(|p| p.path == path).map(|p| &p.traversals));
     let mut check = settings.settings.clone();
     check.check = true;
     // answered while typing: no second opinion (its stock simulation is `millpath check`'s)
@@ -441,14 +448,15 @@ pub fn analyze_from(
         Ok(mut session) => {
             // a newer edit stops the compiler between elements and passes as well
             session.stop = Some(cancelled);
+            session.traversals = Some(&traversals);
             if is_text {
                 let mut local = Diags::default();
                 match session.text_paths(&ast, syntax_errors, &src, &file, &mut local) {
                     Ok((text, p)) => {
                         objects = text.objects;
-                        paths = p.clone();
+                        paths = p.into_iter().map(Arc::new).collect::<Vec<_>>();
                         local.list.into_iter().for_each(|d| session.diags.push(d));
-                        session.add_paths(path, p);
+                        session.add_shared_paths(path, paths.clone());
                     }
                     Err(abort) => {
                         local.list.into_iter().for_each(|d| session.diags.push(d));
@@ -487,14 +495,6 @@ pub fn analyze_from(
         ));
     }
     let index = ws.line_index(&src);
-    let object_at = objects
-        .iter()
-        .enumerate()
-        .filter_map(|(i, o)| match &o.origin {
-            Origin::Span { start, .. } => Some((*start, i)),
-            _ => None,
-        })
-        .collect();
     let mut deps = fs.files.into_inner().unwrap_or_default();
     deps.remove(path);
     // the settings: any `millpath.toml` above the file
@@ -512,13 +512,29 @@ pub fn analyze_from(
         deps,
         dirs,
         syntax_ok,
-        object_at,
+        object_at: OnceLock::new(),
         chain_first: Mutex::default(),
         previews: Mutex::default(),
+        traversals,
     })
 }
 
 impl Analysis {
+    /// The drawn object of the element starting at `offset`.
+    pub(crate) fn object_at(&self, offset: usize) -> Option<usize> {
+        let map = self.object_at.get_or_init(|| {
+            self.objects
+                .iter()
+                .enumerate()
+                .filter_map(|(i, o)| match &o.origin {
+                    Origin::Span { start, .. } => Some((*start, i)),
+                    _ => None,
+                })
+                .collect()
+        });
+        map.get(&offset).copied()
+    }
+
     /// Whether a change of `changed` (a buffer or a file on disk) can change this analysis.
     pub fn depends_on(&self, changed: &Path) -> bool {
         self.deps.contains(changed) || changed.parent().is_some_and(|d| self.dirs.contains(d))

@@ -155,10 +155,16 @@ impl Backend {
                             _ => return None,
                         };
                         if g != u64::MAX {
-                            if let Ok(mut s) = state.lock() {
-                                if s.generation.contains_key(&path) {
-                                    s.last.insert(path, a.clone());
-                                }
+                            let replaced = state.lock().ok().and_then(|mut s| {
+                                s.generation
+                                    .contains_key(&path)
+                                    .then(|| s.last.insert(path, a.clone()))
+                                    .flatten()
+                            });
+                            // freeing a large analysis takes a millisecond or more: not on
+                            // the way to the diagnostics
+                            if let Some(old) = replaced {
+                                tokio::task::spawn_blocking(move || drop(old));
                             }
                         }
                         Some(a)

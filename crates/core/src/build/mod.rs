@@ -7,11 +7,12 @@ pub mod connect;
 pub mod order_choice;
 pub mod params;
 pub mod traverse;
+pub mod traverse_memo;
 pub mod validate;
 
 use crate::args;
 use crate::build::bars::support_bars;
-use crate::build::traverse::{traverse, turn_back_kind};
+use crate::build::traverse::{traverse_in, turn_back_kind};
 use crate::diag::{Diagnostic, Msg, Origin};
 use crate::front::drawing::{
     RawPath, SegKind, Shape, Style, SweepKind, PATH_KEYS, PATH_KEYS_HEIGHTMAP, PROBE_KEYS,
@@ -133,7 +134,7 @@ impl Session<'_> {
             return Ok(None);
         };
         // 2. traversal
-        let trav = traverse(&raw, start.pos, end.pos, &mut self.diags);
+        let trav = traverse_in(self.traversals, &raw, start.pos, end.pos, &mut self.diags);
         let ev = Eval { vars };
         self.check_self_references(&raw, vars);
         // 4. path parameters

@@ -2,6 +2,7 @@
 
 use crate::args;
 use crate::build::order_choice;
+use crate::build::traverse_memo::TraversalMemo;
 use crate::build::with_pos;
 use crate::diag::{Diags, Msg};
 use crate::front::drawing::{RawPath, RawSegment, SegKind, Shape, SweepKind};
@@ -12,7 +13,21 @@ use std::collections::HashMap;
 /// Where the drawing's order had to decide between equally good segments, a warning with
 /// the value that pins the choice (`order_choice`).
 pub fn traverse(raw: &RawPath, start: P2, end: P2, diags: &mut Diags) -> Vec<Step> {
-    let (steps, ties) = walk(raw, start, end, diags);
+    traverse_in(None, raw, start, end, diags)
+}
+
+/// [`traverse`] through the editor's memo of walks, when there is one.
+pub fn traverse_in(
+    memo: Option<&TraversalMemo>,
+    raw: &RawPath,
+    start: P2,
+    end: P2,
+    diags: &mut Diags,
+) -> Vec<Step> {
+    let (steps, ties) = match memo {
+        Some(m) => m.walk(raw, start, end, diags),
+        None => walk(raw, start, end, diags),
+    };
     order_choice::warn(raw, &ties, diags);
     steps
 }
@@ -34,6 +49,18 @@ pub struct Tie {
 
 /// The walk of §5.2: the steps, and the ties that storage order broke.
 pub fn walk(raw: &RawPath, start: P2, end: P2, diags: &mut Diags) -> (Vec<Step>, Vec<Tie>) {
+    walk_with(raw, start, end, diags, None)
+}
+
+/// [`walk`]; `contested` notes every segment that was one of several candidates at a step
+/// (the only ones whose texts the walk compares).
+pub(crate) fn walk_with(
+    raw: &RawPath,
+    start: P2,
+    end: P2,
+    diags: &mut Diags,
+    mut contested: Option<&mut Vec<usize>>,
+) -> (Vec<Step>, Vec<Tie>) {
     let segs = &raw.segments;
     let mut ties: Vec<Tie> = Vec::new();
     let mut lost_to: Vec<Option<Key>> = vec![None; segs.len()];
@@ -146,6 +173,9 @@ pub fn walk(raw: &RawPath, start: P2, end: P2, diags: &mut Diags) -> (Vec<Step>,
             })
             .unwrap_or(&cands[0]);
         if cands.len() > 1 {
+            if let Some(c) = contested.as_deref_mut() {
+                c.extend_from_slice(&cands);
+            }
             best = order_choice::canonical_duplicate(segs, &cands, best, p, key);
             let rivals = order_choice::rivals(segs, &cands, best, p, key);
             if !rivals.is_empty() {

@@ -8,6 +8,7 @@ use crate::geom::{normalize_angle, Geom, P2};
 use crate::params::ParamText;
 use millpath_syntax::error::or_list;
 use millpath_syntax::{parse, ErrorKind, Expected, Found, Geometry, Kind, Span, SyntaxError};
+use std::cell::Cell;
 use std::sync::Arc;
 
 /// 1-based line and column of a byte offset.
@@ -26,18 +27,38 @@ pub fn line_col(src: &str, offset: usize) -> (usize, usize) {
 pub struct Lines<'a> {
     src: &'a str,
     starts: Vec<usize>,
+    /// The line of the last answer: offsets mostly come in text order, one line or two on.
+    last: Cell<usize>,
 }
 
 impl<'a> Lines<'a> {
     pub fn new(src: &'a str) -> Lines<'a> {
         let mut starts = vec![0];
         starts.extend(src.match_indices('\n').map(|(i, _)| i + 1));
-        Lines { src, starts }
+        Lines {
+            src,
+            starts,
+            last: Cell::new(1),
+        }
+    }
+    /// The 1-based line holding a byte offset (≤ the text's length).
+    fn line_of(&self, offset: usize) -> usize {
+        let holds = |line: usize| {
+            self.starts.get(line - 1).is_some_and(|&s| s <= offset)
+                && self.starts.get(line).is_none_or(|&next| offset < next)
+        };
+        let last = self.last.get();
+        let line = [last, last + 1, last + 2]
+            .into_iter()
+            .find(|&l| holds(l))
+            .unwrap_or_else(|| self.starts.partition_point(|&s| s <= offset));
+        self.last.set(line);
+        line
     }
     /// 1-based line and column (in characters) of a byte offset.
     pub fn line_col(&self, offset: usize) -> (usize, usize) {
         let offset = offset.min(self.src.len());
-        let line = self.starts.partition_point(|&s| s <= offset);
+        let line = self.line_of(offset);
         let start = self.starts[line - 1];
         let mut end = offset;
         while !self.src.is_char_boundary(end) {
@@ -339,5 +360,23 @@ mod tests {
         assert_eq!(l.line_col(5), (2, 2));
         assert_eq!(l.line_col(0), (1, 1));
         assert_eq!(l.line_col(7), (3, 1));
+    }
+
+    /// The remembered line is only a guess: any order of offsets gives the plain answers.
+    #[test]
+    fn lines_in_any_order() {
+        let src = "a\n\nbc\nüü\n\n\nlast";
+        let plain = |o: usize| line_col(src, o);
+        let l = Lines::new(src);
+        let forward: Vec<usize> = (0..=src.len() + 2).collect();
+        let mut order = forward.clone();
+        order.extend(forward.iter().rev());
+        order.extend(forward.iter().map(|o| (o * 7) % (src.len() + 3)));
+        for o in order
+            .into_iter()
+            .filter(|&o| o > src.len() || src.is_char_boundary(o))
+        {
+            assert_eq!(l.line_col(o), plain(o.min(src.len())), "offset {o}");
+        }
     }
 }

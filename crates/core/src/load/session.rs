@@ -38,6 +38,9 @@ pub struct Session<'a> {
     /// Asked now and then during a check: `true` gives up (the editor's document changed,
     /// the result is useless). The outcome of a stopped run is then incomplete.
     pub stop: Option<&'a dyn Fn() -> bool>,
+    /// The editor's walks of its previous analysis, taken again where nothing they read
+    /// changed (`build/traverse_memo.rs`); `None` outside the editor.
+    pub traversals: Option<&'a crate::build::traverse_memo::TraversalMemo>,
 }
 
 impl<'a> Session<'a> {
@@ -91,6 +94,7 @@ impl<'a> Session<'a> {
                 loaded: HashMap::new(),
                 models: HashMap::new(),
                 stop: None,
+                traversals: None,
             }),
             _ => Err(errors),
         }
@@ -147,6 +151,11 @@ impl<'a> Session<'a> {
     /// `load_file` had read it; returns their names in drawing order.
     pub fn add_paths(&mut self, path: &Path, paths: Vec<RawPath>) -> Vec<String> {
         self.register(path, paths.into_iter().map(Arc::new).collect())
+    }
+
+    /// [`Session::add_paths`] of paths the caller keeps too (the editor, without a copy).
+    pub fn add_shared_paths(&mut self, path: &Path, paths: Vec<Arc<RawPath>>) -> Vec<String> {
+        self.register(path, paths)
     }
 
     pub(crate) fn register(&mut self, path: &Path, paths: Vec<Arc<RawPath>>) -> Vec<String> {
