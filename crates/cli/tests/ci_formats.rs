@@ -116,6 +116,44 @@ fn a_settings_error_is_a_report_at_millpath_toml() {
     assert!(v.is_object());
 }
 
+/// A millpath.toml that is no TOML at all: still a report a reader can parse, at that file.
+#[test]
+fn an_unreadable_millpath_toml_is_a_report_too() {
+    let dir = repo();
+    let parts = dir.path().join("parts");
+    std::fs::write(
+        parts.join("millpath.toml"),
+        "feed = [1\nsweep_speed = 1000\n",
+    )
+    .unwrap();
+    let o = check(dir.path(), Some(dir.path()), &["--format", "json", "parts"]);
+    assert_eq!(o.status.code(), Some(2));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["errors"], 1, "{v}");
+    let d = &v["diagnostics"][0];
+    assert!(
+        d["message"].as_str().is_some_and(|m| m.contains("line 2")),
+        "{v}"
+    );
+    assert!(d["location"]["file"]
+        .as_str()
+        .is_some_and(|f| f.ends_with("millpath.toml")));
+    let o = check(
+        dir.path(),
+        Some(dir.path()),
+        &["--format", "github", "parts"],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(file_props(&o.stdout), ["parts/millpath.toml"]);
+    let o = check(
+        dir.path(),
+        Some(dir.path()),
+        &["--format", "sarif", "parts"],
+    );
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(v.is_object());
+}
+
 #[test]
 fn quiet_prints_the_report_only() {
     let dir = repo();

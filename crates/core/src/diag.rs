@@ -400,6 +400,8 @@ messages! {
     IntoKeptExtended = "{0} keeps on its path layers what text2dxf replaces only with --extended: {1}. If the text came from dxf2text --extended, these paths are now drawn twice: restore the drawing and run text2dxf --extended --into {0}", "{0} behält auf seinen Pfad-Layern, was text2dxf nur mit --extended ersetzt: {1}. Stammt der Text aus dxf2text --extended, sind diese Pfade jetzt doppelt gezeichnet: die Zeichnung wiederherstellen und text2dxf --extended --into {0} ausführen";
     // memory proportional to the input (issue 25)
     TooManyLines = "The program would have more than {0} lines", "Das Programm hätte mehr als {0} Zeilen";
+    // check's report when the settings cannot be read (issue 20): the reader's own words
+    SettingsUnusable = "{0}", "{0}";
 }
 
 impl Msg {

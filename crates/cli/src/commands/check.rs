@@ -85,13 +85,27 @@ pub fn run(m: &MachineArgs, format: Format, quiet: bool, paths: &[PathBuf]) -> u
     let mut settings = match settings_for(m, inputs.first().map(PathBuf::as_path), false) {
         Ok(s) => s,
         Err(e) => {
-            eprintln!(
-                "{}: {e}",
-                report::severity_word(
-                    Severity::Error,
-                    lang_of(m, inputs.first().or(paths.first()).map(PathBuf::as_path))
-                )
-            );
+            let lang = lang_of(m, inputs.first().or(paths.first()).map(PathBuf::as_path));
+            match format {
+                Format::Human => {
+                    eprintln!("{}: {e}", report::severity_word(Severity::Error, lang))
+                }
+                // a report a JSON, SARIF or GitHub reader can take, at millpath.toml when
+                // the text is its error
+                _ => {
+                    let file = m
+                        .config
+                        .clone()
+                        .or_else(|| inputs.first().and_then(|i| crate::config::find(i)))
+                        .filter(|f| e.starts_with(&f.display().to_string()));
+                    let at = match file {
+                        Some(f) => Origin::File(millpath_core::diag::FileRef::new(f)),
+                        None => Origin::Options,
+                    };
+                    let d = Diagnostic::error(Msg::SettingsUnusable, at, millpath_core::args![e]);
+                    print_report(format, &[d], 0, lang);
+                }
+            }
             return 2;
         }
     };
