@@ -70,18 +70,20 @@ pub fn fast_order_reference(ends: &[(P2, P2)], passes: &[Vec<f64>], head: P3) ->
 struct PassPoints {
     /// Points in tree order: `[x, y, z]` and the segment and pass they belong to.
     pts: Vec<[f64; 3]>,
-    owner: Vec<(usize, usize)>,
+    /// 32-bit indices (the emitter stops at two million moves): a long chain has millions
+    /// of points, and these lists live while its passes are ordered.
+    owner: Vec<(u32, u32)>,
     alive: Vec<bool>,
     /// Tree position of the start (end) point of pass `k` of segment `si`:
     /// `pos[2 · (first[si] + k)]` (`+ 1`).
-    pos: Vec<usize>,
+    pos: Vec<u32>,
     first: Vec<usize>,
     nodes: Vec<KdNode>,
     /// Per point: the node a ball of [`FIRST_RADIUS`] around it may start from (see
     /// [`PassPoints::anchor_leaves`]); in a chain the head is such a point at most steps.
-    anchor: Vec<usize>,
+    anchor: Vec<u32>,
     /// Per point: its leaf (removal walks up from there).
-    leaf: Vec<usize>,
+    leaf: Vec<u32>,
 }
 
 /// Best-first queue of a query: (squared distance or its lower bound, node or point).
@@ -124,13 +126,14 @@ impl PassPoints {
     fn new(ends: &[(P2, P2)], passes: &[Vec<f64>]) -> Self {
         // slot 2·j (+ 1): the start (end) point of the j-th pass of all segments
         let mut first = Vec::with_capacity(passes.len());
-        let mut owner_of_pass = Vec::new();
-        let mut items: Vec<([f64; 3], usize)> = Vec::new();
+        let total: usize = passes.iter().map(Vec::len).sum();
+        let mut owner_of_pass: Vec<(u32, u32)> = Vec::with_capacity(total);
+        let mut items: Vec<([f64; 3], usize)> = Vec::with_capacity(2 * total);
         for (si, &(a, b)) in ends.iter().enumerate() {
             first.push(owner_of_pass.len());
             for (k, &z) in passes[si].iter().enumerate() {
                 let slot = 2 * owner_of_pass.len();
-                owner_of_pass.push((si, k));
+                owner_of_pass.push((si as u32, k as u32));
                 items.push(([a.x, a.y, z], slot));
                 items.push(([b.x, b.y, z], slot + 1));
             }
@@ -152,10 +155,12 @@ impl PassPoints {
         let mut pts = Vec::with_capacity(items.len());
         let mut owner = Vec::with_capacity(items.len());
         for (i, &(p, slot)) in items.iter().enumerate() {
-            pos[slot] = i;
+            pos[slot] = i as u32;
             pts.push(p);
             owner.push(owner_of_pass[slot / 2]);
         }
+        // gone before the next lists are made (a chain of a million passes)
+        drop((items, owner_of_pass));
         let mut anchor = vec![0; pts.len()];
         let mut leaf = vec![0; pts.len()];
         if !nodes.is_empty() {
@@ -183,8 +188,8 @@ impl PassPoints {
         nodes: &[KdNode],
         n: usize,
         path: &mut Vec<usize>,
-        anchor: &mut [usize],
-        leaf: &mut [usize],
+        anchor: &mut [u32],
+        leaf: &mut [u32],
     ) {
         let left = nodes[n].left;
         if left != 0 {
@@ -195,7 +200,7 @@ impl PassPoints {
             path.pop();
             return;
         }
-        leaf[nodes[n].start..nodes[n].end].fill(n);
+        leaf[nodes[n].start..nodes[n].end].fill(n as u32);
         let reach2 = (4.0 * FIRST_RADIUS) * (4.0 * FIRST_RADIUS);
         let (mut at, mut child) = (n, n);
         for &x in path.iter().rev() {
@@ -206,7 +211,7 @@ impl PassPoints {
             }
             child = x;
         }
-        anchor[nodes[n].start..nodes[n].end].fill(at);
+        anchor[nodes[n].start..nodes[n].end].fill(at as u32);
     }
 
     fn build(nodes: &mut Vec<KdNode>, items: &mut [([f64; 3], usize)], at: usize) {
@@ -249,11 +254,11 @@ impl PassPoints {
     /// Takes out both end points of pass `k` of segment `si`.
     fn remove(&mut self, si: usize, k: usize) {
         for slot in [2 * (self.first[si] + k), 2 * (self.first[si] + k) + 1] {
-            let at = self.pos[slot];
+            let at = self.pos[slot] as usize;
             debug_assert!(self.alive[at], "a pass is milled once");
             self.alive[at] = false;
             // up from the point's leaf to the root
-            let mut n = self.leaf[at];
+            let mut n = self.leaf[at] as usize;
             loop {
                 self.nodes[n].alive -= 1;
                 if n == 0 {
@@ -380,6 +385,7 @@ impl Candidates<'_> {
     /// to the segment's next pass (deeper passes are no candidates yet).
     fn meet(&mut self, tree: &PassPoints, head: P3, i: usize) {
         let (si, k) = tree.owner[i];
+        let (si, k) = (si as usize, k as usize);
         if k != self.done_count[si] || self.met_in[si] == self.round {
             return;
         }
@@ -474,7 +480,7 @@ pub fn fast_order_indexed(ends: &[(P2, P2)], passes: &[Vec<f64>], head: P3) -> V
             let r2 = r * r;
             // a first ball around the end of the last pass starts at that point's anchor
             let from = match head_point {
-                Some(p) if r == FIRST_RADIUS => tree.anchor[p],
+                Some(p) if r == FIRST_RADIUS => tree.anchor[p] as usize,
                 _ => 0,
             };
             tree.within(&mut stack, from, head, r2, |i| c.meet(&tree, head, i));
@@ -513,7 +519,7 @@ pub fn fast_order_indexed(ends: &[(P2, P2)], passes: &[Vec<f64>], head: P3) -> V
         c.done_count[si] = k + 1;
         order.push((si, forward));
         head = if forward { b } else { a }.with_z(z);
-        head_point = Some(tree.pos[2 * (tree.first[si] + k) + usize::from(forward)]);
+        head_point = Some(tree.pos[2 * (tree.first[si] + k) + usize::from(forward)] as usize);
     }
     order
 }
