@@ -66,16 +66,19 @@ function expect(cond, msg) {
 
 // --- VS Code helpers ---------------------------------------------------------------------
 async function palette(title) {
-  // F1 can be swallowed while a widget (actions list, hover) still holds the focus: retry
+  // F1 can be swallowed while a widget (actions list, hover) still holds the focus, and a
+  // palette that closes again at once takes no text: retry both (one CI run waited 30 s on
+  // the text of a palette that had shown)
   const input = page.locator('.quick-input-widget input');
   let open = false;
-  for (let attempt = 0; attempt < 3 && !open; attempt++) {
+  for (let attempt = 0; attempt < 4 && !open; attempt++) {
     await page.keyboard.press('Escape');
+    await sleep(200 * attempt);
     await page.keyboard.press('F1');
     open = await input.waitFor({ state: 'visible', timeout: 5000 }).then(() => true, () => false);
+    if (open) open = await input.fill(`>${title}`, { timeout: 5000 }).then(() => true, () => false);
   }
-  if (!open) throw new Error(`the command palette did not open for '${title}'`);
-  await input.fill(`>${title}`);
+  if (!open) throw new Error(`the command palette did not take '${title}'`);
   // Enter only once the list is filtered and the focused row is that command
   const focused = page.locator('.quick-input-list .monaco-list-row.focused').first();
   const ok = await until(async () => ((await focused.getAttribute('aria-label', { timeout: 500 })) ?? '').startsWith(title), 10000, 100);
