@@ -105,16 +105,8 @@ pub fn write_drawing_outputs(
         let head = clean.head(3);
         let ours = adjustz::stored_digest(&head);
         // its banner line is among its first lines (the program may be long)
-        let theirs = std::fs::File::open(&milling).ok().map(|f| {
-            use std::io::BufRead;
-            std::io::BufReader::new(f)
-                .lines()
-                .map_while(Result::ok)
-                .take(3)
-                .map(|l| l + "\n")
-                .collect::<String>()
-        });
-        let same = theirs.is_some_and(|m| ours.is_some() && adjustz::stored_digest(&m) == ours);
+        let theirs = millpath_core::stage::file_head(&milling, 3);
+        let same = ours.is_some() && adjustz::stored_digest(&theirs) == ours;
         if !same {
             remove_stale(&milling, diags);
         }

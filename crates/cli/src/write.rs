@@ -1,5 +1,6 @@
 //! Atomic output: a G-code file is either complete or not there at all.
 
+use millpath_core::stage::sibling;
 use std::io::Write;
 use std::path::Path;
 use std::time::Duration;
@@ -79,19 +80,6 @@ pub fn write_atomic_bytes(path: &Path, content: &[u8]) -> std::io::Result<()> {
         let _ = std::fs::remove_file(&tmp);
     }
     result
-}
-
-/// A sibling of `path` named `.NAME.<pid>.<what>`, for temporaries and kept old files.
-fn sibling(path: &Path, what: &str) -> std::path::PathBuf {
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    dir.join(format!(".{name}.{}.{what}", std::process::id()))
 }
 
 /// What one file of a set holds: a text, or a temporary file it was written to already

@@ -15,7 +15,7 @@ pub mod model;
 pub mod params;
 pub mod probe;
 pub mod second_opinion;
-mod stage;
+pub mod stage;
 
 pub use diag::{Diagnostic, Diags, Lang, Msg, Origin, Severity};
 pub use emit::Dialect;
@@ -46,7 +46,6 @@ pub struct OutputFile {
 impl OutputFile {
     /// The first `n` lines of the text, from memory or from the staged file.
     pub fn head(&self, n: usize) -> String {
-        use std::io::BufRead;
         match &self.staged {
             None => self
                 .content
@@ -54,16 +53,7 @@ impl OutputFile {
                 .take(n)
                 .map(|l| format!("{l}\n"))
                 .collect(),
-            Some(p) => std::fs::File::open(p)
-                .map(|f| {
-                    std::io::BufReader::new(f)
-                        .lines()
-                        .map_while(Result::ok)
-                        .take(n)
-                        .map(|l| format!("{l}\n"))
-                        .collect()
-                })
-                .unwrap_or_default(),
+            Some(p) => stage::file_head(p, n),
         }
     }
 }
@@ -351,6 +341,32 @@ struct Reviewed {
     staged: Option<stage::Staged>,
 }
 
+/// One program's generation as a session asks for it; the sink its lines go to varies.
+struct Generation<'a> {
+    model: &'a model::Model,
+    file_name: &'a str,
+    banner: &'a str,
+    sweep_speed: f64,
+    lang: Lang,
+    ctl: Controller,
+    stop: Option<&'a dyn Fn() -> bool>,
+}
+
+impl Generation<'_> {
+    fn run<S: emit::LineSink>(&self, sink: S) -> Result<(emit::Generated, S), Vec<Diagnostic>> {
+        emit::generate_into(
+            self.model,
+            self.file_name,
+            self.banner,
+            self.sweep_speed,
+            self.lang,
+            &self.ctl,
+            self.stop,
+            sink,
+        )
+    }
+}
+
 /// [`generate_and_review`]; `clamps_only`: without the stock model, only the clamps' findings.
 /// `stage_at`: the program goes to a temporary file beside this output as it is generated.
 /// A check keeps no text at all: the checker reads each line as it is written.
@@ -362,109 +378,75 @@ fn generate_and_review_as(
     clamps_only: bool,
     stage_at: Option<&Path>,
 ) -> Option<Reviewed> {
-    let ctl = Controller::for_model(&session.settings, model);
-    let reviewer = second_opinion::Reviewer::new(
+    let job = Generation {
         model,
-        session.settings.dialect,
-        &session.settings.clamps,
-        clamps_only,
-    );
-    let lang = session.lang();
-    let generate = |sink| {
-        emit::generate_into(
-            model,
-            file_name,
-            banner,
-            session.settings.sweep_speed,
-            lang,
-            &ctl,
-            session.stop,
-            sink,
-        )
+        file_name,
+        banner,
+        sweep_speed: session.settings.sweep_speed,
+        lang: session.lang(),
+        ctl: Controller::for_model(&session.settings, model),
+        stop: session.stop,
     };
-    let reviewed = if let Some(output) = stage_at {
-        let staging = match stage::Staging::new(output, reviewer) {
-            Ok(s) => s,
-            Err(d) => {
-                session.diags.push(d);
-                return None;
-            }
-        };
-        let staged_path = stage::Staging::path_for(output);
-        let (generated, sink) = match generate(Box::new(staging)) {
-            Ok(g) => g,
-            Err(errs) => {
-                let _ = std::fs::remove_file(&staged_path);
-                errs.into_iter().for_each(|e| session.diags.push(e));
-                return None;
-            }
-        };
-        let any: Box<dyn std::any::Any> = sink;
-        let staging = any.downcast::<stage::Staging>().ok()?;
-        let (staged, reviewer) = match staging.close() {
-            Ok(s) => s,
-            Err(d) => {
-                session.diags.push(d);
-                return None;
-            }
-        };
-        let review = reviewer.finish(model, &generated.line_sources, lang, |wanted| {
-            staged.line_texts(wanted)
-        });
-        (generated, review, Some(staged))
-    } else if !session.settings.check {
-        let generated = match generate_for(
+    let reviewer = || {
+        second_opinion::Reviewer::new(
             model,
-            file_name,
-            banner,
-            session.settings.sweep_speed,
-            lang,
-            &ctl,
-        ) {
-            Ok(g) => g,
-            Err(errs) => {
-                errs.into_iter().for_each(|e| session.diags.push(e));
-                return None;
-            }
-        };
-        let program = match &generated.output {
-            Output::Milling(g) => g,
-            Output::Probing { clean, .. } => clean,
-        };
-        let review = second_opinion::review(
-            program,
-            model,
-            &generated.line_sources,
-            lang,
             session.settings.dialect,
             &session.settings.clamps,
             clamps_only,
-        );
-        (generated, review, None)
-    } else {
-        let (generated, sink) = match generate(Box::new(reviewer)) {
-            Ok(g) => g,
-            Err(errs) => {
-                errs.into_iter().for_each(|e| session.diags.push(e));
-                return None;
-            }
-        };
-        let any: Box<dyn std::any::Any> = sink;
-        let reviewer = any.downcast::<second_opinion::Reviewer>().ok()?;
-        let review = reviewer.finish(model, &generated.line_sources, lang, |wanted| {
-            // the few lines findings point at, from a second emission
-            let capture = Box::new(second_opinion::LineCapture::new(wanted));
-            let Ok((_, sink)) = generate(capture) else {
-                return Default::default();
-            };
-            let any: Box<dyn std::any::Any> = sink;
-            any.downcast::<second_opinion::LineCapture>()
-                .map(|c| c.texts)
-                .unwrap_or_default()
-        });
-        (generated, review, None)
+        )
     };
-    let (generated, review, staged) = reviewed;
+    let lang = job.lang;
+    let generated = if let Some(output) = stage_at {
+        // compile: the program to a file beside its output, read by the checker meanwhile
+        stage::Staging::new(output, reviewer())
+            .map_err(|d| vec![d])
+            .and_then(|staging| {
+                let path = staging.path().to_path_buf();
+                let (generated, staging) = job.run(staging).inspect_err(|_| {
+                    let _ = std::fs::remove_file(&path);
+                })?;
+                let (staged, reviewer) = staging.close().map_err(|d| vec![d])?;
+                let review = reviewer.finish(model, &generated.line_sources, lang, |wanted| {
+                    staged.line_texts(wanted)
+                });
+                Ok((generated, review, Some(staged)))
+            })
+    } else if !session.settings.check {
+        // the text is kept (core's callers other than the command line)
+        generate_for(model, file_name, banner, job.sweep_speed, lang, &job.ctl).map(|generated| {
+            let program = match &generated.output {
+                Output::Milling(g) => g,
+                Output::Probing { clean, .. } => clean,
+            };
+            let review = second_opinion::review(
+                program,
+                model,
+                &generated.line_sources,
+                lang,
+                session.settings.dialect,
+                &session.settings.clamps,
+                clamps_only,
+            );
+            (generated, review, None)
+        })
+    } else {
+        job.run(reviewer()).map(|(generated, reviewer)| {
+            let review = reviewer.finish(model, &generated.line_sources, lang, |wanted| {
+                // the few lines findings point at, from a second emission
+                job.run(second_opinion::LineCapture::new(wanted))
+                    .map(|(_, capture)| capture.texts)
+                    .unwrap_or_default()
+            });
+            (generated, review, None)
+        })
+    };
+    let (generated, review, staged) = match generated {
+        Ok(r) => r,
+        Err(errs) => {
+            errs.into_iter().for_each(|e| session.diags.push(e));
+            return None;
+        }
+    };
     for d in review.diagnostics {
         session.diags.push(d);
     }

@@ -59,7 +59,9 @@ pub fn review(
             break;
         }
     }
-    reviewer.finish(model, line_sources, lang, |wanted| line_texts(body, wanted))
+    reviewer.finish(model, line_sources, lang, |wanted| {
+        line_texts(body.split('\n'), wanted)
+    })
 }
 
 /// The checker of one program as it is written: a [`LineSink`] the emitter feeds line by

@@ -9,6 +9,7 @@ use crate::emit::LineSink;
 use crate::probe::adjustz::{banner_index_of_first, banner_with_digest, set_digest_lines};
 use crate::second_opinion::Reviewer;
 use crate::{args, emit::as_comment};
+use millpath_verify::line_texts;
 use std::collections::HashMap;
 use std::fs::File;
 use std::io::{BufRead, BufReader, BufWriter, Write};
@@ -42,18 +43,33 @@ impl LineSink for Staging {
     }
 }
 
-/// A temporary file beside `output` (same folder, so that the rename is atomic), named
-/// `.NAME.<pid>.stage<k>`.
-fn sibling(output: &Path, k: u8) -> PathBuf {
-    let dir = output
+/// A temporary file beside `path` (same folder, so that a rename into place is atomic),
+/// named `.NAME.<pid>.<what>`; also the command line's temporaries and kept old files.
+pub fn sibling(path: &Path, what: &str) -> PathBuf {
+    let dir = path
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
-    let name = output
+    let name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    dir.join(format!(".{name}.{}.stage{k}", std::process::id()))
+    dir.join(format!(".{name}.{}.{what}", std::process::id()))
+}
+
+/// The first `n` lines of a file, each with its `\n` (empty when it cannot be read): the
+/// banner of a long program without reading all of it.
+pub fn file_head(path: &Path, n: usize) -> String {
+    File::open(path)
+        .map(|f| {
+            BufReader::new(f)
+                .lines()
+                .map_while(Result::ok)
+                .take(n)
+                .map(|l| l + "\n")
+                .collect()
+        })
+        .unwrap_or_default()
 }
 
 fn cannot_write(path: &Path, e: std::io::Error) -> Diagnostic {
@@ -61,14 +77,9 @@ fn cannot_write(path: &Path, e: std::io::Error) -> Diagnostic {
 }
 
 impl Staging {
-    /// Where the program of `output` is staged.
-    pub(crate) fn path_for(output: &Path) -> PathBuf {
-        sibling(output, 1)
-    }
-
     /// A staging file for the program of `output`; `Err` when it cannot be created.
     pub(crate) fn new(output: &Path, reviewer: Reviewer) -> Result<Staging, Diagnostic> {
-        let path = Staging::path_for(output);
+        let path = sibling(output, "stage1");
         match File::create(&path) {
             Ok(f) => Ok(Staging {
                 path,
@@ -78,6 +89,11 @@ impl Staging {
             }),
             Err(e) => Err(cannot_write(output, e)),
         }
+    }
+
+    /// The temporary file.
+    pub(crate) fn path(&self) -> &Path {
+        &self.path
     }
 
     /// Ends the writing: flushed and on disk (with the checker that read it), or the file
@@ -104,22 +120,10 @@ impl Staging {
 impl Staged {
     /// The texts of the lines `wanted` (1-based, sorted) of the closed file.
     pub(crate) fn line_texts(&self, wanted: &[usize]) -> HashMap<usize, String> {
-        let mut texts = HashMap::new();
-        let Ok(f) = File::open(&self.path) else {
-            return texts;
-        };
-        let mut next = wanted.iter().copied().peekable();
-        for (idx, line) in BufReader::new(f).lines().enumerate() {
-            let Some(&want) = next.peek() else { break };
-            let Ok(line) = line else { break };
-            if want == idx + 1 {
-                texts.insert(want, line);
-                while next.peek() == Some(&want) {
-                    next.next();
-                }
-            }
+        match File::open(&self.path) {
+            Ok(f) => line_texts(BufReader::new(f).lines().map_while(Result::ok), wanted),
+            Err(_) => HashMap::new(),
         }
-        texts
     }
 
     /// The set's digest over `z_txt` and the staged program, stamped into its banner line
@@ -134,7 +138,7 @@ impl Staged {
         let digest = set_digest_lines(z_txt, read().map_err(|e| fail(e, &self.path))?);
         let stamped = as_comment(0, &banner_with_digest(banner, &digest));
         let first = read().map_err(|e| fail(e, &self.path))?;
-        let stamped_path = sibling(&self.path, 2);
+        let stamped_path = sibling(&self.path, "stage2");
         let written = (|| -> std::io::Result<()> {
             let mut out = BufWriter::with_capacity(1 << 16, File::create(&stamped_path)?);
             let mut lines = first.peekable();

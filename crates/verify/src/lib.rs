@@ -248,13 +248,18 @@ pub fn verify(program: &str, options: &Options) -> Report {
     verify_on_surface(program, options, None)
 }
 
-/// The texts of the lines `wanted` of a program (1-based, sorted), found in one pass.
-pub fn line_texts(body: &str, wanted: &[usize]) -> std::collections::HashMap<usize, String> {
+/// The texts of the lines `wanted` of a program (1-based, sorted) from its lines in order,
+/// found in one pass (a line end's `\r` left out).
+pub fn line_texts<S: AsRef<str>>(
+    lines: impl Iterator<Item = S>,
+    wanted: &[usize],
+) -> std::collections::HashMap<usize, String> {
     let mut texts = std::collections::HashMap::with_capacity(wanted.len());
     let mut next = wanted.iter().copied().peekable();
-    for (idx, raw) in body.split('\n').enumerate() {
+    for (idx, raw) in lines.enumerate() {
         let Some(&want) = next.peek() else { break };
         if want == idx + 1 {
+            let raw = raw.as_ref();
             texts.insert(want, raw.strip_suffix('\r').unwrap_or(raw).to_string());
             while next.peek() == Some(&want) {
                 next.next();
@@ -303,7 +308,7 @@ pub fn verify_on_surface(
             break;
         }
     }
-    v.finish(|wanted| line_texts(body, wanted))
+    v.finish(|wanted| line_texts(body.split('\n'), wanted))
 }
 
 /// Every move against the keep-out boxes (machine coordinates: before a height map's frame),

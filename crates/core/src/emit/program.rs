@@ -137,16 +137,8 @@ pub fn generate_until(
     ctl: &Controller,
     stop: Option<&dyn Fn() -> bool>,
 ) -> Result<Generated, Vec<Diagnostic>> {
-    let job = Job {
-        model,
-        file_name,
-        banner,
-        sweep_speed,
-        lang,
-        ctl,
-        stop,
-    };
-    generate_job(&job, None).map(|(g, _)| g)
+    let job = (model, file_name, banner, sweep_speed, lang, ctl, stop);
+    generate_job(job, None).map(|(g, _)| g)
 }
 
 /// [`generate_until`] whose milling (or clean) program goes line by line to `sink` instead
@@ -154,7 +146,7 @@ pub fn generate_until(
 /// result is empty (the probing program and `_Z.txt` are there, not stamped with the set's
 /// digest: its writer does that); the sink comes back after the last line.
 #[allow(clippy::too_many_arguments)]
-pub fn generate_into(
+pub fn generate_into<S: LineSink>(
     model: &Model,
     file_name: &str,
     banner: &str,
@@ -162,46 +154,36 @@ pub fn generate_into(
     lang: Lang,
     ctl: &Controller,
     stop: Option<&dyn Fn() -> bool>,
-    sink: Box<dyn LineSink>,
-) -> Result<(Generated, Box<dyn LineSink>), Vec<Diagnostic>> {
-    let job = Job {
-        model,
-        file_name,
-        banner,
-        sweep_speed,
-        lang,
-        ctl,
-        stop,
-    };
-    generate_job(&job, Some(sink)).map(|(g, sink)| (g, sink.expect("the sink given")))
+    sink: S,
+) -> Result<(Generated, S), Vec<Diagnostic>> {
+    let job = (model, file_name, banner, sweep_speed, lang, ctl, stop);
+    let (generated, sink) = generate_job(job, Some(Box::new(sink)))?;
+    let sink: Option<Box<dyn std::any::Any>> = sink.map(|s| s as _);
+    match sink.and_then(|s| s.downcast::<S>().ok()) {
+        Some(sink) => Ok((generated, *sink)),
+        // the sink given always comes back; were it not, nothing was generated
+        None => Err(Vec::new()),
+    }
 }
 
 type Sink = Box<dyn LineSink>;
 
-/// What one generation is asked for.
-struct Job<'a> {
-    model: &'a Model,
-    file_name: &'a str,
-    banner: &'a str,
-    sweep_speed: f64,
-    lang: Lang,
-    ctl: &'a Controller,
-    stop: Option<&'a dyn Fn() -> bool>,
-}
+/// What one generation is asked for: model, file name, banner, sweep speed, language,
+/// controller, stop question.
+type Job<'a> = (
+    &'a Model,
+    &'a str,
+    &'a str,
+    f64,
+    Lang,
+    &'a Controller,
+    Option<&'a dyn Fn() -> bool>,
+);
 
 fn generate_job(
-    job: &Job,
-    sink: Option<Box<dyn LineSink>>,
+    (model, file_name, banner, sweep_speed, lang, ctl, stop): Job,
+    sink: Option<Sink>,
 ) -> Result<(Generated, Option<Sink>), Vec<Diagnostic>> {
-    let &Job {
-        model,
-        file_name,
-        banner,
-        sweep_speed,
-        lang,
-        ctl,
-        stop,
-    } = job;
     let prologue = ctl.prologue(banner, file_name, model, start_height(model), true);
     let Emitted {
         mut rec,
