@@ -145,6 +145,9 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
             Ok(None) => {}
         }
     }
+    if session.one_file {
+        session.release_segments();
+    }
     let file_origin = Origin::File(diag::FileRef::new(input.to_path_buf()));
     if !check && built.len() > 1 {
         let mut list: Vec<&str> = built.iter().map(|(m, _)| m.name()).collect();
@@ -460,6 +463,52 @@ fn generate_and_review_as(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A command line's one-file session drops the drawing's segments once its models are
+    /// built; the models keep none, and the program is the same as with them kept.
+    #[test]
+    fn a_one_file_session_releases_the_drawing_and_compiles_the_same() {
+        let mut text =
+            String::from("path 3000.1P {\n  start (0, 0)  O2 T2 I1,2 B-0,3\n  end (40, 0)\n");
+        for i in 0..40 {
+            text.push_str(&format!(
+                "  mill ({i}, {}) -> ({}, {})\n",
+                i % 2,
+                i + 1,
+                (i + 1) % 2
+            ));
+        }
+        text.push_str("}\n");
+        let mut fs = MemFileSystem::default();
+        fs.add("3000.mpath", text.into_bytes());
+        let settings = Settings {
+            feed: 150.0,
+            sweep_speed: 500.0,
+            sweep_height: 15.0,
+            ..Settings::default()
+        };
+        let run = |one_file: bool| {
+            let mut s = Session::new(settings.clone(), &fs).unwrap();
+            s.one_file = one_file;
+            let out = compile_file(&mut s, Path::new("3000.mpath"), "test");
+            let segments: usize = s.raw.values().map(|p| p.segments.len()).sum();
+            let model_segments: usize = s
+                .models
+                .values()
+                .flatten()
+                .map(|m| m.raw.segments.len())
+                .sum();
+            assert!(!s.diags.has_errors(), "{:?}", s.diags.list);
+            (out.outputs[0].content.clone(), segments, model_segments)
+        };
+        let (kept, kept_segments, model_segments) = run(false);
+        let (released, released_segments, released_model_segments) = run(true);
+        assert_eq!(kept_segments, 40);
+        assert_eq!(released_segments, 0);
+        assert_eq!((model_segments, released_model_segments), (0, 0));
+        assert!(kept.contains("G01"));
+        assert_eq!(kept, released);
+    }
 
     #[test]
     fn inputs_and_prefixes() {

@@ -50,10 +50,11 @@ pub struct ChainSeg {
     pub f: f64,
     pub b: Option<f64>,
     pub d: Option<f64>,
-    pub q: Option<String>,
+    /// Boxed like `bars`: a chain can have millions of segments, nearly all without.
+    pub q: Option<Box<str>>,
     pub bt: bool,
     /// Support-bar pieces along `geom` (BORDER segments long enough for bars).
-    pub bars: Option<Vec<Geom>>,
+    pub bars: Option<Box<[Geom]>>,
     pub origin: Origin,
 }
 

@@ -106,3 +106,32 @@ fn a_subpath_file_is_parsed_once_until_it_changes() {
         "the edited part's error must show: {after:?}"
     );
 }
+
+/// One chain of `n` segments as a text drawing.
+fn long_chain(n: usize) -> String {
+    let mut s = format!("path 3000.1P {{\n  start (0, 0)  O2 T2 I1,2 B-0,3\n  end ({n}, 0)\n");
+    for i in 0..n {
+        s.push_str(&format!("  mill ({i}, 0) -> ({}, 0)\n", i + 1));
+    }
+    s.push_str("}\n");
+    s
+}
+
+/// A drawing too long to be a library that many files embed is not kept after its check
+/// (its parse would stay beside its model for the rest of the run); a short one is.
+#[test]
+fn a_drawing_beyond_the_kept_size_is_read_again() {
+    use millpath_core::load::parse_cache::MAX_KEPT_SEGMENTS;
+    let dir = tempfile::tempdir().unwrap();
+    let long = dir.path().join("3000.mpath");
+    std::fs::write(&long, long_chain(MAX_KEPT_SEGMENTS + 1)).unwrap();
+    let short = dir.path().join("3100.mpath");
+    std::fs::write(&short, long_chain(10).replace("3000.1P", "3100.1P")).unwrap();
+    let fs = CountingFs::default();
+    for _ in 0..2 {
+        assert_eq!(check(&fs, &long), Vec::<String>::new());
+        assert_eq!(check(&fs, &short), Vec::<String>::new());
+    }
+    assert_eq!(fs.reads_of(&long), 2, "read at each check");
+    assert_eq!(fs.reads_of(&short), 1, "kept");
+}

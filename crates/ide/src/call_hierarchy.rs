@@ -46,7 +46,7 @@ pub fn incoming_calls(ws: &Workspace, name: &str) -> Vec<Call> {
                 continue;
             }
             if let Some(r) = range_of(ws, &f, &t.origin) {
-                by_caller.entry(o.path.clone()).or_default().push(r);
+                by_caller.entry(o.path.to_string()).or_default().push(r);
             }
         }
         for (caller, ranges) in by_caller {
@@ -70,7 +70,7 @@ pub fn outgoing_calls(ws: &Workspace, item: &CallItem) -> Vec<Call> {
     let file = &item.at.path;
     let mut by_callee: BTreeMap<String, Vec<(Pos, Pos)>> = BTreeMap::new();
     for o in objects_of_file(ws, file) {
-        if o.path != item.name {
+        if *o.path != *item.name {
             continue;
         }
         let Some(t) = &o.text else { continue };

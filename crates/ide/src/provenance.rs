@@ -40,7 +40,7 @@ pub(crate) fn provenance(
     let lang = a.settings.settings.lang;
     let own = seg.and_then(|s| s.text.as_deref()).or_else(|| {
         // markers and probes: their own text from the element line
-        object_index(a, el).and_then(|i| a.objects[i].text.as_ref())
+        object_index(a, el).and_then(|i| a.objects[i].text.as_deref())
     });
     let start = path.start_text.as_ref();
     let start_src = |t: &ParamText| {

@@ -77,8 +77,8 @@ pub fn rename(
             let objects = objects_of_file(ws, &f);
             let uses = objects
                 .iter()
-                .any(|o| o.path == old || o.text.as_ref().and_then(|t| t.raw('>')) == Some(old));
-            if objects.iter().any(|o| o.path == new) && exists.is_none() {
+                .any(|o| &*o.path == old || o.text.as_ref().and_then(|t| t.raw('>')) == Some(old));
+            if objects.iter().any(|o| &*o.path == new) && exists.is_none() {
                 exists = Some(in_use(new, &f, german));
             }
             if uses {

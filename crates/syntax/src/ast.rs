@@ -210,7 +210,8 @@ pub struct Element {
     pub geometry: Spanned<Geometry>,
     /// Parameter tokens exactly as in the drawing (`T2`, `B-0,3`, `>8998.2P`, `:B1`).
     pub params: Vec<Spanned<String>>,
-    pub comment: Option<Spanned<String>>,
+    /// Boxed: most lines have none, and a file can have millions of lines.
+    pub comment: Option<Box<Spanned<String>>>,
     /// The whole line.
     pub span: Span,
 }

@@ -459,7 +459,7 @@ fn finish_element(e: RawElement, src: &str) -> Element {
         kind: e.kind,
         geometry: e.geometry,
         params,
-        comment: e.comment,
+        comment: e.comment.map(Box::new),
         span: e.span,
     }
 }

@@ -23,7 +23,9 @@ fn check_session<'a>(
     settings: &Settings,
     fs: &'a OsFileSystem,
 ) -> Result<Session<'a>, Vec<Diagnostic>> {
-    Session::new(settings.clone(), fs)
+    let mut session = Session::new(settings.clone(), fs)?;
+    session.one_file = true;
+    Ok(session)
 }
 
 /// Checks one file in a session of its own.

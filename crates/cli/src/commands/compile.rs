@@ -72,6 +72,7 @@ fn compile_one(settings: &Settings, input: &Path) -> bool {
             return false;
         }
     };
+    session.one_file = true;
     let outcome = compile_file(&mut session, input, &millpath_core::banner());
     flush_info(&mut session);
     let mut write_errors = Diags::default();

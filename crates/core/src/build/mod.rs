@@ -343,7 +343,8 @@ impl Session<'_> {
             _ => false,
         });
         Ok(Some(Arc::new(Model {
-            raw: raw.clone(),
+            // not its segments: a drawing released after building is then freed
+            raw: Arc::new(raw.head()),
             vars: vars.clone(),
             start: start.pos,
             end: end.pos,

@@ -156,9 +156,9 @@ impl Session<'_> {
             f: ev.num(text, 'F').unwrap_or(params.f),
             b,
             d,
-            q: ev.string(text, 'Q'),
+            q: ev.string(text, 'Q').map(String::into_boxed_str),
             bt: seg.backtrack(),
-            bars,
+            bars: bars.map(Vec::into_boxed_slice),
             origin: seg.origin.clone(),
         })
     }

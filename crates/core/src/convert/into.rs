@@ -76,7 +76,7 @@ pub fn text_into_dxf(
 ) -> Result<Vec<u8>, Vec<Diagnostic>> {
     let objects = text_objects(src, file)?;
     let t = scan(target).map_err(|e| vec![load_error(target_file, e)])?;
-    let paths: Vec<String> = objects.iter().map(|o| o.path.clone()).collect();
+    let paths: Vec<String> = objects.iter().map(|o| o.path.to_string()).collect();
     let layers = PathLayers::new(patterns, &paths);
     let remove = |r: &Record| layers.replaces(r, input);
     Ok(settle(&objects, patterns, &|suffixes| {
@@ -98,7 +98,7 @@ pub fn kept_extended_geometry(
         return kept;
     };
     let paths: Vec<String> = text_objects(src, file)
-        .map(|o| o.into_iter().map(|o| o.path).collect())
+        .map(|o| o.into_iter().map(|o| o.path.to_string()).collect())
         .unwrap_or_default();
     let layers = PathLayers::new(patterns, &paths);
     let extended_only = |r: &&Record| {
@@ -193,7 +193,7 @@ pub fn overwrite_losses(
     // a text that does not parse is refused before anything is written; its paths do not
     // matter then
     let paths: Vec<String> = text_objects(src, file)
-        .map(|o| o.into_iter().map(|o| o.path).collect())
+        .map(|o| o.into_iter().map(|o| o.path.to_string()).collect())
         .unwrap_or_default();
     let layers = PathLayers::new(patterns, &paths);
     let mut losses = Losses::default();

@@ -27,7 +27,7 @@ fn pt(p: crate::geom::P2) -> Point {
 
 /// The element kind of an object in the text language.
 fn kind_of(o: &DrawnObject, path_o: Option<f64>) -> Kind {
-    let lt = o.linetype.as_str();
+    let lt = &*o.linetype;
     match &o.shape {
         Shape::Circle { r, .. } => {
             let r = *r;
@@ -190,7 +190,7 @@ fn front_options(patterns: &Patterns, input: InputMode) -> FrontOptions<'_> {
 pub fn objects_to_text(objects: &[DrawnObject], paths: &[RawPath], header: Option<&str>) -> String {
     let mut by_path: BTreeMap<&str, Vec<usize>> = BTreeMap::new();
     for (i, o) in objects.iter().enumerate() {
-        by_path.entry(o.path.as_str()).or_default().push(i);
+        by_path.entry(&*o.path).or_default().push(i);
     }
     let mut out = String::new();
     if let Some(h) = header {
@@ -280,7 +280,7 @@ const TEXT_HEIGHT: f64 = 0.35;
 /// the entities in the order they are written. Texts come after the elements: circles'
 /// first, then arcs', then lines', so that circles win as the assignment rule wants.
 fn plan(objects: &[DrawnObject], suffixes: &[Option<String>]) -> (Vec<String>, Vec<NewEntity>) {
-    let mut paths: Vec<&str> = objects.iter().map(|o| o.path.as_str()).collect();
+    let mut paths: Vec<&str> = objects.iter().map(|o| &*o.path).collect();
     paths.sort();
     paths.dedup();
     let layers = paths.iter().map(|p| layer_name(p, None)).collect();
@@ -304,7 +304,7 @@ fn plan(objects: &[DrawnObject], suffixes: &[Option<String>]) -> (Vec<String>, V
         };
         entities.push(NewEntity {
             layer: layer_name(&o.path, suf.as_deref()),
-            linetype: Some(o.linetype.clone()),
+            linetype: Some(o.linetype.to_string()),
             shape,
         });
     }
@@ -356,8 +356,8 @@ fn write_dxf(objects: &[DrawnObject], suffixes: &[Option<String>]) -> String {
     w.finish()
 }
 
-fn texts_match(a: &Option<crate::params::ParamText>, b: &Option<crate::params::ParamText>) -> bool {
-    let toks = |t: &Option<crate::params::ParamText>| {
+fn texts_match(a: Option<&crate::params::ParamText>, b: Option<&crate::params::ParamText>) -> bool {
+    let toks = |t: Option<&crate::params::ParamText>| {
         t.as_ref().map(|t| t.tokens.clone()).unwrap_or_default()
     };
     toks(a) == toks(b)
@@ -392,7 +392,9 @@ fn settle<T: AsRef<[u8]>>(
         };
         let mut changed = false;
         for (i, o) in objects.iter().enumerate() {
-            let ok = back.get(i).is_some_and(|b| texts_match(&b.text, &o.text));
+            let ok = back
+                .get(i)
+                .is_some_and(|b| texts_match(b.text.as_deref(), o.text.as_deref()));
             if !ok && suffixes[i].is_none() {
                 suffixes[i] = Some(suffix(next));
                 next += 1;

@@ -153,7 +153,7 @@ pub fn comment_changes(model: &Model, file_name: &str, dialect: Dialect) -> Vec<
 }
 
 fn walk(model: &Model, dialect: Dialect, depth: usize, note: &mut dyn FnMut(&str, String, Origin)) {
-    let q = |q: &Option<String>,
+    let q = |q: Option<&str>,
              indent: usize,
              origin: &Origin,
              note: &mut dyn FnMut(&str, String, Origin)| {
@@ -165,9 +165,12 @@ fn walk(model: &Model, dialect: Dialect, depth: usize, note: &mut dyn FnMut(&str
     };
     for e in &model.elements {
         match e {
-            Element::Chain(c) => c.segs.iter().for_each(|s| q(&s.q, 4, &s.origin, note)),
-            Element::Drill(d) => q(&d.q, 4, &d.origin, note),
-            Element::Helix(h) => q(&h.q, 4, &h.origin, note),
+            Element::Chain(c) => c
+                .segs
+                .iter()
+                .for_each(|s| q(s.q.as_deref(), 4, &s.origin, note)),
+            Element::Drill(d) => q(d.q.as_deref(), 4, &d.origin, note),
+            Element::Helix(h) => q(h.q.as_deref(), 4, &h.origin, note),
             Element::Subpath(emb) => {
                 if let (Some(t), true) = (&emb.target, depth < 10) {
                     let label = t.label();

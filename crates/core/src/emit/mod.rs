@@ -279,7 +279,7 @@ impl<'a> Emitter<'a> {
         self.stopped
     }
     fn at_capacity(&mut self) -> bool {
-        if self.rec.items.len() >= MAX_ITEMS || self.rec.lines >= MAX_LINES {
+        if self.rec.move_count() >= MAX_ITEMS || self.rec.lines >= MAX_LINES {
             self.full = true;
         }
         self.full
@@ -436,10 +436,10 @@ pub(crate) fn emit_quick(
     stop: Option<&dyn Fn() -> bool>,
 ) -> Result<Emitted, Vec<Diagnostic>> {
     let no_prefix: &[&str] = &[];
-    match emit_with(model, true, ctl, stop, no_prefix, true, None) {
+    match emit_with(model, true, ctl, stop, no_prefix, true, None, None) {
         Ok(e)
             if e.quick_steps.saturating_mul(SWEEP_LINES)
-                < MAX_ITEMS - e.rec.items.len().min(MAX_ITEMS) =>
+                < MAX_ITEMS - e.rec.move_count().min(MAX_ITEMS) =>
         {
             return Ok(e)
         }
@@ -448,7 +448,7 @@ pub(crate) fn emit_quick(
         Err(errs) if errs.iter().any(|d| d.msg == Msg::TooManyMoves) => {}
         Err(errs) => return Err(errs),
     }
-    emit_with(model, true, ctl, stop, no_prefix, false, None)
+    emit_with(model, true, ctl, stop, no_prefix, false, None, None)
 }
 
 /// Lines one sweep between two passes can take at most (`safe_sweep`: its comment, two
@@ -463,20 +463,24 @@ pub(crate) fn emit_after<S: AsRef<str>>(
     stop: Option<&dyn Fn() -> bool>,
     prefix: &[S],
 ) -> Result<Emitted, Vec<Diagnostic>> {
-    emit_with(model, dry, ctl, stop, prefix, false, None)
+    emit_with(model, dry, ctl, stop, prefix, false, None, None)
 }
 
 /// [`emit_after`] whose lines go to `sink` instead of a text (it comes back in the record).
+/// `fold`: the moves are summed for the statistics at this sweep speed instead of kept
+/// ([`Record::fold_moves`]).
 pub(crate) fn emit_into<S: AsRef<str>>(
     model: &Model,
     ctl: &Controller,
     stop: Option<&dyn Fn() -> bool>,
     prefix: &[S],
     sink: Option<Box<dyn LineSink>>,
+    fold: Option<f64>,
 ) -> Result<Emitted, Vec<Diagnostic>> {
-    emit_with(model, false, ctl, stop, prefix, false, sink)
+    emit_with(model, false, ctl, stop, prefix, false, sink, fold)
 }
 
+#[allow(clippy::too_many_arguments)]
 fn emit_with<S: AsRef<str>>(
     model: &Model,
     dry: bool,
@@ -485,6 +489,7 @@ fn emit_with<S: AsRef<str>>(
     prefix: &[S],
     quick_order: bool,
     sink: Option<Box<dyn LineSink>>,
+    fold: Option<f64>,
 ) -> Result<Emitted, Vec<Diagnostic>> {
     if model.elements.is_empty() {
         return Err(vec![Diagnostic::error(
@@ -512,8 +517,12 @@ fn emit_with<S: AsRef<str>>(
         })
         .collect();
     let sx = start_height(model);
+    let mut rec = Record::new(dry, prefix, expected_moves(model), sink);
+    if let Some(sweep_speed) = fold {
+        rec.fold_moves(sweep_speed);
+    }
     let mut em = Emitter {
-        rec: Record::new(dry, prefix, expected_moves(model), sink),
+        rec,
         out_of_range: None,
         pos: P3 {
             x: 0.0,

@@ -185,6 +185,9 @@ fn generate_job(
     sink: Option<Sink>,
 ) -> Result<(Generated, Option<Sink>), Vec<Diagnostic>> {
     let prologue = ctl.prologue(banner, file_name, model, start_height(model), true);
+    // the statistics are all this asks of the moves unless the planner or a height map's grid
+    // reads them: then they are kept
+    let fold = (ctl.machine.is_none() && ctl.heightmap.is_none()).then_some(sweep_speed);
     let Emitted {
         mut rec,
         probes,
@@ -192,11 +195,14 @@ fn generate_job(
         sources,
         split,
         ..
-    } = emit_into(model, ctl, stop, &prologue, sink)?;
+    } = emit_into(model, ctl, stop, &prologue, sink, fold)?;
     let s = model.params.s;
     let items = &rec.items;
 
-    let mut stats = Stats::timed(items, sweep_speed, start(sx), ctl.machine.as_ref());
+    let mut stats = match ctl.machine.as_ref() {
+        Some(m) => Stats::timed(items, sweep_speed, start(sx), Some(m)),
+        None => rec.stats(sweep_speed),
+    };
     stats.split = split;
     // the file LinuxCNC logs the probe contacts to (PROBEOPEN), beside the set
     let log = crate::output_prefix(std::path::Path::new(file_name), &model.params.r);

@@ -7,6 +7,7 @@
 //! comments, by another one is commented out) works as the lines come: a horizontal sweep is
 //! held back with the comments after it until the next move says whether it stays.
 
+use crate::emit::stats::Stats;
 use crate::emit::{Item, Kind};
 use std::any::Any;
 
@@ -38,6 +39,16 @@ pub(crate) struct Record {
     /// A horizontal sweep not written yet (its text and source; the last of `items`) and the
     /// comment lines after it.
     held: Option<Held>,
+    /// Moves not kept but summed for the statistics as they become final (all but the last,
+    /// which a following sweep may still comment out): a long program's statistics without
+    /// its moves. Set by [`Record::fold_moves`].
+    fold: Option<Fold>,
+}
+
+struct Fold {
+    sweep_speed: f64,
+    sums: Stats,
+    moves: usize,
 }
 
 struct Held {
@@ -77,6 +88,44 @@ impl Record {
         r
     }
 
+    /// From now on the moves are summed for the statistics (at `sweep_speed`) instead of
+    /// kept; only the last stays in `items`. For a program whose statistics are all that is
+    /// asked of its moves (no planner, no height map, no toolpath).
+    pub(crate) fn fold_moves(&mut self, sweep_speed: f64) {
+        let mut fold = Fold {
+            sweep_speed,
+            sums: Stats::default(),
+            moves: 0,
+        };
+        for it in self.items.drain(..) {
+            fold.sums.add(&it, sweep_speed);
+            fold.moves += 1;
+        }
+        self.item_lines.clear();
+        self.items.shrink_to(2);
+        self.item_lines.shrink_to(2);
+        self.fold = Some(fold);
+    }
+
+    /// Moves recorded so far (folded ones included).
+    pub(crate) fn move_count(&self) -> usize {
+        self.items.len() + self.fold.as_ref().map_or(0, |f| f.moves)
+    }
+
+    /// The statistics of the moves (reference model): the folded sums and the moves kept.
+    pub(crate) fn stats(&self, sweep_speed: f64) -> Stats {
+        match &self.fold {
+            Some(f) => {
+                let mut s = f.sums.clone();
+                for it in &self.items {
+                    s.add(it, f.sweep_speed);
+                }
+                s.scaled()
+            }
+            None => Stats::of(&self.items, sweep_speed),
+        }
+    }
+
     /// Records a comment line.
     pub(crate) fn comment(&mut self, text: String, source: u32) {
         self.lines += 1;
@@ -101,6 +150,14 @@ impl Record {
             }
             for (c, s) in &h.comments {
                 self.write(c, *s);
+            }
+        }
+        if let Some(f) = &mut self.fold {
+            // the last move is final now: a sweep that could comment it out was handled above
+            if let Some(done) = self.items.pop() {
+                f.sums.add(&done, f.sweep_speed);
+                f.moves += 1;
+                self.item_lines.pop();
             }
         }
         self.item_lines.push(self.lines as u32);
@@ -241,5 +298,66 @@ mod tests {
         assert!(r.text.is_empty() && r.line_sources.is_empty());
         assert_eq!(r.lines, 3);
         assert_eq!(r.items.len(), 1, "the first sweep is commented out");
+    }
+}
+
+#[cfg(test)]
+mod fold_tests {
+    use super::*;
+    use crate::emit::Target;
+
+    /// Moves of every kind with lengths and feeds whose sums round differently in another
+    /// order, sweeps in runs (the peephole comments all but the last out) and comments.
+    fn program(r: &mut Record) {
+        for k in 0..1000u32 {
+            let kind = match k % 7 {
+                0 | 1 => Kind::HSweep,
+                2 => Kind::VSweep,
+                3 | 4 => Kind::Mill,
+                _ => Kind::Drill,
+            };
+            let item = Item {
+                kind,
+                len: 0.1 + f64::from(k).sqrt() / 3.0,
+                feed: 150.0 + f64::from(k % 13) * 77.7,
+                target: Target::default(),
+                source: Some(k),
+                shape: Default::default(),
+            };
+            r.moved(item, format!("move {k}"), k);
+            if k % 5 == 0 {
+                r.comment(format!("(c{k})"), k);
+            }
+        }
+        r.finish();
+    }
+
+    #[test]
+    fn folded_moves_give_the_statistics_of_kept_ones_bit_for_bit() {
+        let sweep_speed = 1234.5;
+        let mut kept = Record::new(false, &["%"], 16, None);
+        program(&mut kept);
+        let mut folded = Record::new(false, &["%"], 16, None);
+        folded.fold_moves(sweep_speed);
+        program(&mut folded);
+        let (a, b) = (kept.stats(sweep_speed), folded.stats(sweep_speed));
+        assert!(
+            a.count > 500 && a.count < 1000,
+            "some sweeps were commented out"
+        );
+        assert_eq!(a.count, b.count);
+        for (x, y) in [
+            (a.mill, b.mill),
+            (a.mill_min, b.mill_min),
+            (a.drill, b.drill),
+            (a.drill_min, b.drill_min),
+            (a.sweep, b.sweep),
+            (a.sweep_min, b.sweep_min),
+        ] {
+            assert_eq!(x.to_bits(), y.to_bits());
+        }
+        assert_eq!(kept.move_count(), folded.move_count());
+        assert_eq!(kept.text, folded.text, "the program is the same");
+        assert!(folded.items.len() <= 1, "only the last move is held");
     }
 }

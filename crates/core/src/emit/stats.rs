@@ -30,27 +30,38 @@ impl Stats {
     pub fn of(items: &[Item], sweep_speed: f64) -> Stats {
         let mut s = Stats::default();
         for it in items {
-            match it.kind {
-                Kind::Mill => {
-                    s.mill += it.len;
-                    s.mill_min += it.len / it.feed;
-                }
-                Kind::Drill => {
-                    s.drill += it.len;
-                    s.drill_min += it.len / it.feed;
-                }
-                Kind::HSweep | Kind::VSweep => {
-                    s.sweep += it.len;
-                    s.sweep_min += it.len / sweep_speed;
-                }
-                Kind::Comment => continue,
-            }
-            s.count += 1;
+            s.add(it, sweep_speed);
         }
-        s.mill_min *= 1.4;
-        s.drill_min *= 1.4;
-        s.sweep_min *= 1.4;
-        s
+        s.scaled()
+    }
+
+    /// Adds one move to sums that [`Stats::scaled`] turns into statistics (in program order:
+    /// the sums are the same bit for bit as [`Stats::of`]'s).
+    pub(crate) fn add(&mut self, it: &Item, sweep_speed: f64) {
+        match it.kind {
+            Kind::Mill => {
+                self.mill += it.len;
+                self.mill_min += it.len / it.feed;
+            }
+            Kind::Drill => {
+                self.drill += it.len;
+                self.drill_min += it.len / it.feed;
+            }
+            Kind::HSweep | Kind::VSweep => {
+                self.sweep += it.len;
+                self.sweep_min += it.len / sweep_speed;
+            }
+            Kind::Comment => return,
+        }
+        self.count += 1;
+    }
+
+    /// The reference's times from the sums of [`Stats::add`].
+    pub(crate) fn scaled(mut self) -> Stats {
+        self.mill_min *= 1.4;
+        self.drill_min *= 1.4;
+        self.sweep_min *= 1.4;
+        self
     }
 
     /// [`Stats::of`], with the times of the LinuxCNC planner model when `machine` is set (the tool

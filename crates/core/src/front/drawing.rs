@@ -198,6 +198,22 @@ impl RawPath {
             file: self.file.clone(),
         }
     }
+    /// The path without its segments: what a built model keeps of its drawing (names,
+    /// markers and texts for its messages; the segments live on in the model's elements).
+    pub fn head(&self) -> RawPath {
+        RawPath {
+            name: self.name.clone(),
+            file: self.file.clone(),
+            start: self.start.clone(),
+            end: self.end.clone(),
+            turns: self.turns.clone(),
+            start_text: self.start_text.clone(),
+            at_ref: self.at_ref.clone(),
+            probes: self.probes.clone(),
+            segments: Vec::new(),
+            broken: self.broken,
+        }
+    }
     /// The origin used for path-level messages: the start marker, else the path.
     pub fn start_origin(&self) -> Origin {
         self.start
@@ -280,12 +296,31 @@ pub fn resolve_start_texts(
 /// produce these; [`build_paths`] turns them into paths.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DrawnObject {
-    /// Normalised path name of the layer.
-    pub path: String,
-    pub linetype: String,
+    /// Normalised path name of the layer (shared by the objects of a layer: a drawing can
+    /// have millions of objects, and these are held whole while its paths are made).
+    pub path: Arc<str>,
+    /// Shared like `path`: a drawing has a handful of line types.
+    pub linetype: Arc<str>,
     pub shape: Shape,
-    pub text: Option<ParamText>,
+    /// Boxed: most objects have no text.
+    pub text: Option<Box<ParamText>>,
     pub origin: Origin,
+}
+
+/// One shared copy of each of a drawing's few names (layers' paths, line types) for its
+/// many objects.
+#[derive(Default)]
+pub struct SharedNames(HashMap<Arc<str>, ()>);
+
+impl SharedNames {
+    pub fn get(&mut self, name: &str) -> Arc<str> {
+        if let Some((k, _)) = self.0.get_key_value(name) {
+            return k.clone();
+        }
+        let k: Arc<str> = Arc::from(name);
+        self.0.insert(k.clone(), ());
+        k
+    }
 }
 
 /// Circles, lines and arcs → paths: markers, probes, drills and helixes (by the path's O),
@@ -329,7 +364,7 @@ pub fn build_paths(
         if insane[i] {
             continue;
         }
-        let lt = o.linetype.as_str();
+        let lt = &*o.linetype;
         if !matches!(lt, "PHANTOM" | "DOT" | "DASHDOT") {
             continue;
         }
@@ -350,7 +385,8 @@ pub fn build_paths(
                     p.start = Some(marker);
                     p.start_text = Some(
                         o.text
-                            .clone()
+                            .as_deref()
+                            .cloned()
                             .unwrap_or_else(|| empty_text(o.origin.clone())),
                     );
                 }
@@ -368,7 +404,7 @@ pub fn build_paths(
         } else if (lt == "PHANTOM" || lt == "DASHDOT") && near(r, 3.0) {
             p.probes.push(ProbeDef {
                 center: c,
-                text: o.text.clone(),
+                text: o.text.as_deref().cloned(),
                 origin: o.origin.clone(),
             });
         } else if lt == "DOT" && near(r, 3.0) {
@@ -387,9 +423,12 @@ pub fn build_paths(
 
     // 5. drills and helixes, then lines, then arcs
     let find = |paths: &[RawPath], o: &DrawnObject| -> Result<usize, Diagnostic> {
-        paths.iter().position(|p| p.name == o.path).ok_or_else(|| {
-            Diagnostic::error(Msg::PathNotFoundForElement, o.origin.clone(), args![o.path])
-        })
+        paths
+            .iter()
+            .position(|p| *p.name == *o.path)
+            .ok_or_else(|| {
+                Diagnostic::error(Msg::PathNotFoundForElement, o.origin.clone(), args![o.path])
+            })
     };
     for (i, o) in objs.iter().enumerate() {
         let Shape::Circle { r, .. } = o.shape else {
@@ -409,7 +448,7 @@ pub fn build_paths(
             diags.error(Msg::ValueMissing, o.origin.clone(), args!["O"]);
             continue;
         };
-        let lt = o.linetype.as_str();
+        let lt = &*o.linetype;
         let kind = if near(r, o_value / 2.0) {
             if lt.starts_with("DIVIDE") {
                 SegKind::Drill(Style::Mark)
@@ -442,7 +481,7 @@ pub fn build_paths(
             object: i,
             kind,
             shape: o.shape.clone(),
-            text: o.text.clone().map(Box::new),
+            text: o.text.clone(),
             origin: o.origin.clone(),
         });
     }
@@ -453,7 +492,7 @@ pub fn build_paths(
                 continue;
             }
             let pi = find(&paths, o)?;
-            let lt = o.linetype.as_str();
+            let lt = &*o.linetype;
             let kind = if lt.starts_with("CONTINUOUS") {
                 SegKind::Mill(Style::Mill)
             } else if lt.starts_with("DIVIDE") {
@@ -476,7 +515,7 @@ pub fn build_paths(
                 object: i,
                 kind,
                 shape: o.shape.clone(),
-                text: o.text.clone().map(Box::new),
+                text: o.text.clone(),
                 origin: o.origin.clone(),
             });
         }

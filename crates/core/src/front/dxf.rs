@@ -342,13 +342,14 @@ pub fn dxf_objects(
         debug.push(String::new());
     }
 
+    let mut names = crate::front::drawing::SharedNames::default();
     let objects: Vec<DrawnObject> = objs
         .into_iter()
         .map(|o| DrawnObject {
-            path: o.path,
-            linetype: o.linetype,
+            path: names.get(&o.path),
+            linetype: names.get(&o.linetype),
             shape: o.shape,
-            text: o.text,
+            text: o.text.map(Box::new),
             origin: o.origin,
         })
         .collect();

@@ -173,6 +173,7 @@ pub fn objects_of(
         diags.push(syntax_diagnostic(e, origin));
     }
     let mut out = Vec::with_capacity(ast.paths().map(|p| p.items.len()).sum());
+    let mut names = crate::front::drawing::SharedNames::default();
     let mut declared = Vec::new();
     for path in ast.paths() {
         for el in path.elements() {
@@ -221,17 +222,17 @@ pub fn objects_of(
             } else {
                 let span = el.params[0].span.start..el.params[el.params.len() - 1].span.end;
                 let joined: Vec<&str> = el.params.iter().map(|p| p.value.as_str()).collect();
-                Some(ParamText::parse(
+                Some(Box::new(ParamText::parse(
                     &joined.join(" "),
                     lines.origin(file, &span),
-                )?)
+                )?))
             };
             if let Kind::Drill(_) | Kind::Helix(_) = el.kind.value {
                 declared.push((out.len(), matches!(el.kind.value, Kind::Drill(_))));
             }
             out.push(DrawnObject {
-                path: path.name.value.clone(),
-                linetype,
+                path: names.get(&path.name.value),
+                linetype: names.get(&linetype),
                 shape,
                 text,
                 origin,
@@ -266,7 +267,7 @@ impl TextDrawing {
             };
             let Some(path_o) = paths
                 .iter()
-                .find(|p| p.name == o.path)
+                .find(|p| *p.name == *o.path)
                 .and_then(|p| p.start_text.as_ref())
                 .and_then(|t| t.raw('O'))
                 .and_then(crate::params::parse_number)
@@ -302,7 +303,7 @@ mod tests {
         let objs = text_objects(src, &file, &mut d).unwrap().objects;
         assert!(d.list.is_empty());
         assert_eq!(objs.len(), 4);
-        assert_eq!(objs[0].linetype, "PHANTOM");
+        assert_eq!(&*objs[0].linetype, "PHANTOM");
         assert_eq!(
             objs[0].shape,
             Shape::Circle {
@@ -328,7 +329,7 @@ mod tests {
                 r: 1.0
             }
         );
-        assert_eq!(objs[3].linetype, "CENTER");
+        assert_eq!(&*objs[3].linetype, "CENTER");
         assert_eq!(objs[1].origin.context(), "a.mpath:3:3");
     }
 

@@ -69,14 +69,30 @@ pub struct ParseKey {
 /// Files kept at most; when full the table starts again.
 const CAPACITY: usize = 4096;
 
+/// Drawings with more segments than this are not kept: such a file is a part of its own,
+/// not a library that many files embed, and keeping its parse would hold it beside its model
+/// for the whole run (a check's memory would be its drawing twice over).
+pub const MAX_KEPT_SEGMENTS: usize = 20_000;
+
 /// The process-wide table of parsed files.
 pub fn parsed(key: ParseKey, parse: impl FnOnce() -> ParsedFile) -> Arc<ParsedFile> {
     static MEMO: OnceLock<Memo<ParseKey, Arc<ParsedFile>>> = OnceLock::new();
-    let parsed = MEMO
-        .get_or_init(|| Memo::with_capacity(CAPACITY))
-        .get_or(&key, || Arc::new(parse()));
+    let memo = MEMO.get_or_init(|| Memo::with_capacity(CAPACITY));
+    let parsed = memo.get_or(&key, || Arc::new(parse()));
+    if parsed.segment_count() > MAX_KEPT_SEGMENTS {
+        memo.forget(&key);
+    }
     remember_path(&key.path);
     parsed
+}
+
+impl ParsedFile {
+    /// The segments of all its paths.
+    pub fn segment_count(&self) -> usize {
+        self.result
+            .as_ref()
+            .map_or(0, |paths| paths.iter().map(|p| p.segments.len()).sum())
+    }
 }
 
 /// The paths the table has seen (some perhaps forgotten since, when it started again).

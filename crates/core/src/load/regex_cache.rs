@@ -39,6 +39,10 @@ impl<K: Eq + Hash + Clone, V: Clone> Memo<K, V> {
         };
         cell.get_or_init(make).clone()
     }
+    /// Drops the entry of `key` (those holding its value keep it).
+    pub fn forget(&self, key: &K) {
+        self.lock().remove(key);
+    }
     fn lock(&self) -> std::sync::MutexGuard<'_, HashMap<K, Arc<OnceLock<V>>>> {
         // a panic elsewhere while holding the lock leaves a usable map
         self.map.lock().unwrap_or_else(|e| e.into_inner())

@@ -41,6 +41,10 @@ pub struct Session<'a> {
     /// The editor's walks of its previous analysis, taken again where nothing they read
     /// changed (`build/traverse_memo.rs`); `None` outside the editor.
     pub traversals: Option<&'a crate::build::traverse_memo::TraversalMemo>,
+    /// The session serves one `compile_file` call (a command line's check or compile of one
+    /// file): once its models are built, the drawings' segments are dropped before the
+    /// program is generated ([`Session::release_segments`]).
+    pub one_file: bool,
 }
 
 impl<'a> Session<'a> {
@@ -95,6 +99,7 @@ impl<'a> Session<'a> {
                 models: HashMap::new(),
                 stop: None,
                 traversals: None,
+                one_file: false,
             }),
             _ => Err(errors),
         }
@@ -143,6 +148,18 @@ impl<'a> Session<'a> {
             Err(d) => {
                 self.diags.push(d.clone());
                 Vec::new()
+            }
+        }
+    }
+
+    /// Drops the segments of every path this session alone holds (the models keep what
+    /// they need; see [`crate::front::drawing::RawPath::head`]): a long chain's drawing is
+    /// not held beside its model while the program is generated. Paths shared with the
+    /// parse cache or a caller stay whole. Nothing may be built afterwards.
+    pub fn release_segments(&mut self) {
+        for p in self.raw.values_mut() {
+            if let Some(p) = Arc::get_mut(p) {
+                p.segments = Vec::new();
             }
         }
     }
@@ -242,17 +259,42 @@ impl<'a> Session<'a> {
         file: &Arc<FileRef>,
         diags: &mut Diags,
     ) -> Result<(crate::front::text::TextDrawing, Vec<RawPath>), Diagnostic> {
-        // the path blocks holding a line that did not parse
-        let broken: Vec<&str> = ast
+        let (text, broken) = Self::text_objects(ast, errors, src, file, diags)?;
+        let paths = self.paths_of_text(&text, &broken, file, diags)?;
+        Ok((text, paths))
+    }
+
+    /// The first half of [`Session::text_paths`]: the drawn objects, and the names of the
+    /// paths holding a line that did not parse. The tree is not needed after it (a long
+    /// file's tree is dropped before its paths are made).
+    fn text_objects(
+        ast: &millpath_syntax::File,
+        errors: Vec<millpath_syntax::SyntaxError>,
+        src: &str,
+        file: &Arc<FileRef>,
+        diags: &mut Diags,
+    ) -> Result<(crate::front::text::TextDrawing, Vec<String>), Diagnostic> {
+        let broken: Vec<String> = ast
             .paths()
             .filter(|b| {
                 errors
                     .iter()
                     .any(|e| b.span.start <= e.span.start && e.span.start < b.span.end)
             })
-            .map(|b| b.name.value.as_str())
+            .map(|b| b.name.value.clone())
             .collect();
         let text = crate::front::text::objects_of(ast, errors, src, file, diags)?;
+        Ok((text, broken))
+    }
+
+    /// The second half of [`Session::text_paths`]: the paths of the objects.
+    fn paths_of_text(
+        &self,
+        text: &crate::front::text::TextDrawing,
+        broken: &[String],
+        file: &Arc<FileRef>,
+        diags: &mut Diags,
+    ) -> Result<Vec<RawPath>, Diagnostic> {
         let mut paths = crate::front::drawing::build_paths(
             &text.objects,
             file,
@@ -261,12 +303,12 @@ impl<'a> Session<'a> {
             diags,
         )?;
         for p in &mut paths {
-            p.broken = broken.contains(&p.name.as_str());
+            p.broken = broken.contains(&p.name);
         }
         // a start line that did not parse is no missing parameters text
         diags.list.retain(|d| {
             !(d.msg == Msg::ParametersTextMissing
-                && matches!(&d.origin, Origin::Path { name, .. } if broken.contains(&name.as_str())))
+                && matches!(&d.origin, Origin::Path { name, .. } if broken.contains(name)))
         });
         text.check_declared_kinds(&paths, diags);
         for p in &paths {
@@ -278,7 +320,7 @@ impl<'a> Session<'a> {
                 );
             }
         }
-        Ok((text, paths))
+        Ok(paths)
     }
 
     pub(crate) fn parse_drawing(
@@ -304,8 +346,11 @@ impl<'a> Session<'a> {
                     )
                 })?
                 .text;
-            let (ast, errors) = millpath_syntax::parse(&src);
-            let (_, paths) = self.text_paths(&ast, errors, &src, file, diags)?;
+            let (text, broken) = {
+                let (ast, errors) = millpath_syntax::parse(&src);
+                Self::text_objects(&ast, errors, &src, file, diags)?
+            };
+            let paths = self.paths_of_text(&text, &broken, file, diags)?;
             return Ok(crate::front::drawing::DrawingFile {
                 paths,
                 debug: Vec::new(),
