@@ -68,8 +68,8 @@ pub fn human_rich(d: &Diagnostic, lang: Lang, color: bool) -> String {
         color,
         &file.path.display().to_string(),
         &src,
-        *start,
-        *end,
+        *start as usize,
+        *end as usize,
     ) {
         Some(s) => s,
         None => human(d, lang),
@@ -367,7 +367,11 @@ fn sarif_location(o: &Origin) -> Option<serde_json::Value> {
         Origin::Entity(e) => (e.file.path.display().to_string(), e.line, 1),
         Origin::Span {
             file, line, col, ..
-        } => (file.path.display().to_string(), *line, *col),
+        } => (
+            file.path.display().to_string(),
+            *line as usize,
+            *col as usize,
+        ),
         Origin::FileLine { file, line } => (file.clone(), *line, 1),
         Origin::Path { file, name } => {
             let (line, col) = path_header(&file.path, name).unwrap_or((1, 1));

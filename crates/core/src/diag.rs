@@ -42,14 +42,15 @@ pub enum Origin {
     File(Arc<FileRef>),
     /// A line of a text file (1-based), e.g. a `_Z.txt` line.
     FileLine { file: String, line: usize },
-    /// A byte span in a text (`.mpath`) file.
+    /// A byte span in a text (`.mpath`) file. 32 bits each (files are at most 1 GiB): every
+    /// element of a drawing carries an origin, in its object, segment and model.
     Span {
         file: Arc<FileRef>,
-        start: usize,
-        end: usize,
+        start: u32,
+        end: u32,
         /// 1-based line and column of `start`.
-        line: usize,
-        col: usize,
+        line: u32,
+        col: u32,
     },
     /// The command line or the settings.
     Options,

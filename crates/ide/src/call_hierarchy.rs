@@ -107,7 +107,7 @@ fn range_of(ws: &Workspace, file: &Path, origin: &Origin) -> Option<(Pos, Pos)> 
         Origin::Span { start, end, .. } => {
             let text = ws.text(file)?;
             let idx = ws.line_index(&text);
-            Some((idx.pos(*start), idx.pos(*end)))
+            Some((idx.pos(*start as usize), idx.pos(*end as usize)))
         }
         Origin::Entity(e) => {
             let p = Pos {

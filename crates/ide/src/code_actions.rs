@@ -25,6 +25,7 @@ pub fn code_actions(a: &Analysis, start: usize, end: usize) -> Vec<Action> {
         else {
             continue;
         };
+        let (ds, de_) = (ds as usize, de_ as usize);
         if de_ < start || ds > end {
             continue;
         }

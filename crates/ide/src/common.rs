@@ -90,8 +90,8 @@ pub(crate) fn location_of(ws: &Workspace, raw: &RawPath) -> Location {
             let idx = ws.line_index(&text);
             Location {
                 path: file.path.clone(),
-                start: idx.pos(start),
-                end: idx.pos(end),
+                start: idx.pos(start as usize),
+                end: idx.pos(end as usize),
             }
         }
         Origin::Entity(e) => {

@@ -10,7 +10,10 @@ use millpath_core::diag::Origin;
 pub fn diagnostic_range(a: &Analysis, origin: &Origin) -> Option<(usize, usize)> {
     match origin {
         Origin::Span { start, end, .. } => {
-            let (start, end) = (*start.min(&a.src.len()), (*end).min(a.src.len()));
+            let (start, end) = (
+                (*start as usize).min(a.src.len()),
+                (*end as usize).min(a.src.len()),
+            );
             // one line is enough to point at an element
             let mut stop = a.src[start..end].find('\n').map_or(end, |p| start + p);
             if let Some(c) = element_at(a, start)

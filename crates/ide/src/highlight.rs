@@ -67,7 +67,7 @@ fn chain_elements(a: &Analysis, offset: usize) -> Vec<Highlight> {
         .filter(|s| firsts.get(&s.object) == Some(first))
         .filter_map(|s| {
             let start = a.objects.get(s.object).and_then(|o| match &o.origin {
-                millpath_core::diag::Origin::Span { start, .. } => Some(*start),
+                millpath_core::diag::Origin::Span { start, .. } => Some(*start as usize),
                 _ => None,
             })?;
             let (_, e) = element_at(a, start)?;

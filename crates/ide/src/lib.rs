@@ -527,7 +527,7 @@ impl Analysis {
                 .iter()
                 .enumerate()
                 .filter_map(|(i, o)| match &o.origin {
-                    Origin::Span { start, .. } => Some((*start, i)),
+                    Origin::Span { start, .. } => Some((*start as usize, i)),
                     _ => None,
                 })
                 .collect()

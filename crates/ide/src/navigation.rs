@@ -73,8 +73,8 @@ pub fn references(a: &Analysis, ws: &Workspace, offset: usize) -> Vec<Location> 
                     let idx = ws.line_index(&text);
                     out.push(Location {
                         path: f.clone(),
-                        start: idx.pos(*start),
-                        end: idx.pos(*end),
+                        start: idx.pos(*start as usize),
+                        end: idx.pos(*end as usize),
                     });
                 }
                 Origin::Entity(e) => {

@@ -102,7 +102,7 @@ fn toolpath_json(
                     let lines = text.lines().map(|l| l.trim().to_string()).collect();
                     (ws.line_index(&text), lines)
                 });
-                let p = idx.pos(*start);
+                let p = idx.pos(*start as usize);
                 let text = lines.get(p.line as usize).cloned().unwrap_or_default();
                 json!({ "file": file.path.display().to_string(), "line": line - 1, "character": p.col, "label": format!("{}:{line}", file.name), "text": text })
             }

@@ -33,9 +33,9 @@ fn diagnostics_of_a_missing_b_value_with_range() {
         } => {
             assert_eq!(*line, 4);
             assert!(
-                NO_B[*start..*end].starts_with("mill (0, 0) -> (20, 0)"),
+                NO_B[*start as usize..*end as usize].starts_with("mill (0, 0) -> (20, 0)"),
                 "{:?}",
-                &NO_B[*start..*end]
+                &NO_B[*start as usize..*end as usize]
             );
         }
         o => panic!("{o:?}"),
@@ -473,7 +473,10 @@ fn order_warning_at_the_chosen_line_with_a_pinning_fix() {
     let millpath_core::Origin::Span { start, end, .. } = d.origin else {
         panic!("{:?}", d.origin)
     };
-    assert_eq!(SQUARE[start..end].trim_end(), "mill (0, 0) -> (20, 0)");
+    assert_eq!(
+        SQUARE[start as usize..end as usize].trim_end(),
+        "mill (0, 0) -> (20, 0)"
+    );
     // the formatter keeps the order of the lines that carries the choice
     let swapped = SQUARE.replace(
         "  mill (0, 0) -> (20, 0)\n  mill (20, 0) -> (20, 20)\n  mill (20, 20) -> (0, 20)\n  mill (0, 20) -> (0, 0)\n",
@@ -490,7 +493,10 @@ fn order_warning_at_the_chosen_line_with_a_pinning_fix() {
     let millpath_core::Origin::Span { start, end, .. } = other.origin else {
         panic!()
     };
-    assert_eq!(swapped[start..end].trim_end(), "mill (0, 20) -> (0, 0)");
+    assert_eq!(
+        swapped[start as usize..end as usize].trim_end(),
+        "mill (0, 20) -> (0, 0)"
+    );
     // the quick fix pins the direction; the warning is gone, the G-code is the warned one
     ws.overlays.insert(path.clone(), SQUARE.into());
     let before = preview(&ws, &path, None).unwrap().gcode;
@@ -586,7 +592,10 @@ fn files_with_a_bom_or_in_utf16_read_as_plain_text() {
     else {
         panic!("{d:?}")
     };
-    assert_eq!((&a.src[*start..*end], *line, *col), ("mil", 5, 3));
+    assert_eq!(
+        (&a.src[*start as usize..*end as usize], *line, *col),
+        ("mil", 5, 3)
+    );
 }
 
 /// A height map said in the drawing (`K`): hover explains it, completion offers it at the

@@ -122,7 +122,7 @@ pub(crate) fn location(origin: &Origin, ws: &Workspace) -> Option<Location> {
             let idx = ws.line_index(&text);
             Some(Location {
                 uri: to_uri(&file.path)?,
-                range: range(&idx, *start, *end),
+                range: range(&idx, *start as usize, *end as usize),
             })
         }
         Origin::Entity(e) => {

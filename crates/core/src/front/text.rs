@@ -68,24 +68,25 @@ impl<'a> Lines<'a> {
     }
     pub fn origin(&self, file: &Arc<FileRef>, span: &Span) -> Origin {
         let (line, col) = self.line_col(span.start);
-        Origin::Span {
-            file: file.clone(),
-            start: span.start,
-            end: span.end,
-            line,
-            col,
-        }
+        span_of(file, span, line, col)
     }
 }
 
 pub fn span_origin(src: &str, file: &Arc<FileRef>, span: &Span) -> Origin {
     let (line, col) = line_col(src, span.start);
+    span_of(file, span, line, col)
+}
+
+/// An origin's 32-bit positions (a file is at most 1 GiB; an editor's larger buffer ends at
+/// the last position).
+fn span_of(file: &Arc<FileRef>, span: &Span, line: usize, col: usize) -> Origin {
+    let at = |v: usize| u32::try_from(v).unwrap_or(u32::MAX);
     Origin::Span {
         file: file.clone(),
-        start: span.start,
-        end: span.end,
-        line,
-        col,
+        start: at(span.start),
+        end: at(span.end),
+        line: at(line),
+        col: at(col),
     }
 }
 
