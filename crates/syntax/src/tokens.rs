@@ -1,5 +1,5 @@
-//! The tokens of a file, stored small: a kind and a byte range, 12 bytes a token instead of
-//! the 40 of a token with its text and a `usize` range. A drawing of half a million segments
+//! The tokens of a file, stored small: a kind, a start and a length, 8 bytes a token instead
+//! of the 40 of a token with its text and a `usize` range. A drawing of half a million segments
 //! has millions of tokens, so this list is the largest thing a parse holds. The parser reads
 //! it through [`Tokens`], a chumsky input that makes each [`Token`] (its text cut from the
 //! source) as it is read, with the spans chumsky's own token-and-span input would give.
@@ -29,14 +29,20 @@ enum Kind {
 #[derive(Debug, Clone, Copy)]
 struct Stored {
     kind: Kind,
+    /// The length in bytes; [`LONG`]: in `TokenList::long` (a comment or word of 64 KiB).
+    len: u16,
     start: u32,
-    end: u32,
 }
+
+/// The length of a token stored beside the list.
+const LONG: u16 = u16::MAX;
 
 /// The tokens of one source text, lexed once.
 pub struct TokenList<'s> {
     src: &'s str,
     toks: Vec<Stored>,
+    /// (index, end) of the tokens of [`LONG`] length or more, in order.
+    long: Vec<(u32, u32)>,
 }
 
 impl<'s> TokenList<'s> {
@@ -49,6 +55,7 @@ impl<'s> TokenList<'s> {
         }
         let src = &src[..cut];
         let mut toks = Vec::with_capacity(token_room(src));
+        let mut long = Vec::new();
         for (t, span) in Token::lexer(src).spanned() {
             let kind = match t.unwrap_or(Token::Error) {
                 Token::LParen => Kind::LParen,
@@ -63,19 +70,29 @@ impl<'s> TokenList<'s> {
                 Token::Word(_) => Kind::Word,
                 Token::Error => Kind::Error,
             };
+            let len = span.end - span.start;
+            if len >= usize::from(LONG) {
+                long.push((toks.len() as u32, span.end as u32));
+            }
             toks.push(Stored {
                 kind,
+                len: len.min(usize::from(LONG)) as u16,
                 start: span.start as u32,
-                end: span.end as u32,
             });
         }
-        TokenList { src, toks }
+        TokenList { src, toks, long }
     }
 
     /// The `i`-th token and its span.
     fn get(&self, i: usize) -> Option<(Token<'s>, Range<usize>)> {
         let s = self.toks.get(i)?;
-        let span = s.start as usize..s.end as usize;
+        let end = if s.len == LONG {
+            let k = self.long.partition_point(|&(at, _)| (at as usize) < i);
+            self.long.get(k)?.1 as usize
+        } else {
+            s.start as usize + usize::from(s.len)
+        };
+        let span = s.start as usize..end;
         let text = &self.src[span.clone()];
         let tok = match s.kind {
             Kind::LParen => Token::LParen,
@@ -188,10 +205,15 @@ mod tests {
 
     #[test]
     fn the_stored_tokens_are_the_lexers() {
-        let src = "path \"a b\" { # c\n  mill (0, -1.5)->(2,3) B-0,3 :Q#x\n}\u{0}§";
-        let list = TokenList::lex(src);
+        let long_comment = format!("# {}", "x".repeat(70_000));
+        let long_word = "7".repeat(65_535);
+        let src = format!(
+            "path \"a b\" {{ # c\n  mill (0, -1.5)->(2,3) B-0,3 :Q#x {long_comment}\n{long_word} {long_comment}\n}}\u{0}§"
+        );
+        let list = TokenList::lex(&src);
         let got: Vec<_> = list.iter().collect();
-        assert_eq!(got, crate::lexer::lex(src));
-        assert!(std::mem::size_of::<Stored>() <= 12);
+        assert_eq!(got, crate::lexer::lex(&src));
+        assert_eq!(list.long.len(), 3, "two comments and a word of 64 KiB");
+        assert!(std::mem::size_of::<Stored>() <= 8);
     }
 }
