@@ -12,7 +12,7 @@ pub mod validate;
 
 use crate::args;
 use crate::build::bars::support_bars;
-use crate::build::traverse::{traverse_in, turn_back_kind};
+use crate::build::traverse::{traverse_in, turn_back_kind, Step};
 use crate::diag::{Diagnostic, Msg, Origin};
 use crate::front::drawing::{
     RawPath, SegKind, Shape, Style, SweepKind, PATH_KEYS, PATH_KEYS_HEIGHTMAP, PROBE_KEYS,
@@ -154,7 +154,17 @@ impl Session<'_> {
         let mut elements = Vec::new();
         let mut chain: Option<Chain> = None;
         let mut subpaths = Vec::new();
-        for step in &trav {
+        // a step of a chain: a milled line or arc
+        let chained = |step: &Step| {
+            let seg = &raw.segments[step.index];
+            let kind = if step.turn_back {
+                turn_back_kind(seg.kind)
+            } else {
+                seg.kind
+            };
+            matches!((kind, &seg.shape), (SegKind::Mill(_), Shape::Path(_)))
+        };
+        for (k, step) in trav.iter().enumerate() {
             let seg = &raw.segments[step.index];
             let geom = match &seg.shape {
                 Shape::Path(g) => Some(if step.reversed { g.reversed() } else { *g }),
@@ -169,8 +179,11 @@ impl Session<'_> {
                 let first = chain.is_none();
                 if first {
                     let (i, w) = self.chain_params(seg, &params, &ev);
+                    // its length at once: a chain of a million segments is not copied as
+                    // it grows
+                    let run = trav[k..].iter().take_while(|s| chained(s)).count();
                     chain = Some(Chain {
-                        segs: Vec::new(),
+                        segs: Vec::with_capacity(run),
                         i,
                         w,
                         origin: seg.origin.clone(),

@@ -430,6 +430,26 @@ pub fn build_paths(
                 Diagnostic::error(Msg::PathNotFoundForElement, o.origin.clone(), args![o.path])
             })
     };
+    // room for every object a path may get at once: a path of a million segments is not
+    // copied as it grows (objects of the same layer mostly follow each other)
+    let mut room = vec![0usize; paths.len()];
+    let mut last: Option<(&str, usize)> = None;
+    for (i, o) in objs.iter().enumerate() {
+        if special[i] || insane[i] {
+            continue;
+        }
+        let pi = match last {
+            Some((name, pi)) if name == &*o.path => Some(pi),
+            _ => paths.iter().position(|p| *p.name == *o.path),
+        };
+        if let Some(pi) = pi {
+            room[pi] += 1;
+            last = Some((&o.path, pi));
+        }
+    }
+    for (p, n) in paths.iter_mut().zip(room) {
+        p.segments.reserve_exact(n);
+    }
     for (i, o) in objs.iter().enumerate() {
         let Shape::Circle { r, .. } = o.shape else {
             continue;
