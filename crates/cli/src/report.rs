@@ -372,7 +372,7 @@ fn sarif_location(o: &Origin) -> Option<serde_json::Value> {
             *line as usize,
             *col as usize,
         ),
-        Origin::FileLine { file, line } => (file.clone(), *line, 1),
+        Origin::FileLine { file, line } => (file.to_string(), *line, 1),
         Origin::Path { file, name } => {
             let (line, col) = path_header(&file.path, name).unwrap_or((1, 1));
             (file.path.display().to_string(), line, col)
@@ -548,7 +548,7 @@ pub fn github(d: &Diagnostic, lang: Lang) -> String {
     } else if let Origin::FileLine { file, .. } = origin.as_ref() {
         props.push(format!(
             "file={}",
-            escape_prop(&repo_path(std::path::Path::new(file)))
+            escape_prop(&repo_path(std::path::Path::new(&**file)))
         ));
     }
     match &d.origin {

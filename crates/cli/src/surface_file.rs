@@ -78,7 +78,7 @@ pub fn read(path: &str, lang: Lang) -> Result<Surface, Vec<String>> {
         None => {
             let first = text.lines().position(|l| !l.trim().is_empty());
             let at = Origin::FileLine {
-                file: path.to_string(),
+                file: path.into(),
                 line: first.map_or(1, |i| i + 1),
             };
             diags.error(Msg::ProbeLogUnknownFormat, at, vec![]);

@@ -36,12 +36,13 @@ pub enum Severity {
 pub enum Origin {
     /// A DXF entity.
     Entity(Arc<EntityOrigin>),
-    /// A path as a whole: `name[file]`.
-    Path { name: String, file: Arc<FileRef> },
+    /// A path as a whole: `name[file]`. (Boxed strings here and in `FileLine` keep an origin
+    /// at 32 bytes: every element of a drawing carries one.)
+    Path { name: Box<str>, file: Arc<FileRef> },
     /// A whole input file.
     File(Arc<FileRef>),
     /// A line of a text file (1-based), e.g. a `_Z.txt` line.
-    FileLine { file: String, line: usize },
+    FileLine { file: Box<str>, line: usize },
     /// A byte span in a text (`.mpath`) file. 32 bits each (files are at most 1 GiB): every
     /// element of a drawing carries an origin, in its object, segment and model.
     Span {

@@ -60,13 +60,19 @@ fn project(layer: &str) -> String {
     d.dxf()
 }
 
-/// `check` of one top-level file in its own session, as the command line does.
+/// `check` of one top-level file in its own session.
 fn check(fs: &CountingFs, top: &Path) -> Vec<String> {
+    check_as(fs, top, false)
+}
+
+/// [`check`]; `one_file`: as the command line does (the session serves this file only).
+fn check_as(fs: &CountingFs, top: &Path, one_file: bool) -> Vec<String> {
     let settings = Settings {
         check: true,
         ..settings()
     };
     let mut s = Session::new(settings, fs).expect("settings");
+    s.one_file = one_file;
     compile_file(&mut s, top, "test");
     s.diags
         .list
@@ -117,8 +123,9 @@ fn long_chain(n: usize) -> String {
     s
 }
 
-/// A drawing too long to be a library that many files embed is not kept after its check
-/// (its parse would stay beside its model for the rest of the run); a short one is.
+/// A drawing too long to be a library that many files embed is not kept after the command
+/// line's check of it (its parse would stay beside its model for the rest of the run); a
+/// short one is, and so is a long one an editor's sessions read.
 #[test]
 fn a_drawing_beyond_the_kept_size_is_read_again() {
     use millpath_core::load::parse_cache::MAX_KEPT_SEGMENTS;
@@ -129,9 +136,13 @@ fn a_drawing_beyond_the_kept_size_is_read_again() {
     std::fs::write(&short, long_chain(10).replace("3000.1P", "3100.1P")).unwrap();
     let fs = CountingFs::default();
     for _ in 0..2 {
-        assert_eq!(check(&fs, &long), Vec::<String>::new());
-        assert_eq!(check(&fs, &short), Vec::<String>::new());
+        assert_eq!(check_as(&fs, &long, true), Vec::<String>::new());
+        assert_eq!(check_as(&fs, &short, true), Vec::<String>::new());
     }
     assert_eq!(fs.reads_of(&long), 2, "read at each check");
     assert_eq!(fs.reads_of(&short), 1, "kept");
+    for _ in 0..2 {
+        assert_eq!(check(&fs, &long), Vec::<String>::new());
+    }
+    assert_eq!(fs.reads_of(&long), 3, "kept for sessions of many files");
 }

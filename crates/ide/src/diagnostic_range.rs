@@ -27,7 +27,7 @@ pub fn diagnostic_range(a: &Analysis, origin: &Origin) -> Option<(usize, usize)>
         Origin::Path { name, .. } => a
             .ast
             .paths()
-            .find(|p| &p.name.value == name)
+            .find(|p| *p.name.value == **name)
             .map(|p| (p.name.span.start, p.name.span.end)),
         // a drawing: the entity's DXF line (1-based, as `millpath check` reports it)
         Origin::Entity(e) => Some(line_range(a, e.line)),

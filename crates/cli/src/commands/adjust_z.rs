@@ -47,7 +47,7 @@ pub(crate) fn read_log(path: &str, diags: &mut Diags) -> Option<String> {
     }
     if bytes.len() as u64 > limit {
         let origin = Origin::FileLine {
-            file: path.to_string(),
+            file: path.into(),
             line: 1,
         };
         let limit = format!("{} bytes", adjustz::MAX_LOG_BYTES);

@@ -194,7 +194,7 @@ impl RawPath {
     }
     pub fn origin(&self) -> Origin {
         Origin::Path {
-            name: self.name.clone(),
+            name: self.name.as_str().into(),
             file: self.file.clone(),
         }
     }

@@ -69,21 +69,27 @@ pub struct ParseKey {
 /// Files kept at most; when full the table starts again.
 const CAPACITY: usize = 4096;
 
-/// Drawings with more segments than this are not kept: such a file is a part of its own,
-/// not a library that many files embed, and keeping its parse would hold it beside its model
-/// for the whole run (a check's memory would be its drawing twice over).
+/// Drawings with more segments than this are not kept for the command line's one-file
+/// sessions: such a file is a part of its own, not a library that many files embed, and
+/// keeping its parse would hold it beside its model for the whole run (a check's memory
+/// would be its drawing twice over). The editor keeps them: it analyses them again and again.
 pub const MAX_KEPT_SEGMENTS: usize = 20_000;
+
+fn memo() -> &'static Memo<ParseKey, Arc<ParsedFile>> {
+    static MEMO: OnceLock<Memo<ParseKey, Arc<ParsedFile>>> = OnceLock::new();
+    MEMO.get_or_init(|| Memo::with_capacity(CAPACITY))
+}
 
 /// The process-wide table of parsed files.
 pub fn parsed(key: ParseKey, parse: impl FnOnce() -> ParsedFile) -> Arc<ParsedFile> {
-    static MEMO: OnceLock<Memo<ParseKey, Arc<ParsedFile>>> = OnceLock::new();
-    let memo = MEMO.get_or_init(|| Memo::with_capacity(CAPACITY));
-    let parsed = memo.get_or(&key, || Arc::new(parse()));
-    if parsed.segment_count() > MAX_KEPT_SEGMENTS {
-        memo.forget(&key);
-    }
+    let parsed = memo().get_or(&key, || Arc::new(parse()));
     remember_path(&key.path);
     parsed
+}
+
+/// Drops the parse of `key` from the table (its holders keep it).
+pub fn forget(key: &ParseKey) {
+    memo().forget(key);
 }
 
 impl ParsedFile {

@@ -128,17 +128,25 @@ impl<'a> Session<'a> {
             lang: self.lang(),
             input: self.settings.input,
         };
-        let parsed = if parse_cache::may_hold(path) {
+        let (parsed, stamp) = if parse_cache::may_hold(path) {
             match self.fs.stamp(path) {
-                Some(stamp) => parse_cache::parsed(key(stamp), || self.parse_file(path)),
-                None => Arc::new(self.parse_file(path)),
+                Some(stamp) => (
+                    parse_cache::parsed(key(stamp), || self.parse_file(path)),
+                    Some(stamp),
+                ),
+                None => (Arc::new(self.parse_file(path)), None),
             }
         } else {
             match self.parse_stamped_file(path) {
-                (parsed, Some(stamp)) => parse_cache::parsed(key(stamp), || parsed),
-                (parsed, None) => Arc::new(parsed),
+                (parsed, Some(stamp)) => (parse_cache::parsed(key(stamp), || parsed), Some(stamp)),
+                (parsed, None) => (Arc::new(parsed), None),
             }
         };
+        if let Some(stamp) = stamp {
+            if self.one_file && parsed.segment_count() > parse_cache::MAX_KEPT_SEGMENTS {
+                parse_cache::forget(&key(stamp));
+            }
+        }
         for d in &parsed.diags {
             self.diags.push(d.clone());
         }
@@ -308,7 +316,7 @@ impl<'a> Session<'a> {
         // a start line that did not parse is no missing parameters text
         diags.list.retain(|d| {
             !(d.msg == Msg::ParametersTextMissing
-                && matches!(&d.origin, Origin::Path { name, .. } if broken.contains(name)))
+                && matches!(&d.origin, Origin::Path { name, .. } if broken.iter().any(|b| **b == **name)))
         });
         text.check_declared_kinds(&paths, diags);
         for p in &paths {

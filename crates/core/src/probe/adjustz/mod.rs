@@ -84,7 +84,7 @@ pub fn check_max(max: f64, text: &str, opt: MaxOption) -> Option<Diagnostic> {
 
 fn line_origin(file: &str, line: usize) -> Origin {
     Origin::FileLine {
-        file: file.to_string(),
+        file: file.into(),
         line,
     }
 }
