@@ -135,14 +135,19 @@ struct PassPoints {
 type Queue = BinaryHeap<Reverse<(u64, usize)>>;
 
 struct KdNode {
-    lo: [f64; 3],
-    hi: [f64; 3],
+    /// Bounding box of the node's points, rounded outwards to `f32` (it still holds them:
+    /// distances to it are still lower bounds, and the node takes 40 bytes, not 64).
+    lo: [f32; 3],
+    hi: [f32; 3],
     /// The node's points are `pts[start..end]`; `left` is 0 for a leaf, else the children
     /// are `left` and `left + 1`.
     start: u32,
     end: u32,
     left: u32,
     alive: u32,
+    /// Of a leaf: the node a ball of [`FIRST_RADIUS`] around a point in the leaf's box may
+    /// start from (see [`PassPoints::anchor_leaves`]).
+    anchor: u32,
 }
 
 /// Points per leaf at most: a leaf holds 16 to 32 points.
@@ -150,10 +155,42 @@ const LEAF: usize = 32;
 /// Marks a point (rather than a node) in the query heap.
 const POINT: usize = 1 << (usize::BITS - 1);
 
+/// Squared distance between two bounding boxes: a lower bound for any two of their points.
+fn box_gap2(a: &KdNode, b: &KdNode) -> f64 {
+    (0..3)
+        .map(|i| {
+            let (alo, ahi) = (f64::from(a.lo[i]), f64::from(a.hi[i]));
+            let (blo, bhi) = (f64::from(b.lo[i]), f64::from(b.hi[i]));
+            let gap = (blo - ahi).max(alo - bhi).max(0.0);
+            gap * gap
+        })
+        .sum()
+}
+
 /// Squared distance, the same expression as [`P3::dist`] before its square root.
 fn dist2(h: P3, p: [f64; 3]) -> f64 {
     let (dx, dy, dz) = (h.x - p[0], h.y - p[1], h.z - p[2]);
     dx * dx + dy * dy + dz * dz
+}
+
+/// The largest `f32` at most `x` (finite `x`; beyond the `f32` range: `−∞` or `f32::MAX`).
+fn down(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) > x {
+        f.next_down()
+    } else {
+        f
+    }
+}
+
+/// The smallest `f32` at least `x` (finite `x`).
+fn up(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) < x {
+        f.next_up()
+    } else {
+        f
+    }
 }
 
 /// Nodes of the tree over `n` points (built exactly so: one allocation, no slack).
@@ -210,10 +247,49 @@ impl PassPoints {
                 end: pts.len() as u32,
                 left: 0,
                 alive: pts.len() as u32,
+                anchor: 0,
             });
             Self::build(&mut nodes, &mut pts, 0);
+            Self::anchor_leaves(&mut nodes, 0, &mut Vec::new());
         }
         Some(PassPoints { pts, nodes })
+    }
+
+    /// Sets the `anchor` of the leaves below node `n` (`path`: its ancestors): the highest
+    /// ancestor of the leaf whose other child's bounding box comes within
+    /// `4 · FIRST_RADIUS` of the leaf's box, else the leaf. Every point outside the anchor's
+    /// subtree is farther than that from the leaf's box (boxes never change), so a first
+    /// ball around a point in the box finds all its points below the anchor.
+    fn anchor_leaves(nodes: &mut [KdNode], n: usize, path: &mut Vec<usize>) {
+        let left = nodes[n].left as usize;
+        if left != 0 {
+            // depth ≤ log2 of the point count: the tree is balanced
+            path.push(n);
+            Self::anchor_leaves(nodes, left, path);
+            Self::anchor_leaves(nodes, left + 1, path);
+            path.pop();
+            return;
+        }
+        let reach2 = (4.0 * FIRST_RADIUS) * (4.0 * FIRST_RADIUS);
+        let (mut at, mut child) = (n, n);
+        for &x in path.iter().rev() {
+            let l = nodes[x].left as usize;
+            let sibling = if child == l { l + 1 } else { l };
+            if box_gap2(&nodes[n], &nodes[sibling]) <= reach2 {
+                at = x;
+            }
+            child = x;
+        }
+        nodes[n].anchor = at as u32;
+    }
+
+    /// Whether `h` lies in the bounding box of node `n`.
+    fn in_box(&self, h: P3, n: usize) -> bool {
+        let KdNode { lo, hi, .. } = self.nodes[n];
+        [h.x, h.y, h.z]
+            .iter()
+            .enumerate()
+            .all(|(i, &v)| f64::from(lo[i]) <= v && v <= f64::from(hi[i]))
     }
 
     fn build(nodes: &mut Vec<KdNode>, pts: &mut [Point], at: usize) {
@@ -226,8 +302,8 @@ impl PassPoints {
                 hi[i] = hi[i].max(q.p[i]);
             }
         }
-        nodes[at].lo = lo;
-        nodes[at].hi = hi;
+        nodes[at].lo = lo.map(down);
+        nodes[at].hi = hi.map(up);
         if part.len() <= LEAF {
             return;
         }
@@ -240,12 +316,13 @@ impl PassPoints {
         nodes[at].left = left as u32;
         for (s, e) in [(start, start + mid), (start + mid, end)] {
             nodes.push(KdNode {
-                lo,
-                hi,
+                lo: [0.0; 3],
+                hi: [0.0; 3],
                 start: s as u32,
                 end: e as u32,
                 left: 0,
                 alive: (e - s) as u32,
+                anchor: 0,
             });
         }
         Self::build(nodes, pts, left);
@@ -253,18 +330,19 @@ impl PassPoints {
     }
 
     /// Takes point `i` out (once): down from the root to its leaf, counting it off.
-    fn remove(&mut self, i: usize) {
-        if self.pts[i].pass == GONE {
-            return;
-        }
+    /// Returns the leaf.
+    fn remove(&mut self, i: usize) -> usize {
+        let gone = self.pts[i].pass == GONE;
         self.pts[i].pass = GONE;
         let mut n = 0;
         loop {
             let node = &mut self.nodes[n];
-            node.alive -= 1;
+            if !gone {
+                node.alive -= 1;
+            }
             let left = node.left as usize;
             if left == 0 {
-                return;
+                return n;
             }
             // depth ≤ log2 of the point count: the tree is balanced
             n = if i < self.nodes[left].end as usize {
@@ -278,14 +356,8 @@ impl PassPoints {
     /// Lower bound of the squared distance from `h` to the points of node `n`.
     fn node_dist2(&self, h: P3, n: usize) -> f64 {
         let KdNode { lo, hi, .. } = self.nodes[n];
-        dist2(
-            h,
-            [
-                h.x.clamp(lo[0], hi[0]),
-                h.y.clamp(lo[1], hi[1]),
-                h.z.clamp(lo[2], hi[2]),
-            ],
-        )
+        let at = |v: f64, i: usize| v.clamp(f64::from(lo[i]), f64::from(hi[i]));
+        dist2(h, [at(h.x, 0), at(h.y, 1), at(h.z, 2)])
     }
 
     fn push_node(&self, queue: &mut Queue, h: P3, n: usize) {
@@ -295,13 +367,13 @@ impl PassPoints {
         }
     }
 
-    /// Puts into `hits` every point left whose squared distance from `h` is at most `r2`
-    /// (in tree order). A depth-first walk with a reused stack.
-    fn within(&self, stack: &mut Vec<u32>, h: P3, r2: f64, hits: &mut Vec<u32>) {
+    /// Puts into `hits` every point left below node `from` whose squared distance from `h`
+    /// is at most `r2` (in tree order). A depth-first walk with a reused stack.
+    fn within(&self, stack: &mut Vec<u32>, from: u32, h: P3, r2: f64, hits: &mut Vec<u32>) {
         stack.clear();
         hits.clear();
         if !self.nodes.is_empty() {
-            stack.push(0);
+            stack.push(from);
         }
         while let Some(n) = stack.pop() {
             let KdNode {
@@ -367,9 +439,8 @@ type Met = (u32, bool, f64, u32);
 /// The candidates of one step, found in the k-d tree.
 struct Candidates {
     done_count: Vec<u32>,
-    /// The round in which a segment was last met (0 = never): each segment counts once.
-    met_in: Vec<u32>,
-    round: u32,
+    /// The candidates met in this round; a segment met at both ends of its pass is in twice,
+    /// with the same tip (the scan keeps the first of equal tips: no difference).
     met: Vec<Met>,
     max_tip: f64,
     /// Points met whose pass is milled: they leave the tree after the step.
@@ -378,11 +449,6 @@ struct Candidates {
 
 impl Candidates {
     fn start_round(&mut self) {
-        if self.round == u32::MAX {
-            self.met_in.fill(0);
-            self.round = 0;
-        }
-        self.round += 1;
         self.met.clear();
         self.max_tip = f64::NEG_INFINITY;
     }
@@ -396,10 +462,9 @@ impl Candidates {
             self.milled.push(i as u32);
             return;
         }
-        if k != self.done_count[si] || self.met_in[si] == self.round {
+        if k != self.done_count[si] {
             return;
         }
-        self.met_in[si] = self.round;
         let (a, b) = c.ends(si);
         let z = c.depth(si, k as usize);
         let ds = head.dist(a.with_z(z));
@@ -455,6 +520,8 @@ struct TreeOrder {
     stack: Vec<u32>,
     hits: Vec<u32>,
     head: P3,
+    /// The leaf of the point the last pass was met at: the head is often in its box.
+    last_leaf: Option<usize>,
     steps_left: usize,
 }
 
@@ -487,8 +554,6 @@ impl<'a, C: PassSource + ?Sized> FastOrder<'a, C> {
                     tree,
                     cand: Candidates {
                         done_count: vec![0; n],
-                        met_in: vec![0; n],
-                        round: 0,
                         met: Vec::new(),
                         max_tip: f64::NEG_INFINITY,
                         milled: Vec::new(),
@@ -497,6 +562,7 @@ impl<'a, C: PassSource + ?Sized> FastOrder<'a, C> {
                     stack: Vec::new(),
                     hits: Vec::new(),
                     head,
+                    last_leaf: None,
                 }))
             }
             None => Way::Scan(scan(c, head).into_iter(), vec![0; c.segments()]),
@@ -544,15 +610,21 @@ impl TreeOrder {
             stack,
             hits,
             head,
+            last_leaf,
             ..
         } = self;
         let head = *head;
+        // a first ball around a head in the box of a leaf starts at the leaf's anchor
+        let anchor = last_leaf
+            .filter(|&l| tree.in_box(head, l))
+            .map_or(0, |l| tree.nodes[l].anchor);
         let mut settled = false;
         let mut r = FIRST_RADIUS;
         for _ in 0..BALL_ROUNDS {
             cand.start_round();
             let r2 = r * r;
-            tree.within(stack, head, r2, hits);
+            let from = if r == FIRST_RADIUS { anchor } else { 0 };
+            tree.within(stack, from, head, r2, hits);
             for &i in hits.iter() {
                 cand.meet(c, tree, head, i as usize);
             }
@@ -589,7 +661,7 @@ impl TreeOrder {
         let (seg, forward, _, at) = cand.best()?;
         let si = seg as usize;
         let k = cand.done_count[si];
-        tree.remove(at as usize);
+        *last_leaf = Some(tree.remove(at as usize));
         cand.done_count[si] = k + 1;
         let (a, b) = c.ends(si);
         let z = c.depth(si, k as usize);
@@ -609,4 +681,74 @@ pub fn fast_order(ends: &[(P2, P2)], passes: &[Vec<f64>], head: P3) -> Vec<Step>
 #[doc(hidden)]
 pub fn fast_order_indexed(ends: &[(P2, P2)], passes: &[Vec<f64>], head: P3) -> Vec<Step> {
     FastOrder::indexed(&Lists { ends, passes }, head).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn boxes_round_outwards_to_the_nearest_f32() {
+        let xs = [
+            0.0,
+            -0.0,
+            0.1,
+            -0.1,
+            1.0,
+            1e-50,
+            -1e-50,
+            123_456.789,
+            -7e4,
+            1e6,
+            3.4e38,
+            1e300,
+            -1e300,
+            f64::MAX,
+            f64::MIN,
+        ];
+        for x in xs {
+            let (lo, hi) = (down(x), up(x));
+            assert!(f64::from(lo) <= x && x <= f64::from(hi), "{x}: {lo} {hi}");
+            // the nearest such: one step further inwards crosses `x`
+            assert!(lo == f32::MAX || f64::from(lo.next_up()) > x, "{x}: {lo}");
+            assert!(hi == f32::MIN || f64::from(hi.next_down()) < x, "{x}: {hi}");
+        }
+        // values an f32 holds stay as they are
+        assert_eq!((down(0.5), up(0.5)), (0.5, 0.5));
+    }
+
+    #[test]
+    fn a_tree_holds_every_point_once_and_counts_them() {
+        let ends: Vec<(P2, P2)> = (0..200)
+            .map(|i| {
+                let x = f64::from(i) * 0.37;
+                (P2::new(x, (x * 3.0).sin()), P2::new(x + 0.37, 0.5))
+            })
+            .collect();
+        let passes: Vec<Vec<f64>> = (0..200).map(|i| vec![1.0; 1 + i % 3]).collect();
+        let lists = Lists {
+            ends: &ends,
+            passes: &passes,
+        };
+        let mut tree = PassPoints::new(&lists).expect("finite");
+        let total: usize = passes.iter().map(Vec::len).sum();
+        assert_eq!(tree.pts.len(), 2 * total);
+        assert_eq!(tree.nodes.len(), node_count(2 * total));
+        // boxes hold their points; leaves 16 to 32 points
+        for (i, n) in tree.nodes.iter().enumerate() {
+            for q in &tree.pts[n.start as usize..n.end as usize] {
+                let [x, y, z] = q.p;
+                assert!(tree.in_box(P3 { x, y, z }, i), "node {i}");
+            }
+            if n.left == 0 {
+                assert!((LEAF / 2..=LEAF).contains(&((n.end - n.start) as usize)));
+            }
+        }
+        // removing a point twice counts it off once
+        let leaf = tree.remove(5);
+        assert_eq!(tree.remove(5), leaf);
+        assert_eq!(tree.nodes[0].alive as usize, 2 * total - 1);
+        assert_eq!(tree.nodes[leaf].left, 0);
+        assert!((tree.nodes[leaf].start..tree.nodes[leaf].end).contains(&5));
+    }
 }
