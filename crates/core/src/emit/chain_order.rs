@@ -2,28 +2,36 @@
 //!
 //! [`fast_order_reference`] is the spec's sequential scan, quadratic in the number of
 //! segments. [`FastOrder`] gives the identical order in about O(n log n), one step at a time
-//! (the emission pulls it: no list of the order is kept): the end points of all passes, as
-//! 3-D points `[x, y, z_pass]`, sit in a static k-d tree; the candidate of a segment is its
-//! next pass (points of deeper passes, and of passes already milled, are skipped). Each step
-//! runs the spec's scan over only the candidates nearest the head.
+//! over a [`PassSource`] (the chain answers for its ends and depths; no lists of them): the
+//! end points of all passes, as 3-D points `[x, y, z_pass]`, sit in a static k-d tree; the
+//! candidate of a segment is its next pass (points of deeper passes, and of passes already
+//! milled, are skipped). Each step runs the spec's scan over only the candidates nearest the
+//! head.
 //!
 //! Why that is exact. Let S be a set of candidates such that every tip in S is `lt` every
 //! tip outside S. In the full scan a candidate outside S never replaces a best from S (its
 //! tip is larger), and the first member of S met replaces any best from outside S; from
 //! there on the best stays in S and changes exactly as in a scan over S alone, in list
-//! order. So scanning S alone gives the full scan's answer. S is grown nearest-first until
-//! the next point is at least `L` away with `L − M > 2·eps·(L + 0.001)`, `M` the largest tip
-//! in S. A candidate not yet met has both its points at ≥ `L`, so its tip `f ≥ L`, and for
-//! every tip `a ≤ M` of S: `f − a ≥ (f − L) + (L − M) > eps·(f + 0.001) + eps·(L + 0.001)`,
-//! i.e. `lt(a, f)` with a margin far above rounding. Without such a gap S ends up holding
-//! every candidate: the full scan. `L` is a lower bound of the spec's distance: queue keys
-//! are squared distances computed like [`P3::dist`] (bounding boxes: of the head clamped
-//! into a box that holds all the node's points, never more), shrunk by 1e-12. Tips are
-//! computed from the chain's own end points and depths, exactly as the scan does; the tree's
-//! copies of the points only decide which candidates are met. Node counts of the points left
-//! only prune: a milled pass leaves the tree by the point it was met at at once, by its
-//! other point when a later query meets that (until then its nodes count one point too
-//! many, which costs a visit, never a candidate). Non-finite input falls back to the scan.
+//! order. So scanning S alone gives the full scan's answer (a segment met at both ends of
+//! its pass is in S twice with the same tip: the scan keeps the first, no difference). S is
+//! grown nearest-first until the next point is at least `L` away with
+//! `L − M > 2·eps·(L + 0.001)`, `M` the largest tip in S. A candidate not yet met has both
+//! its points at ≥ `L`, so its tip `f ≥ L`, and for every tip `a ≤ M` of S:
+//! `f − a ≥ (f − L) + (L − M) > eps·(f + 0.001) + eps·(L + 0.001)`, i.e. `lt(a, f)` with a
+//! margin far above rounding. Without such a gap S ends up holding every candidate: the
+//! full scan. `L` is a lower bound of the spec's distance: queue keys are squared distances
+//! computed like [`P3::dist`] (of a box: to the head clamped into the box, which holds all
+//! the node's points as it is rounded outwards to `f32`, so never more), shrunk by 1e-12.
+//! Tips are computed from the chain's own end points and depths, exactly as the scan does;
+//! the tree's copies of the points (the same bits) only decide which candidates are met.
+//! Node counts of the points left only prune: a milled pass leaves the tree by the point it
+//! was met at at once, by its other point when a later query meets that (until then its
+//! nodes count one point too many, which costs a visit, never a candidate). A first ball may
+//! start below the root only where no point outside is within reach (the leaf anchors).
+//! Non-finite input falls back to the scan.
+//!
+//! Memory, for a chain of a million passes: 32 bytes a point (two a pass), 3 to 4 for the
+//! nodes (16 to 32 points a leaf, 44 bytes a node), 4 a segment for its passes milled.
 
 use crate::geom::{lt, EPS, P2, P3};
 use std::cmp::Reverse;
