@@ -441,8 +441,17 @@ impl PassPoints {
     }
 }
 
-/// A candidate met in a round: segment, forward, tip and the tree point it was met at.
-type Met = (u32, bool, f64, u32);
+/// A candidate met in a round.
+#[derive(Clone, Copy)]
+struct Met {
+    seg: u32,
+    forward: bool,
+    tip: f64,
+    /// The tree point it was met at.
+    at: u32,
+    /// The end of the pass in its direction: the next head if it is milled.
+    exit: P3,
+}
 
 /// The candidates of one step, found in the k-d tree.
 struct Candidates {
@@ -479,7 +488,16 @@ impl Candidates {
         let de = head.dist(b.with_z(z));
         let tip = ds.min(de);
         self.max_tip = self.max_tip.max(tip);
-        self.met.push((seg, lt(ds, de), tip, i as u32));
+        let forward = lt(ds, de);
+        // the end of the geometry in pass direction (a reversed geometry ends at the start)
+        let exit = if forward { b } else { a }.with_z(z);
+        self.met.push(Met {
+            seg,
+            forward,
+            tip,
+            at: i as u32,
+            exit,
+        });
     }
 
     /// Whether every candidate not met (all its points at least `reach` away) has a tip
@@ -490,10 +508,10 @@ impl Candidates {
 
     /// The spec's scan over the met candidates, in list order.
     fn best(&mut self) -> Option<Met> {
-        self.met.sort_unstable_by_key(|m| m.0);
+        self.met.sort_unstable_by_key(|m| m.seg);
         let mut best: Option<Met> = None;
         for &m in &self.met {
-            if best.is_none_or(|b| lt(m.2, b.2)) {
+            if best.is_none_or(|b| lt(m.tip, b.tip)) {
                 best = Some(m);
             }
         }
@@ -666,16 +684,14 @@ impl TreeOrder {
         for i in cand.milled.drain(..) {
             tree.remove(i as usize);
         }
-        let (seg, forward, _, at) = cand.best()?;
-        let si = seg as usize;
+        let best = cand.best()?;
+        let si = best.seg as usize;
         let k = cand.done_count[si];
-        *last_leaf = Some(tree.remove(at as usize));
+        *last_leaf = Some(tree.remove(best.at as usize));
         cand.done_count[si] = k + 1;
-        let (a, b) = c.ends(si);
-        let z = c.depth(si, k as usize);
-        self.head = if forward { b } else { a }.with_z(z);
+        self.head = best.exit;
         self.steps_left -= 1;
-        Some((si, k as usize, forward))
+        Some((si, k as usize, best.forward))
     }
 }
 
