@@ -475,4 +475,83 @@ mod tests {
             assert_eq!(unpack(pack(si, fwd)), (si, fwd));
         }
     }
+
+    #[test]
+    fn a_chain_view_orders_like_the_lists_of_its_passes() {
+        use crate::diag::Origin;
+        use crate::emit::chain_order::{fast_order_reference, FastOrder};
+        // lines and arcs, milled and marked, in a rotated frame with a raised height
+        let t = Transform::between(
+            P2::new(0.0, 0.0),
+            P2::new(10.0, 0.0),
+            P2::new(3.0, -2.0),
+            P2::new(3.0 + 6.0, -2.0 + 8.0),
+        )
+        .expect("a frame");
+        let h = 0.25;
+        let seg = |geom: Geom, style: Style, depth: f64| ChainSeg {
+            geom,
+            style,
+            f: 100.0,
+            b: Some(depth),
+            d: Some(depth + 0.4),
+            q: None,
+            bt: false,
+            bars: None,
+            origin: Origin::Options,
+        };
+        let mut segs = Vec::new();
+        for i in 0..40 {
+            let x = f64::from(i);
+            let (a, b) = (P2::new(x, 0.0), P2::new(x + 1.0, 0.0));
+            segs.push(match i % 4 {
+                0 => seg(Geom::Line { a, b }, Style::Mill, -0.3),
+                1 => seg(
+                    Geom::Arc {
+                        c: P2::new(x + 0.5, 0.0),
+                        r: 0.5,
+                        a0: 180.0,
+                        a1: 0.0,
+                        ccw: false,
+                    },
+                    Style::Mill,
+                    -1.7,
+                ),
+                2 => seg(Geom::Line { a, b }, Style::Mark, -0.9),
+                _ => seg(Geom::Line { a, b }, Style::Mill, 0.1 * x - 2.0),
+            });
+        }
+        let (first, infeed) = (h + 2.0 - 0.6, 0.6);
+        let mut sp = SharedPasses::new(first, infeed, segs.len());
+        let mut ends = Vec::new();
+        let mut lists = Vec::new();
+        for s in &segs {
+            let bottom = seg_bottom(s, h).expect("a bottom");
+            sp.push(bottom);
+            let g = s.geom.transform(&t);
+            ends.push((g.start(), g.end()));
+            lists.push(pass_depths(first, bottom, infeed));
+        }
+        let view = ChainView {
+            segs: &segs,
+            t,
+            h,
+            passes: &sp,
+        };
+        let head = ends[0].0.with_z(lists[0][0]);
+        let want = fast_order_reference(&ends, &lists, head);
+        assert_eq!(want.len(), lists.iter().map(Vec::len).sum::<usize>());
+        let mut order = FastOrder::indexed(&view, head);
+        let mut done = vec![0; segs.len()];
+        for &(si, forward) in &want {
+            assert_eq!(order.next_pass(), Some((si, done[si], forward)));
+            assert_eq!(
+                view.depth(si, done[si]).to_bits(),
+                lists[si][done[si]].to_bits()
+            );
+            done[si] += 1;
+        }
+        assert_eq!(order.next_pass(), None);
+        assert_eq!(FastOrder::new(&view, head).collect::<Vec<_>>(), want);
+    }
 }
