@@ -30,7 +30,8 @@ impl Emitter<'_> {
                 return Ok(());
             }
             passes.push(bottom);
-            // the true count too: an infeed below the depths' rounding repeats a level
+            // the true count too: levels within the bottom's tolerance (`ge`) can outnumber
+            // the estimate
             passes_total += passes.count(passes.counts.len() - 1);
             if passes_total > MAX_ITEMS {
                 self.full = true;
