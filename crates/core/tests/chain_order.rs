@@ -1,4 +1,4 @@
-//! The fast pass order of a chain (R*-tree, §7.2) against the spec's sequential scan on
+//! The fast pass order of a chain (k-d tree, §7.2) against the spec's sequential scan on
 //! thousands of random chains: polylines, closed loops, stars, grids, duplicated and
 //! reversed segments, different pass counts, exact ties and near ties at scales 1e-3…1e5.
 //! Deterministic: a fixed-seed SplitMix64, so every run checks the same chains.

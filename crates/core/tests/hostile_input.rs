@@ -310,3 +310,19 @@ fn a_file_larger_than_the_limit_is_an_error_not_an_exhausted_memory() {
     });
     assert_eq!(errors.first(), Some(&Msg::FileTooLarge), "{errors:?}");
 }
+
+#[test]
+fn passes_within_the_depth_tolerance_count_against_the_bound() {
+    // W = B at 800,000 mm: the pass estimate says 2 a segment, but the levels stay `ge` the
+    // bottom within its tolerance (0.8 mm) for 8,000 passes; 300 segments are more passes
+    // than a program may have
+    let mut d = Drawing::new();
+    d.start(L, (0.0, 0.0), "O2 T900000 S950000 W800000 I0,0001 B800000")
+        .end(L, (300.0, 0.0));
+    for i in 0..300 {
+        let x = f64::from(i);
+        d.line(L, "CONTINUOUS", (x, 0.0), (x + 1.0, 0.0), "");
+    }
+    let errors = within(20, move || compile_one(&d).errors());
+    assert!(errors.contains(&Msg::TooManyMoves), "{errors:?}");
+}
