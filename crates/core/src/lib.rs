@@ -406,8 +406,9 @@ fn generate_and_review_as(
                     let _ = std::fs::remove_file(&path);
                 })?;
                 let (staged, reviewer) = staging.close().map_err(|d| vec![d])?;
-                let review = reviewer.finish(model, &generated.line_sources, lang, |wanted| {
-                    staged.line_texts(wanted)
+                // the second reading (clamps, depths, stock model) from the file
+                let review = reviewer.finish(model, &generated.line_sources, lang, |feed| {
+                    staged.replay(feed)
                 });
                 Ok((generated, review, Some(staged)))
             })
@@ -430,14 +431,19 @@ fn generate_and_review_as(
             (generated, review, None)
         })
     } else {
-        job.run(reviewer()).map(|(generated, reviewer)| {
-            let review = reviewer.finish(model, &generated.line_sources, lang, |wanted| {
-                // the few lines findings point at, from a second emission
-                job.run(second_opinion::LineCapture::new(wanted))
-                    .map(|(_, capture)| capture.texts)
-                    .unwrap_or_default()
-            });
-            (generated, review, None)
+        job.run(reviewer()).and_then(|(generated, reviewer)| {
+            let again = reviewer.reread();
+            if !again.wants_lines() {
+                let review = again.finish(model, &generated.line_sources, lang);
+                return Ok((generated, review, None));
+            }
+            // the second reading (clamps, depths, stock model, the lines findings name) from
+            // a second emission, which also gives the line sources (the first's dropped
+            // before: the same program, and the checker says if it was not)
+            drop(generated);
+            let (generated, again) = job.run(again)?;
+            let review = again.finish(model, &generated.line_sources, lang);
+            Ok((generated, review, None))
         })
     };
     let (generated, review, staged) = match generated {

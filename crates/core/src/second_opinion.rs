@@ -9,9 +9,8 @@ use crate::emit::program::LineSources;
 use crate::emit::{LineSink, MAX_ITEMS, MAX_LINES};
 use crate::model::{Element, Model};
 use millpath_verify::{
-    line_texts, verify, Clamp, Dialect, FindingKind, Limits, Options, Severity, Verifier,
+    verify, Clamp, Dialect, FindingKind, Limits, Options, Rereading, Severity, Verifier,
 };
-use std::collections::HashMap;
 
 /// The material top, tool diameter and deepest drawn depth the checker needs. The checker's
 /// stock is one block, but a subpath's H moves its material top (T + H): every part of the
@@ -59,13 +58,19 @@ pub fn review(
             break;
         }
     }
-    reviewer.finish(model, line_sources, lang, |wanted| {
-        line_texts(body.split('\n'), wanted)
+    reviewer.finish(model, line_sources, lang, |feed| {
+        for line in body.split('\n') {
+            if !feed(line) {
+                break;
+            }
+        }
     })
 }
 
 /// The checker of one program as it is written: a [`LineSink`] the emitter feeds line by
-/// line, so a check never holds the program ([`review`] feeds it a written text).
+/// line, so a check never holds the program ([`review`] feeds it a written text). It keeps
+/// no moves either: the clamps, depths and stock model run on a second reading
+/// ([`Reviewer::reread`]).
 pub struct Reviewer {
     verifier: Verifier,
     strict: bool,
@@ -96,7 +101,7 @@ impl Reviewer {
             Ours::Grbl => (Dialect::Grbl, true),
         };
         let (top, tool, bottom) = stock_of(model);
-        let verifier = Verifier::new(Options {
+        let verifier = Verifier::lean(Options {
             dialect: checked_as,
             top: Some(top),
             tool: Some(tool),
@@ -120,22 +125,65 @@ impl Reviewer {
         }
     }
 
-    /// The findings, located at their elements. `texts(lines)`: the texts of the program's
-    /// lines the findings point at.
+    /// The findings, located at their elements. `replay(feed)`: the program's lines again,
+    /// in order, to `feed` until it answers `false`.
     pub fn finish(
         self,
         model: &Model,
         line_sources: &LineSources,
         lang: Lang,
-        texts: impl FnOnce(&[usize]) -> HashMap<usize, String>,
+        replay: impl FnOnce(&mut dyn FnMut(&str) -> bool),
     ) -> Review {
-        let Reviewer {
-            verifier,
+        let mut again = self.reread();
+        if again.wants_lines() {
+            replay(&mut |l| again.rereading.line(l));
+        }
+        again.finish(model, line_sources, lang)
+    }
+
+    /// The end of the first reading; the second is a [`LineSink`] too (a check's second
+    /// emission).
+    pub fn reread(self) -> Rereview {
+        Rereview {
+            rereading: self.verifier.reread(),
+            strict: self.strict,
+            tool: self.tool,
+            clamps_only: self.clamps_only,
+        }
+    }
+}
+
+/// The second reading of a program ([`Reviewer::reread`]).
+pub struct Rereview {
+    rereading: Rereading,
+    strict: bool,
+    tool: f64,
+    clamps_only: bool,
+}
+
+impl LineSink for Rereview {
+    fn line(&mut self, text: &str, _source: u32) {
+        for part in text.split('\n') {
+            self.rereading.line(part);
+        }
+    }
+}
+
+impl Rereview {
+    /// Are the program's lines wanted again? (`false`: no second emission needed.)
+    pub fn wants_lines(&self) -> bool {
+        self.rereading.wants_lines()
+    }
+
+    /// The findings, located at their elements.
+    pub fn finish(self, model: &Model, line_sources: &LineSources, lang: Lang) -> Review {
+        let Rereview {
+            rereading,
             strict,
             tool,
             clamps_only,
         } = self;
-        let report = verifier.finish(texts);
+        let report = rereading.finish();
         let vlang = match lang {
             Lang::En => millpath_verify::Lang::En,
             Lang::De => millpath_verify::Lang::De,
@@ -170,43 +218,6 @@ impl Reviewer {
         Review {
             diagnostics,
             removed_volume: report.stock.map(|_| report.removed_volume_mm3),
-        }
-    }
-}
-
-/// The texts of some lines of a program as the emitter writes it again (a check keeps no
-/// text: the few lines findings point at are taken from a second emission).
-pub struct LineCapture {
-    wanted: Vec<usize>,
-    next: usize,
-    line: usize,
-    pub texts: HashMap<usize, String>,
-}
-
-impl LineCapture {
-    /// `wanted`: 1-based line numbers, sorted.
-    pub fn new(wanted: &[usize]) -> LineCapture {
-        LineCapture {
-            wanted: wanted.to_vec(),
-            next: 0,
-            line: 0,
-            texts: HashMap::new(),
-        }
-    }
-}
-
-impl LineSink for LineCapture {
-    fn line(&mut self, text: &str, _source: u32) {
-        for part in text.split('\n') {
-            self.line += 1;
-            while self.wanted.get(self.next).is_some_and(|&w| w < self.line) {
-                self.next += 1;
-            }
-            if self.wanted.get(self.next) == Some(&self.line) {
-                let part = part.strip_suffix('\r').unwrap_or(part);
-                self.texts.insert(self.line, part.to_string());
-                self.next += 1;
-            }
         }
     }
 }

@@ -9,8 +9,6 @@ use crate::emit::LineSink;
 use crate::probe::adjustz::{banner_index_of_first, banner_with_digest, set_digest_lines};
 use crate::second_opinion::Reviewer;
 use crate::{args, emit::as_comment};
-use millpath_verify::line_texts;
-use std::collections::HashMap;
 use std::fs::File;
 use std::io::{BufRead, BufReader, BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -118,11 +116,23 @@ impl Staging {
 }
 
 impl Staged {
-    /// The texts of the lines `wanted` (1-based, sorted) of the closed file.
-    pub(crate) fn line_texts(&self, wanted: &[usize]) -> HashMap<usize, String> {
-        match File::open(&self.path) {
-            Ok(f) => line_texts(BufReader::new(f).lines().map_while(Result::ok), wanted),
-            Err(_) => HashMap::new(),
+    /// The closed file's lines again, in order (without their `\n`), to `feed` until it
+    /// answers `false`: read through a buffer, never the whole file; a line that cannot be
+    /// read ends them (the checker says the reading was short).
+    pub(crate) fn replay(&self, feed: &mut dyn FnMut(&str) -> bool) {
+        let Ok(f) = File::open(&self.path) else {
+            return;
+        };
+        let mut reader = BufReader::with_capacity(1 << 16, f);
+        let mut line = String::new();
+        loop {
+            line.clear();
+            if !matches!(reader.read_line(&mut line), Ok(n) if n > 0) {
+                return;
+            }
+            if !feed(line.strip_suffix('\n').unwrap_or(&line)) {
+                return;
+            }
         }
     }
 
