@@ -431,19 +431,10 @@ fn generate_and_review_as(
             (generated, review, None)
         })
     } else {
-        job.run(reviewer()).and_then(|(generated, reviewer)| {
-            let again = reviewer.reread();
-            if !again.wants_lines() {
-                let review = again.finish(model, &generated.line_sources, lang);
-                return Ok((generated, review, None));
-            }
-            // the second reading (clamps, depths, stock model, the lines findings name) from
-            // a second emission, which also gives the line sources (the first's dropped
-            // before: the same program, and the checker says if it was not)
-            drop(generated);
-            let (generated, again) = job.run(again)?;
-            let review = again.finish(model, &generated.line_sources, lang);
-            Ok((generated, review, None))
+        job.run(reviewer().spooling()).map(|(generated, reviewer)| {
+            // the second reading (clamps, depths, stock model) from the lines kept compressed
+            let review = reviewer.finish_spooled(model, &generated.line_sources, lang);
+            (generated, review, None)
         })
     };
     let (generated, review, staged) = match generated {

@@ -8,9 +8,11 @@ use crate::emit::dialect::lowest_depth;
 use crate::emit::program::LineSources;
 use crate::emit::{LineSink, MAX_ITEMS, MAX_LINES};
 use crate::model::{Element, Model};
+use lz4_flex::frame::{FrameDecoder, FrameEncoder};
 use millpath_verify::{
-    verify, Clamp, Dialect, FindingKind, Limits, Options, Rereading, Severity, Verifier,
+    only_a_comment, verify, Clamp, Dialect, FindingKind, Limits, Options, Severity, Verifier,
 };
+use std::io::{BufRead, BufReader, Write};
 
 /// The material top, tool diameter and deepest drawn depth the checker needs. The checker's
 /// stock is one block, but a subpath's H moves its material top (T + H): every part of the
@@ -69,20 +71,29 @@ pub fn review(
 
 /// The checker of one program as it is written: a [`LineSink`] the emitter feeds line by
 /// line, so a check never holds the program ([`review`] feeds it a written text). It keeps
-/// no moves either: the clamps, depths and stock model run on a second reading
-/// ([`Reviewer::reread`]).
+/// no moves either: the clamps, depths and stock model run on a second reading of the lines
+/// ([`Reviewer::finish`]), from the written file, or from its own [`Spool`].
 pub struct Reviewer {
     verifier: Verifier,
     strict: bool,
     tool: f64,
     clamps_only: bool,
+    spool: Option<Spool>,
+    /// The checker still reads (no limit reached).
+    reading: bool,
 }
 
 impl LineSink for Reviewer {
     fn line(&mut self, text: &str, _source: u32) {
         // one written line is one program line; split as a text would be, should one hold more
         for part in text.split('\n') {
-            self.verifier.line(part);
+            if !self.reading {
+                return;
+            }
+            self.reading = self.verifier.line(part);
+            if let Some(spool) = &mut self.spool {
+                spool.push(part);
+            }
         }
     }
 }
@@ -122,11 +133,38 @@ impl Reviewer {
             strict,
             tool,
             clamps_only,
+            spool: None,
+            reading: true,
         }
     }
 
+    /// The lines read are kept in a [`Spool`] for the second reading
+    /// ([`Reviewer::finish_spooled`]): for a check, which writes no file.
+    pub fn spooling(self) -> Reviewer {
+        Reviewer {
+            spool: Some(Spool::new()),
+            ..self
+        }
+    }
+
+    /// [`Reviewer::finish`] with the lines of the spool.
+    pub fn finish_spooled(
+        mut self,
+        model: &Model,
+        line_sources: &LineSources,
+        lang: Lang,
+    ) -> Review {
+        let spool = self.spool.take();
+        self.finish(model, line_sources, lang, |feed| {
+            if let Some(spool) = spool {
+                spool.replay(feed);
+            }
+        })
+    }
+
     /// The findings, located at their elements. `replay(feed)`: the program's lines again,
-    /// in order, to `feed` until it answers `false`.
+    /// in order, to `feed` until it answers `false` (the checker says when a second reading
+    /// falls short).
     pub fn finish(
         self,
         model: &Model,
@@ -134,56 +172,14 @@ impl Reviewer {
         lang: Lang,
         replay: impl FnOnce(&mut dyn FnMut(&str) -> bool),
     ) -> Review {
-        let mut again = self.reread();
-        if again.wants_lines() {
-            replay(&mut |l| again.rereading.line(l));
-        }
-        again.finish(model, line_sources, lang)
-    }
-
-    /// The end of the first reading; the second is a [`LineSink`] too (a check's second
-    /// emission).
-    pub fn reread(self) -> Rereview {
-        Rereview {
-            rereading: self.verifier.reread(),
-            strict: self.strict,
-            tool: self.tool,
-            clamps_only: self.clamps_only,
-        }
-    }
-}
-
-/// The second reading of a program ([`Reviewer::reread`]).
-pub struct Rereview {
-    rereading: Rereading,
-    strict: bool,
-    tool: f64,
-    clamps_only: bool,
-}
-
-impl LineSink for Rereview {
-    fn line(&mut self, text: &str, _source: u32) {
-        for part in text.split('\n') {
-            self.rereading.line(part);
-        }
-    }
-}
-
-impl Rereview {
-    /// Are the program's lines wanted again? (`false`: no second emission needed.)
-    pub fn wants_lines(&self) -> bool {
-        self.rereading.wants_lines()
-    }
-
-    /// The findings, located at their elements.
-    pub fn finish(self, model: &Model, line_sources: &LineSources, lang: Lang) -> Review {
-        let Rereview {
-            rereading,
+        let Reviewer {
+            verifier,
             strict,
             tool,
             clamps_only,
+            ..
         } = self;
-        let report = rereading.finish();
+        let report = verifier.finish(replay);
         let vlang = match lang {
             Lang::En => millpath_verify::Lang::En,
             Lang::De => millpath_verify::Lang::De,
@@ -218,6 +214,57 @@ impl Rereview {
         Review {
             diagnostics,
             removed_volume: report.stock.map(|_| report.removed_volume_mm3),
+        }
+    }
+}
+
+/// The lines of a program as the emitter writes them, kept compressed (lz4) for the
+/// checker's second reading: a check has no file to read again, and a second emission would
+/// take as long as the first. A line that is only a comment is kept empty: it moves nothing,
+/// and the checker took the texts of those it names on the first reading. So what is kept is
+/// mostly the moves, a few bytes each.
+pub struct Spool {
+    /// `None` once a write failed (the second reading then falls short, and says so).
+    out: Option<FrameEncoder<Vec<u8>>>,
+}
+
+impl Spool {
+    fn new() -> Spool {
+        Spool {
+            out: Some(FrameEncoder::new(Vec::new())),
+        }
+    }
+
+    fn push(&mut self, line: &str) {
+        let Some(out) = &mut self.out else { return };
+        let kept = if only_a_comment(line) { "" } else { line };
+        if out
+            .write_all(kept.as_bytes())
+            .and_then(|()| out.write_all(b"\n"))
+            .is_err()
+        {
+            self.out = None;
+        }
+    }
+
+    fn replay(self, feed: &mut dyn FnMut(&str) -> bool) {
+        if let Some(Ok(packed)) = self.out.map(FrameEncoder::finish) {
+            replay_lines(BufReader::new(FrameDecoder::new(&packed[..])), feed);
+        }
+    }
+}
+
+/// The lines of `reader` (without their `\n`) to `feed` until it answers `false`, through one
+/// buffer; a line that cannot be read ends them.
+pub(crate) fn replay_lines(mut reader: impl BufRead, feed: &mut dyn FnMut(&str) -> bool) {
+    let mut line = String::new();
+    loop {
+        line.clear();
+        if !matches!(reader.read_line(&mut line), Ok(n) if n > 0) {
+            return;
+        }
+        if !feed(line.strip_suffix('\n').unwrap_or(&line)) {
+            return;
         }
     }
 }

@@ -7,7 +7,7 @@
 use crate::diag::{Diagnostic, Msg, Origin};
 use crate::emit::LineSink;
 use crate::probe::adjustz::{banner_index_of_first, banner_with_digest, set_digest_lines};
-use crate::second_opinion::Reviewer;
+use crate::second_opinion::{replay_lines, Reviewer};
 use crate::{args, emit::as_comment};
 use std::fs::File;
 use std::io::{BufRead, BufReader, BufWriter, Write};
@@ -118,21 +118,10 @@ impl Staging {
 impl Staged {
     /// The closed file's lines again, in order (without their `\n`), to `feed` until it
     /// answers `false`: read through a buffer, never the whole file; a line that cannot be
-    /// read ends them (the checker says the reading was short).
+    /// read ends them (the checker says the reading fell short).
     pub(crate) fn replay(&self, feed: &mut dyn FnMut(&str) -> bool) {
-        let Ok(f) = File::open(&self.path) else {
-            return;
-        };
-        let mut reader = BufReader::with_capacity(1 << 16, f);
-        let mut line = String::new();
-        loop {
-            line.clear();
-            if !matches!(reader.read_line(&mut line), Ok(n) if n > 0) {
-                return;
-            }
-            if !feed(line.strip_suffix('\n').unwrap_or(&line)) {
-                return;
-            }
+        if let Ok(f) = File::open(&self.path) {
+            replay_lines(BufReader::with_capacity(1 << 16, f), feed);
         }
     }
 

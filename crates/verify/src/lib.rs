@@ -269,6 +269,17 @@ pub fn line_texts<S: AsRef<str>>(
     texts
 }
 
+/// A line that is one parenthesised comment and nothing else (blanks around): it moves
+/// nothing and changes no mode, so a second reading of the program may skip it (a caller
+/// that keeps the lines for one may keep such a line empty).
+pub fn only_a_comment(line: &str) -> bool {
+    let t = line.trim();
+    t.len() >= 2
+        && t.starts_with('(')
+        && t.ends_with(')')
+        && !t[1..t.len() - 1].contains(['(', ')'])
+}
+
 /// The nominal top of a program: its `(MILLPATH-SURFACE T=…)` record's, else its
 /// `(MILLPATH-STOCK T=…)` comment's.
 pub fn program_top(program: &str) -> Option<f64> {

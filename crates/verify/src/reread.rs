@@ -7,17 +7,22 @@
 
 use crate::checks::{below_bottom, clamps_of, ClampCheck, Extent, StockRun};
 use crate::machine::{Machine, Move, Raw};
+use crate::only_a_comment;
 use crate::stream::{execute, missing_params};
 use crate::{
     Finding, FindingKind, Limit, Limits, Options, Report, Severity, SPLIT_TOLERANCE, Z_TOLERANCE,
 };
 use std::collections::HashMap;
 
-/// What a lean checker keeps of the first reading's moves.
+/// What a lean checker keeps of its first reading: its moves' extent and count, and the
+/// texts of the lines its findings name (the second reading skips comments).
 #[derive(Debug, Default)]
 pub(crate) struct Folded {
     extent: Extent,
     moves: usize,
+    texts: HashMap<usize, String>,
+    /// The last line that is not blank (a missing program end is found there).
+    last: String,
 }
 
 impl Folded {
@@ -27,6 +32,30 @@ impl Folded {
             self.moves += 1;
         }
     }
+
+    /// Line `no` has a finding.
+    pub(crate) fn named(&mut self, no: usize, raw: &str) {
+        self.texts.entry(no).or_insert_with(|| clean(raw));
+    }
+
+    pub(crate) fn last_text(&mut self, l: &str) {
+        self.last.clear();
+        self.last.extend(l.trim().chars().take(TEXT_CHARS));
+    }
+
+    /// The last line that is not blank, `no`, has a finding.
+    pub(crate) fn last_text_named(&mut self, no: usize) {
+        let last = std::mem::take(&mut self.last);
+        self.texts.entry(no).or_insert(last);
+    }
+}
+
+/// A finding's text: its line trimmed, at most this many characters.
+const TEXT_CHARS: usize = 200;
+
+fn clean(raw: &str) -> String {
+    let l = raw.strip_suffix('\r').unwrap_or(raw);
+    l.trim().chars().take(TEXT_CHARS).collect()
 }
 
 /// A program's second reading: give it the lines again ([`Rereading::line`]) while it
@@ -72,7 +101,7 @@ impl Rereading {
             limits,
             report,
             findings,
-            texts: Texts::new(known, usize::MAX),
+            texts: Texts::new(known, 0),
             read: 0,
             pass: None,
         }
@@ -99,8 +128,6 @@ impl Rereading {
             }
             (top, tool) => (None, Some(missing_params(top, tool))),
         };
-        let mut known: Vec<usize> = findings.iter().filter_map(|f| f.line).collect();
-        known.sort_unstable();
         let pass = Pass {
             m: Machine::new(options.dialect),
             lines: report.lines,
@@ -119,8 +146,12 @@ impl Rereading {
             limits: pass.options.limits,
             report,
             findings,
-            // the lines of the first findings in line order: those a report can list
-            texts: Texts::new(known, pass.options.limits.max_findings),
+            // the lines of the first findings the checks make in line order: those a report
+            // can list
+            texts: Texts {
+                map: folded.texts,
+                ..Texts::new(Vec::new(), pass.options.limits.max_findings)
+            },
             read: 0,
             pass: Some(Box::new(pass)),
         }
@@ -220,6 +251,9 @@ impl Pass {
     /// something on it.
     fn line(&mut self, no: usize, raw: &str) -> bool {
         let l = raw.strip_suffix('\r').unwrap_or(raw);
+        if only_a_comment(l) {
+            return false;
+        }
         execute(&mut self.m, no, l, self.options.limits.max_line_len, |_| {});
         // the first reading reported these
         self.m.findings.clear();
@@ -260,14 +294,16 @@ fn cap(findings: &mut Vec<Raw>, max: usize) {
     }
 }
 
-/// The texts (trimmed, at most 200 characters) of the lines findings name, taken as the
-/// lines pass: those `known` beforehand, and those a check names as it reads them, up to
-/// `cap` lines. Findings are listed in line order up to a limit, so the first `cap` lines
-/// with findings hold every line a report of at most `cap` findings names.
+/// The texts of the lines findings name, taken as the lines pass: those `known` beforehand,
+/// and the first `cap` lines a check names as it reads them. Findings are listed in line
+/// order up to a limit, so those lines hold every line of theirs a report of at most `cap`
+/// findings names.
 struct Texts {
     known: Vec<usize>,
     next: usize,
     cap: usize,
+    /// Lines taken as named by a check.
+    named: usize,
     map: HashMap<usize, String>,
 }
 
@@ -278,6 +314,7 @@ impl Texts {
             known,
             next: 0,
             cap,
+            named: 0,
             map: HashMap::new(),
         }
     }
@@ -291,10 +328,11 @@ impl Texts {
         while self.known.get(self.next).is_some_and(|&k| k < no) {
             self.next += 1;
         }
-        let known = self.known.get(self.next) == Some(&no);
-        if (known || named) && self.map.len() < self.cap {
-            let l = raw.strip_suffix('\r').unwrap_or(raw);
-            self.map.insert(no, l.trim().chars().take(200).collect());
+        if self.known.get(self.next) == Some(&no) {
+            self.map.insert(no, clean(raw));
+        } else if named && self.named < self.cap && !self.map.contains_key(&no) {
+            self.named += 1;
+            self.map.insert(no, clean(raw));
         }
     }
 }

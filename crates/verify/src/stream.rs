@@ -114,6 +114,9 @@ impl Verifier {
                 kind: FindingKind::Limit(Limit::Lines(limits.max_lines)),
                 severity: Severity::Error,
             });
+            if let Some(f) = &mut self.folded {
+                f.named(no, raw);
+            }
             self.done = true;
             return false;
         }
@@ -121,7 +124,11 @@ impl Verifier {
         self.line_count = no;
         if !l.trim().is_empty() {
             self.last_text = Some(no);
+            if let Some(f) = &mut self.folded {
+                f.last_text(l);
+            }
         }
+        let before = (self.m.findings.len(), self.extra.len());
         let (surface, rise, extra) = (&self.surface, self.rise, &mut self.extra);
         execute(&mut self.m, no, l, limits.max_line_len, |b| {
             if surface.adjusted {
@@ -136,6 +143,14 @@ impl Verifier {
         });
         if let Some(f) = &mut self.folded {
             f.fold(self.m.moves.drain(..));
+            // the texts of the lines found wanting now: the second reading skips comments
+            let found = self.m.findings[before.0..].iter();
+            if found
+                .chain(&self.extra[before.1..])
+                .any(|f| f.line == Some(no))
+            {
+                f.named(no, l);
+            }
         }
         if self.m.findings.len() > limits.max_findings {
             self.done = true;
@@ -165,7 +180,7 @@ impl Verifier {
             extra,
             line_count,
             last_text,
-            folded,
+            mut folded,
             ..
         } = self;
         let limits = options.limits;
@@ -175,6 +190,9 @@ impl Verifier {
                 kind: FindingKind::MissingProgramEnd,
                 severity: Severity::Error,
             });
+            if let (Some(f), Some(no)) = (&mut folded, last_text) {
+                f.last_text_named(no);
+            }
         }
         // the values: options over the comment
         let comment = m.stock.unwrap_or_default();

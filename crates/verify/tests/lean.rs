@@ -260,11 +260,13 @@ fn every_dialect_and_line_end() {
 
 #[test]
 fn mutated_programs_give_the_same_report() {
+    // comments the second reading skips, and some it reads: findings on both kinds
     let good = program(&format!(
-        "(MILLPATH-STOCK T=2.000 O=2.000 BOTTOM=-0.300)\n{}G38.3 Z0 F50.000\nG04 P4\n",
-        slots(3)
+        "(MILLPATH-STOCK T=2.000 O=2.000 BOTTOM=-0.300)\n{}G38.3 Z0 F50.000\nG04 P4\n\
+         (MILLPATH-STOCK T=x)\n  (a (nested) comment)\n(G00 X0 Y0 Z-5)\n(one) G00 Z-0.1 (two)\n",
+        slots(3).replace("G00 Z2.000\n", "  (SweepTo [0 0 2])\nG00 Z2.000\n")
     ));
-    const ALPHABET: &[u8] = b"GMXYZIJKRF0123456789.- ()%\n";
+    const ALPHABET: &[u8] = b"GMXYZIJKRF0123456789.- ()%;\n";
     let mut rng = Rng(7);
     let lines: Vec<&str> = good.lines().collect();
     for round in 0..600 {
@@ -368,4 +370,25 @@ fn a_second_reading_that_is_not_the_first_is_an_error() {
     first(&mut v);
     let r = v.finish(|_| panic!("not asked"));
     assert!(r.findings.is_empty());
+}
+
+#[test]
+fn only_whole_comment_lines_are_skipped_on_the_second_reading() {
+    use millpath_verify::only_a_comment;
+    for l in ["(a)", "  (MillLine s=[0 0] e=[1 1])\r", "()", "(G00 X5)"] {
+        assert!(only_a_comment(l), "{l}");
+    }
+    for l in [
+        "",
+        "(",
+        "(a) G00 X1",
+        "G00 X1 (a)",
+        "(a (b) c)",
+        "(a) (b)",
+        "(a",
+        ";(a)",
+        "%",
+    ] {
+        assert!(!only_a_comment(l), "{l}");
+    }
 }
