@@ -169,3 +169,91 @@ fn lean_and_kept_checkers_agree_on_every_compiled_program() {
         "{hits} {below} {rapids} {capped} {stopped}"
     );
 }
+
+/// A zigzag of 40 cuts over a box: clamp hits on many lines, in every dialect.
+fn zigzag() -> String {
+    let mut t =
+        String::from("path 3001.1P {\n  start (0, 0)  O2 T2 I1,2 B-0,3 S5\n  end (41, 0)\n");
+    for i in 0..40 {
+        t += &format!(
+            "  mill ({i}, {}) -> ({}, {})\n",
+            (i % 2) * 5,
+            i + 1,
+            ((i + 1) % 2) * 5
+        );
+    }
+    t += "  mill (40, 0) -> (41, 0)\n}\n";
+    t
+}
+
+/// The diagnostics' messages (with the lines and texts the checker names) and whether the
+/// program was written.
+fn review_as(dir: &Path, settings: Settings) -> (Vec<String>, bool) {
+    let _ = std::fs::remove_file(dir.join("3001_Milling.gcode"));
+    let mut session = Session::new(settings, &OsFileSystem).unwrap();
+    let out = compile_file(&mut session, &dir.join("3001.mpath"), "millpath test");
+    for o in &out.outputs {
+        // a staged program is already in its temporary file: the command line renames it
+        if let Some(staged) = &o.staged {
+            let _ = std::fs::remove_file(staged);
+        }
+    }
+    let messages = session
+        .diags
+        .list
+        .iter()
+        .map(|d| format!("{:?} {}", d.severity, d.message(Default::default())))
+        .collect();
+    (messages, !out.outputs.is_empty())
+}
+
+#[test]
+fn check_kept_text_and_staged_file_give_the_same_review() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("3001.mpath"), zigzag()).unwrap();
+    for dialect in [Dialect::Reference, Dialect::LinuxCnc, Dialect::Grbl] {
+        for clamps in [
+            vec![],
+            vec![Clamp {
+                name: "bar".into(),
+                min: [10.0, 1.0, -5.0],
+                max: [30.0, 2.0, 0.5],
+            }],
+        ] {
+            let base = Settings {
+                dialect,
+                clamps: clamps.clone(),
+                ..settings()
+            };
+            let kept = review_as(dir.path(), base.clone());
+            let staged = review_as(
+                dir.path(),
+                Settings {
+                    stage_outputs: true,
+                    ..base.clone()
+                },
+            );
+            let check = review_as(
+                dir.path(),
+                Settings {
+                    check: true,
+                    ..base
+                },
+            );
+            assert_eq!(kept, staged, "{dialect}");
+            assert_eq!(kept.0, check.0, "{dialect}");
+            let hits = kept.0.iter().filter(|m| m.contains("'bar'")).count();
+            if clamps.is_empty() {
+                assert!(kept.0.is_empty() && kept.1, "{dialect}: {:?}", kept.0);
+            } else {
+                // every pass of the cuts through the box, each with its G-code line's text
+                assert!(hits >= 20, "{dialect}: {:?}", kept.0);
+                assert!(kept
+                    .0
+                    .iter()
+                    .all(|m| m.contains("G01") || m.contains("G00")));
+                assert!(!kept.1, "{dialect}: a clamp hit refuses the program");
+            }
+        }
+    }
+}
