@@ -43,7 +43,6 @@ pub use finding::{
     Severity, StockCommentProblem, StockSkip, SyntaxError,
 };
 pub use parse::{parse_line, Block, Word, MAX_MAGNITUDE};
-pub use reread::Rereading;
 pub use stock_view::{StockView, ViewRequest};
 pub use stream::Verifier;
 pub use surface::{HeightMap, SurfaceProblem};
@@ -246,27 +245,6 @@ pub fn parse_stock_comment(text: &str) -> Option<Result<StockParams, StockCommen
 /// Checks one program.
 pub fn verify(program: &str, options: &Options) -> Report {
     verify_on_surface(program, options, None)
-}
-
-/// The texts of the lines `wanted` of a program (1-based, sorted) from its lines in order,
-/// found in one pass (a line end's `\r` left out).
-pub fn line_texts<S: AsRef<str>>(
-    lines: impl Iterator<Item = S>,
-    wanted: &[usize],
-) -> std::collections::HashMap<usize, String> {
-    let mut texts = std::collections::HashMap::with_capacity(wanted.len());
-    let mut next = wanted.iter().copied().peekable();
-    for (idx, raw) in lines.enumerate() {
-        let Some(&want) = next.peek() else { break };
-        if want == idx + 1 {
-            let raw = raw.as_ref();
-            texts.insert(want, raw.strip_suffix('\r').unwrap_or(raw).to_string());
-            while next.peek() == Some(&want) {
-                next.next();
-            }
-        }
-    }
-    texts
 }
 
 /// A line that is one parenthesised comment and nothing else (blanks around): it moves

@@ -1,9 +1,9 @@
-//! The second reading of a program, after the first has ended ([`Verifier::reread`]): the
+//! The second reading of a program, after the first has ended ([`Verifier::finish`]): the
 //! texts of the lines findings name and, for a lean checker, the checks that need the whole
 //! program first (clamps, depths, stock model), run move by move as a fresh machine reads
 //! the lines again, on the grid of the first reading's extent.
 //!
-//! [`Verifier::reread`]: crate::Verifier::reread
+//! [`Verifier::finish`]: crate::Verifier::finish
 
 use crate::checks::{below_bottom, clamps_of, ClampCheck, Extent, StockRun};
 use crate::machine::{Machine, Move, Raw};
@@ -60,7 +60,7 @@ fn clean(raw: &str) -> String {
 
 /// A program's second reading: give it the lines again ([`Rereading::line`]) while it
 /// [wants them](Rereading::wants_lines), then take the report ([`Rereading::finish`]).
-pub struct Rereading {
+pub(crate) struct Rereading {
     limits: Limits,
     report: Report,
     /// All findings (a checker that kept its moves), or those of the first reading.
@@ -158,7 +158,7 @@ impl Rereading {
     }
 
     /// Are more lines wanted? `false`: the rest need not be given.
-    pub fn wants_lines(&self) -> bool {
+    pub(crate) fn wants_lines(&self) -> bool {
         let checks = self
             .pass
             .as_ref()
@@ -168,7 +168,7 @@ impl Rereading {
 
     /// The next line of the program again (without its `\n`); `false` once no more are
     /// wanted.
-    pub fn line(&mut self, raw: &str) -> bool {
+    pub(crate) fn line(&mut self, raw: &str) -> bool {
         if !self.wants_lines() {
             return false;
         }
@@ -183,7 +183,7 @@ impl Rereading {
     }
 
     /// The report: the findings in line order (at most the limit), with their lines' texts.
-    pub fn finish(self) -> Report {
+    pub(crate) fn finish(self) -> Report {
         let Rereading {
             limits,
             mut report,

@@ -170,9 +170,8 @@ impl Verifier {
         again.finish()
     }
 
-    /// The end of the first reading: what the second needs ([`Rereading::line`]); for a
-    /// caller that gives the lines again as a sink ([`Verifier::finish`] as a callback).
-    pub fn reread(self) -> Rereading {
+    /// The end of the first reading: what the second needs ([`Rereading::line`]).
+    fn reread(self) -> Rereading {
         let Verifier {
             options,
             mut m,
