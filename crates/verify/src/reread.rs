@@ -38,9 +38,11 @@ impl Folded {
         self.texts.entry(no).or_insert_with(|| clean(raw));
     }
 
+    /// Every line that is not blank: a copy of its text's first bytes (the characters a
+    /// finding shows), not a walk over them.
     pub(crate) fn last_text(&mut self, l: &str) {
         self.last.clear();
-        self.last.extend(l.trim().chars().take(TEXT_CHARS));
+        self.last.push_str(shown(l));
     }
 
     /// The last line that is not blank, `no`, has a finding.
@@ -54,8 +56,18 @@ impl Folded {
 const TEXT_CHARS: usize = 200;
 
 fn clean(raw: &str) -> String {
-    let l = raw.strip_suffix('\r').unwrap_or(raw);
-    l.trim().chars().take(TEXT_CHARS).collect()
+    shown(raw.strip_suffix('\r').unwrap_or(raw)).to_string()
+}
+
+/// The part of a line a finding shows: trimmed, at most [`TEXT_CHARS`] characters.
+fn shown(l: &str) -> &str {
+    let t = l.trim();
+    if t.len() <= TEXT_CHARS {
+        return t;
+    }
+    t.char_indices()
+        .nth(TEXT_CHARS)
+        .map_or(t, |(end, _)| &t[..end])
 }
 
 /// A program's second reading: give it the lines again ([`Rereading::line`]) while it
@@ -251,7 +263,8 @@ impl Pass {
     /// something on it.
     fn line(&mut self, no: usize, raw: &str) -> bool {
         let l = raw.strip_suffix('\r').unwrap_or(raw);
-        if only_a_comment(l) {
+        // blank lines and comments move nothing (a spool keeps comments blank)
+        if l.is_empty() || only_a_comment(l) {
             return false;
         }
         execute(&mut self.m, no, l, self.options.limits.max_line_len, |_| {});

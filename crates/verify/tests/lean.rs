@@ -392,3 +392,17 @@ fn only_whole_comment_lines_are_skipped_on_the_second_reading() {
         assert!(!only_a_comment(l), "{l}");
     }
 }
+
+#[test]
+fn long_lines_show_their_first_200_characters() {
+    let long = format!("G00 X1 Q1 ({})", "ä".repeat(300));
+    let p = program(&format!("{long}\n(only a comment, {})\n", "x".repeat(300)));
+    let r = same(&p, &opts(2.0, 2.0));
+    let f = r
+        .findings
+        .iter()
+        .find(|f| f.kind.code() == "unsupported")
+        .expect("the word Q");
+    assert_eq!(f.text.chars().count(), 200);
+    assert!(long.starts_with(&f.text));
+}
