@@ -255,15 +255,25 @@ impl Spool {
 }
 
 /// The lines of `reader` (without their `\n`) to `feed` until it answers `false`, through one
-/// buffer; a line that cannot be read ends them.
+/// buffer; a line that is only a comment is given blank (it moves nothing: the checker took
+/// the texts it names on the first reading), unchecked; a line that cannot be read ends them.
 pub(crate) fn replay_lines(mut reader: impl BufRead, feed: &mut dyn FnMut(&str) -> bool) {
-    let mut line = String::new();
+    let mut line = Vec::new();
     loop {
         line.clear();
-        if !matches!(reader.read_line(&mut line), Ok(n) if n > 0) {
+        if !matches!(reader.read_until(b'\n', &mut line), Ok(n) if n > 0) {
             return;
         }
-        if !feed(line.strip_suffix('\n').unwrap_or(&line)) {
+        let bytes = line.strip_suffix(b"\n").unwrap_or(&line);
+        let text = if only_a_comment(bytes) {
+            ""
+        } else {
+            match std::str::from_utf8(bytes) {
+                Ok(text) => text,
+                Err(_) => return,
+            }
+        };
+        if !feed(text) {
             return;
         }
     }

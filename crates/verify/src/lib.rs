@@ -247,15 +247,16 @@ pub fn verify(program: &str, options: &Options) -> Report {
     verify_on_surface(program, options, None)
 }
 
-/// A line that is one parenthesised comment and nothing else (blanks around): it moves
+/// A line that is one parenthesised comment and nothing else (ASCII blanks around): it moves
 /// nothing and changes no mode, so a second reading of the program may skip it (a caller
-/// that keeps the lines for one may keep such a line empty).
-pub fn only_a_comment(line: &str) -> bool {
-    let t = line.trim();
+/// that keeps the lines for one may keep such a line empty). Bytes, so that a reader can
+/// tell before it checks the line's UTF-8.
+pub fn only_a_comment(line: impl AsRef<[u8]>) -> bool {
+    let t = line.as_ref().trim_ascii();
     t.len() >= 2
-        && t.starts_with('(')
-        && t.ends_with(')')
-        && !t[1..t.len() - 1].contains(['(', ')'])
+        && t[0] == b'('
+        && t[t.len() - 1] == b')'
+        && !t[1..t.len() - 1].iter().any(|&b| b == b'(' || b == b')')
 }
 
 /// The nominal top of a program: its `(MILLPATH-SURFACE T=…)` record's, else its

@@ -388,6 +388,8 @@ fn only_whole_comment_lines_are_skipped_on_the_second_reading() {
         "(a",
         ";(a)",
         "%",
+        // not an ASCII blank: read as the first reading did
+        "\u{a0}(a)",
     ] {
         assert!(!only_a_comment(l), "{l}");
     }
