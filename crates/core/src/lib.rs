@@ -409,8 +409,9 @@ fn generate_and_review_as(
                     let _ = std::fs::remove_file(&path);
                 })?;
                 let (staged, reviewer) = staging.close().map_err(|d| vec![d])?;
-                let review = reviewer.finish(model, &generated.line_sources, lang, |wanted| {
-                    staged.line_texts(wanted)
+                // the second reading (clamps, depths, stock model) from the file
+                let review = reviewer.finish(model, &generated.line_sources, lang, |feed| {
+                    staged.replay(feed)
                 });
                 Ok((generated, review, Some(staged)))
             })
@@ -433,13 +434,9 @@ fn generate_and_review_as(
             (generated, review, None)
         })
     } else {
-        job.run(reviewer()).map(|(generated, reviewer)| {
-            let review = reviewer.finish(model, &generated.line_sources, lang, |wanted| {
-                // the few lines findings point at, from a second emission
-                job.run(second_opinion::LineCapture::new(wanted))
-                    .map(|(_, capture)| capture.texts)
-                    .unwrap_or_default()
-            });
+        job.run(reviewer().spooling()).map(|(generated, reviewer)| {
+            // the second reading (clamps, depths, stock model) from the lines kept compressed
+            let review = reviewer.finish_spooled(model, &generated.line_sources, lang);
             (generated, review, None)
         })
     };

@@ -8,10 +8,11 @@ use crate::emit::dialect::lowest_depth;
 use crate::emit::program::LineSources;
 use crate::emit::{LineSink, MAX_ITEMS, MAX_LINES};
 use crate::model::{Element, Model};
+use lz4_flex::frame::{FrameDecoder, FrameEncoder};
 use millpath_verify::{
-    line_texts, verify, Clamp, Dialect, FindingKind, Limits, Options, Severity, Verifier,
+    only_a_comment, verify, Clamp, Dialect, FindingKind, Limits, Options, Severity, Verifier,
 };
-use std::collections::HashMap;
+use std::io::{BufRead, BufReader, Write};
 
 /// The material top, tool diameter and deepest drawn depth the checker needs. The checker's
 /// stock is one block, but a subpath's H moves its material top (T + H): every part of the
@@ -59,25 +60,40 @@ pub fn review(
             break;
         }
     }
-    reviewer.finish(model, line_sources, lang, |wanted| {
-        line_texts(body.split('\n'), wanted)
+    reviewer.finish(model, line_sources, lang, |feed| {
+        for line in body.split('\n') {
+            if !feed(line) {
+                break;
+            }
+        }
     })
 }
 
 /// The checker of one program as it is written: a [`LineSink`] the emitter feeds line by
-/// line, so a check never holds the program ([`review`] feeds it a written text).
+/// line, so a check never holds the program ([`review`] feeds it a written text). It keeps
+/// no moves either: the clamps, depths and stock model run on a second reading of the lines
+/// ([`Reviewer::finish`]), from the written file, or from its own [`Spool`].
 pub struct Reviewer {
     verifier: Verifier,
     strict: bool,
     tool: f64,
     clamps_only: bool,
+    spool: Option<Spool>,
+    /// The checker still reads (no limit reached).
+    reading: bool,
 }
 
 impl LineSink for Reviewer {
     fn line(&mut self, text: &str, _source: u32) {
         // one written line is one program line; split as a text would be, should one hold more
         for part in text.split('\n') {
-            self.verifier.line(part);
+            if !self.reading {
+                return;
+            }
+            self.reading = self.verifier.line(part);
+            if let Some(spool) = &mut self.spool {
+                spool.push(part);
+            }
         }
     }
 }
@@ -96,7 +112,7 @@ impl Reviewer {
             Ours::Grbl => (Dialect::Grbl, true),
         };
         let (top, tool, bottom) = stock_of(model);
-        let verifier = Verifier::new(Options {
+        let verifier = Verifier::lean(Options {
             dialect: checked_as,
             top: Some(top),
             tool: Some(tool),
@@ -117,25 +133,53 @@ impl Reviewer {
             strict,
             tool,
             clamps_only,
+            spool: None,
+            reading: true,
         }
     }
 
-    /// The findings, located at their elements. `texts(lines)`: the texts of the program's
-    /// lines the findings point at.
+    /// The lines read are kept in a [`Spool`] for the second reading
+    /// ([`Reviewer::finish_spooled`]): for a check, which writes no file.
+    pub fn spooling(self) -> Reviewer {
+        Reviewer {
+            spool: Some(Spool::new()),
+            ..self
+        }
+    }
+
+    /// [`Reviewer::finish`] with the lines of the spool.
+    pub fn finish_spooled(
+        mut self,
+        model: &Model,
+        line_sources: &LineSources,
+        lang: Lang,
+    ) -> Review {
+        let spool = self.spool.take();
+        self.finish(model, line_sources, lang, |feed| {
+            if let Some(spool) = spool {
+                spool.replay(feed);
+            }
+        })
+    }
+
+    /// The findings, located at their elements. `replay(feed)`: the program's lines again,
+    /// in order, to `feed` until it answers `false` (the checker says when a second reading
+    /// falls short).
     pub fn finish(
         self,
         model: &Model,
         line_sources: &LineSources,
         lang: Lang,
-        texts: impl FnOnce(&[usize]) -> HashMap<usize, String>,
+        replay: impl FnOnce(&mut dyn FnMut(&str) -> bool),
     ) -> Review {
         let Reviewer {
             verifier,
             strict,
             tool,
             clamps_only,
+            ..
         } = self;
-        let report = verifier.finish(texts);
+        let report = verifier.finish(replay);
         let vlang = match lang {
             Lang::En => millpath_verify::Lang::En,
             Lang::De => millpath_verify::Lang::De,
@@ -174,39 +218,63 @@ impl Reviewer {
     }
 }
 
-/// The texts of some lines of a program as the emitter writes it again (a check keeps no
-/// text: the few lines findings point at are taken from a second emission).
-pub struct LineCapture {
-    wanted: Vec<usize>,
-    next: usize,
-    line: usize,
-    pub texts: HashMap<usize, String>,
+/// The lines of a program as the emitter writes them, kept compressed (lz4) for the
+/// checker's second reading: a check has no file to read again, and a second emission would
+/// take as long as the first. A line that is only a comment is kept empty: it moves nothing,
+/// and the checker took the texts of those it names on the first reading. So what is kept is
+/// mostly the moves, a few bytes each.
+pub struct Spool {
+    /// `None` once a write failed (the second reading then falls short, and says so).
+    out: Option<FrameEncoder<Vec<u8>>>,
 }
 
-impl LineCapture {
-    /// `wanted`: 1-based line numbers, sorted.
-    pub fn new(wanted: &[usize]) -> LineCapture {
-        LineCapture {
-            wanted: wanted.to_vec(),
-            next: 0,
-            line: 0,
-            texts: HashMap::new(),
+impl Spool {
+    fn new() -> Spool {
+        Spool {
+            out: Some(FrameEncoder::new(Vec::new())),
+        }
+    }
+
+    fn push(&mut self, line: &str) {
+        let Some(out) = &mut self.out else { return };
+        let kept = if only_a_comment(line) { "" } else { line };
+        if out
+            .write_all(kept.as_bytes())
+            .and_then(|()| out.write_all(b"\n"))
+            .is_err()
+        {
+            self.out = None;
+        }
+    }
+
+    fn replay(self, feed: &mut dyn FnMut(&str) -> bool) {
+        if let Some(Ok(packed)) = self.out.map(FrameEncoder::finish) {
+            replay_lines(BufReader::new(FrameDecoder::new(&packed[..])), feed);
         }
     }
 }
 
-impl LineSink for LineCapture {
-    fn line(&mut self, text: &str, _source: u32) {
-        for part in text.split('\n') {
-            self.line += 1;
-            while self.wanted.get(self.next).is_some_and(|&w| w < self.line) {
-                self.next += 1;
+/// The lines of `reader` (without their `\n`) to `feed` until it answers `false`, through one
+/// buffer; a line that is only a comment is given blank (it moves nothing: the checker took
+/// the texts it names on the first reading), unchecked; a line that cannot be read ends them.
+pub(crate) fn replay_lines(mut reader: impl BufRead, feed: &mut dyn FnMut(&str) -> bool) {
+    let mut line = Vec::new();
+    loop {
+        line.clear();
+        if !matches!(reader.read_until(b'\n', &mut line), Ok(n) if n > 0) {
+            return;
+        }
+        let bytes = line.strip_suffix(b"\n").unwrap_or(&line);
+        let text = if only_a_comment(bytes) {
+            ""
+        } else {
+            match std::str::from_utf8(bytes) {
+                Ok(text) => text,
+                Err(_) => return,
             }
-            if self.wanted.get(self.next) == Some(&self.line) {
-                let part = part.strip_suffix('\r').unwrap_or(part);
-                self.texts.insert(self.line, part.to_string());
-                self.next += 1;
-            }
+        };
+        if !feed(text) {
+            return;
         }
     }
 }

@@ -7,10 +7,8 @@
 use crate::diag::{Diagnostic, Msg, Origin};
 use crate::emit::LineSink;
 use crate::probe::adjustz::{banner_index_of_first, banner_with_digest, set_digest_lines};
-use crate::second_opinion::Reviewer;
+use crate::second_opinion::{replay_lines, Reviewer};
 use crate::{args, emit::as_comment};
-use millpath_verify::line_texts;
-use std::collections::HashMap;
 use std::fs::File;
 use std::io::{BufRead, BufReader, BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -118,11 +116,12 @@ impl Staging {
 }
 
 impl Staged {
-    /// The texts of the lines `wanted` (1-based, sorted) of the closed file.
-    pub(crate) fn line_texts(&self, wanted: &[usize]) -> HashMap<usize, String> {
-        match File::open(&self.path) {
-            Ok(f) => line_texts(BufReader::new(f).lines().map_while(Result::ok), wanted),
-            Err(_) => HashMap::new(),
+    /// The closed file's lines again, in order (without their `\n`), to `feed` until it
+    /// answers `false`: read through a buffer, never the whole file; a line that cannot be
+    /// read ends them (the checker says the reading fell short).
+    pub(crate) fn replay(&self, feed: &mut dyn FnMut(&str) -> bool) {
+        if let Ok(f) = File::open(&self.path) {
+            replay_lines(BufReader::with_capacity(1 << 16, f), feed);
         }
     }
 

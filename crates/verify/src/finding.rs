@@ -214,6 +214,12 @@ pub enum FindingKind {
     /// The program's `(MILLPATH-SURFACE …)` record cannot be read: its moves are judged at
     /// their written heights.
     Surface(crate::surface::SurfaceProblem),
+    /// A lean checker's second reading (`Verifier::lean`) was not the program it read first:
+    /// (lines, moves) read again of those read first.
+    RereadDiffers {
+        lines: (usize, usize),
+        moves: (usize, usize),
+    },
 }
 
 /// Problems of a program adjusted by adjust-z.
@@ -258,6 +264,7 @@ impl FindingKind {
             FindingKind::Limit(_) => "limit",
             FindingKind::Adjusted(_) => "adjusted",
             FindingKind::Surface(_) => "surface-record",
+            FindingKind::RereadDiffers { .. } => "reread-differs",
         }
     }
 
@@ -455,6 +462,10 @@ impl FindingKind {
                     "ein zweiter Kommentar (MILLPATH-STOCK …) mit anderen Werten: der erste gilt".into(),
                 ),
             },
+            FindingKind::RereadDiffers { lines, moves } => pick(
+                format!("the program read a second time for the clamp, depth and stock checks is not the one read first ({} of {} lines, {} of {} moves): those checks are incomplete", lines.0, lines.1, moves.0, moves.1),
+                format!("das für die Klemmen-, Tiefen- und Materialprüfungen ein zweites Mal gelesene Programm ist nicht das zuerst gelesene ({} von {} Zeilen, {} von {} Bewegungen): diese Prüfungen sind unvollständig", lines.0, lines.1, moves.0, moves.1),
+            ),
             FindingKind::Limit(l) => match l {
                 Limit::Lines(n) => pick(
                     format!("more than {n} lines: the rest is not checked"),

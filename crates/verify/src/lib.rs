@@ -24,10 +24,12 @@
 //! [`Limits::max_work`] cell visits (each with a finding saying so).
 
 mod adjusted;
+mod checks;
 mod clamps;
 mod finding;
 mod machine;
 mod parse;
+mod reread;
 mod stock;
 mod stock_view;
 mod stream;
@@ -45,9 +47,6 @@ pub use stock_view::{StockView, ViewRequest};
 pub use stream::Verifier;
 pub use surface::{HeightMap, SurfaceProblem};
 pub use surface_frame::{ROUNDING as SURFACE_ROUNDING, SPLIT_TOLERANCE};
-
-use machine::{MoveKind, Raw};
-use stock::{GridGeom, Stock};
 
 /// Whose rules decide the feed-rate checks (and a few strictness details).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
@@ -248,25 +247,16 @@ pub fn verify(program: &str, options: &Options) -> Report {
     verify_on_surface(program, options, None)
 }
 
-/// The texts of the lines `wanted` of a program (1-based, sorted) from its lines in order,
-/// found in one pass (a line end's `\r` left out).
-pub fn line_texts<S: AsRef<str>>(
-    lines: impl Iterator<Item = S>,
-    wanted: &[usize],
-) -> std::collections::HashMap<usize, String> {
-    let mut texts = std::collections::HashMap::with_capacity(wanted.len());
-    let mut next = wanted.iter().copied().peekable();
-    for (idx, raw) in lines.enumerate() {
-        let Some(&want) = next.peek() else { break };
-        if want == idx + 1 {
-            let raw = raw.as_ref();
-            texts.insert(want, raw.strip_suffix('\r').unwrap_or(raw).to_string());
-            while next.peek() == Some(&want) {
-                next.next();
-            }
-        }
-    }
-    texts
+/// A line that is one parenthesised comment and nothing else (ASCII blanks around): it moves
+/// nothing and changes no mode, so a second reading of the program may skip it (a caller
+/// that keeps the lines for one may keep such a line empty). Bytes, so that a reader can
+/// tell before it checks the line's UTF-8.
+pub fn only_a_comment(line: impl AsRef<[u8]>) -> bool {
+    let t = line.as_ref().trim_ascii();
+    t.len() >= 2
+        && t[0] == b'('
+        && t[t.len() - 1] == b')'
+        && !t[1..t.len() - 1].iter().any(|&b| b == b'(' || b == b')')
 }
 
 /// The nominal top of a program: its `(MILLPATH-SURFACE T=…)` record's, else its
@@ -308,48 +298,13 @@ pub fn verify_on_surface(
             break;
         }
     }
-    v.finish(|wanted| line_texts(body.split('\n'), wanted))
-}
-
-/// Every move against the keep-out boxes (machine coordinates: before a height map's frame),
-/// one finding per move and box it touches.
-pub(crate) fn check_clamps(
-    moves: &[machine::Move],
-    options: &Options,
-    tool: Option<f64>,
-    findings: &mut Vec<Raw>,
-) {
-    let clamps = &options.clamps[..options.clamps.len().min(MAX_CLAMPS)];
-    if clamps.is_empty() {
-        return;
-    }
-    if tool.is_none() {
-        findings.push(Raw {
-            line: None,
-            kind: FindingKind::ClampsWithoutTool,
-            severity: Severity::Warning,
-        });
-    }
-    let radius = tool.unwrap_or(0.0) / 2.0;
-    for mv in moves {
-        for c in clamps {
-            if clamps::hit(mv, radius, std::slice::from_ref(c)).is_some() {
-                findings.push(Raw {
-                    line: Some(mv.line),
-                    kind: FindingKind::ClampHit {
-                        name: c.name.clone(),
-                        min: c.min,
-                        max: c.max,
-                        radius,
-                    },
-                    severity: Severity::Error,
-                });
+    v.finish(|feed| {
+        for line in body.split('\n') {
+            if !feed(line) {
+                break;
             }
         }
-        if findings.len() > options.limits.max_findings {
-            break;
-        }
-    }
+    })
 }
 
 /// Moves the Z of a line of an adjusted program to the drawing's frame ([`adjusted`]).
@@ -368,128 +323,4 @@ pub(crate) fn to_drawing_frame(
         None => z.value -= rise,
     }
     Ok(())
-}
-
-/// The stock model over all moves: rapids checked against it, cuts lowering it; `ztol`: how
-/// far below the stock a tool tip may pass.
-pub(crate) fn run_stock(
-    moves: &[machine::Move],
-    (top, tool, ztol): (f64, f64, f64),
-    limits: &Limits,
-    findings: &mut Vec<Raw>,
-    report: &mut Report,
-) {
-    let r = tool / 2.0;
-    // XY extent of every known position and arc
-    let mut bb: Option<(f64, f64, f64, f64)> = None;
-    let mut add = |x: f64, y: f64| {
-        if x.is_finite() && y.is_finite() {
-            bb = Some(match bb {
-                None => (x, y, x, y),
-                Some(b) => (b.0.min(x), b.1.min(y), b.2.max(x), b.3.max(y)),
-            });
-        }
-    };
-    for mv in moves {
-        add(mv.from[0], mv.from[1]);
-        add(mv.to[0], mv.to[1]);
-        if let Some(a) = &mv.arc {
-            let b = a.bbox();
-            add(b.0, b.1);
-            add(b.2, b.3);
-        }
-    }
-    let Some((bx0, by0, bx1, by1)) = bb else {
-        return;
-    };
-    let (w, h) = (bx1 - bx0 + 2.0 * r, by1 - by0 + 2.0 * r);
-    let cells = |c: f64| ((w / c).ceil() + 4.0) * ((h / c).ceil() + 4.0);
-    let max_cells = limits.max_cells.max(1) as f64;
-    // O/8 when the area allows (finer volumes, a tighter rapid tolerance), up to O/2
-    let mut cell = (tool / 8.0).max((w * h / max_cells).sqrt());
-    for _ in 0..1000 {
-        if cells(cell) <= max_cells {
-            break;
-        }
-        cell *= 1.05;
-    }
-    if !(cell <= tool / 2.0 && cells(cell) <= max_cells) {
-        findings.push(Raw {
-            line: None,
-            kind: FindingKind::StockSkipped(StockSkip::AreaTooLarge { cell }),
-            severity: Severity::Warning,
-        });
-        return;
-    }
-    let geom = GridGeom {
-        x0: bx0 - r - 2.0 * cell,
-        y0: by0 - r - 2.0 * cell,
-        cell,
-        nx: (w / cell).ceil() as usize + 4,
-        ny: (h / cell).ceil() as usize + 4,
-    };
-    let mut stock = Stock::new(geom, top);
-    let r_check = (r - cell - XY_TOLERANCE).max(0.0);
-    let mut work = 0u64;
-    for mv in moves {
-        if work > limits.max_work {
-            findings.push(Raw {
-                line: None,
-                kind: FindingKind::StockSkipped(StockSkip::WorkLimit { line: mv.line }),
-                severity: Severity::Warning,
-            });
-            break;
-        }
-        let (from, to) = (mv.from, mv.to);
-        match mv.kind {
-            MoveKind::Probe => {}
-            MoveKind::Rapid => {
-                if to.iter().any(|v| v.is_nan()) {
-                    continue;
-                }
-                let xy_moves = (to[0] - from[0]).hypot(to[1] - from[1]) > 1e-9;
-                let (a, b) = if from.iter().any(|v| v.is_nan()) {
-                    // from an unknown place: at least the destination must be free
-                    (to, to)
-                } else if xy_moves || to[2] < from[2] {
-                    (from, to)
-                } else {
-                    continue;
-                };
-                if a[2].min(b[2]) >= top - ztol {
-                    continue;
-                }
-                let (hit, w) = stock.intrusion(a, b, r_check);
-                work += w;
-                if let Some((depth, x, y)) = hit.filter(|h| h.0 > ztol) {
-                    findings.push(Raw {
-                        line: Some(mv.line),
-                        kind: FindingKind::RapidIntoMaterial { depth, x, y },
-                        severity: Severity::Error,
-                    });
-                    // the model goes on as if the tool had cut its way (no cascades)
-                    work += stock.cut_line(a, b, r);
-                }
-            }
-            MoveKind::Cut => {
-                if from[2].min(to[2]) >= top {
-                    continue;
-                }
-                work += match &mv.arc {
-                    Some(arc) => stock.cut_arc(arc, from[2], to[2], r),
-                    None => stock.cut_line(from, to, r),
-                };
-            }
-        }
-    }
-    report.removed_volume_mm3 = stock.removed_volume();
-    report.stock = Some(StockInfo {
-        top,
-        tool_diameter: tool,
-        cell,
-        nx: geom.nx,
-        ny: geom.ny,
-        x0: geom.x0,
-        y0: geom.y0,
-    });
 }

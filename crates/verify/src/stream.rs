@@ -1,16 +1,19 @@
 //! The checker fed one line at a time: a compiler hands it each line as it writes it, so a
-//! program of millions of lines is checked without ever being held as text. Only the moves
-//! (for the stock model, which needs the program's extent) are kept; the texts of the lines
-//! findings point at are asked for at the end ([`Verifier::finish`]).
+//! program of millions of lines is checked without ever being held as text. What needs the
+//! whole program first (the clamps, the depths and the stock model: the tool and bottom a
+//! stock comment may give, the grid over the program's extent) runs at the end, over the
+//! moves kept ([`Verifier::new`]), or, lean ([`Verifier::lean`]), over a second reading of
+//! the program while only its extent and move count are kept from the first (`reread.rs`).
 
 use crate::adjusted;
-use crate::machine::{Machine, MoveKind, Raw};
+use crate::checks::{below_bottom, clamps_of, ClampCheck, Extent, StockRun};
+use crate::machine::{Machine, Move, Raw};
+use crate::reread::{Folded, Rereading};
 use crate::{
-    check_clamps, parse, run_stock, stock_view, surface_frame, to_drawing_frame, AdjustedProblem,
-    Finding, FindingKind, HeightMap, Limit, Options, Report, Severity, StockParams, StockSkip,
-    SurfaceProblem, SyntaxError, Z_TOLERANCE,
+    parse, stock_view, surface_frame, to_drawing_frame, AdjustedProblem, FindingKind, HeightMap,
+    Limit, Options, Report, Severity, StockParams, StockSkip, SurfaceProblem, SyntaxError,
+    Z_TOLERANCE,
 };
-use std::collections::HashMap;
 
 pub struct Verifier {
     options: Options,
@@ -26,13 +29,27 @@ pub struct Verifier {
     last_text: Option<usize>,
     /// A limit was reached: the lines after it are not read.
     done: bool,
+    /// Lean: each line's moves folded into what the second reading needs, then dropped.
+    folded: Option<Folded>,
 }
 
 impl Verifier {
     /// A checker for a program that carries no adjustment (`(==…)`, `MILLPATH-PROBES`) and
-    /// no `(MILLPATH-SURFACE …)` record: what a compiler writes.
+    /// no `(MILLPATH-SURFACE …)` record: what a compiler writes. It keeps every move.
     pub fn new(options: Options) -> Verifier {
         Verifier::scanned(options, adjusted::Surface::default(), Vec::new(), Ok(None))
+    }
+
+    /// [`Verifier::new`] that keeps no moves: [`Verifier::finish`] reads the program a
+    /// second time for the clamps, the depths and the stock model (the same report). A view
+    /// of the stock ([`Options::view`]) needs every move: it keeps them then.
+    pub fn lean(options: Options) -> Verifier {
+        let lean = options.view.is_none();
+        let mut v = Verifier::new(options);
+        if lean {
+            v.folded = Some(Folded::default());
+        }
+        v
     }
 
     /// A checker that knows what the whole-program scans found: the adjustment, its
@@ -78,6 +95,7 @@ impl Verifier {
             line_count: 0,
             last_text: None,
             done: false,
+            folded: None,
             options,
         }
     }
@@ -96,6 +114,9 @@ impl Verifier {
                 kind: FindingKind::Limit(Limit::Lines(limits.max_lines)),
                 severity: Severity::Error,
             });
+            if let Some(f) = &mut self.folded {
+                f.named(no, raw);
+            }
             self.done = true;
             return false;
         }
@@ -103,50 +124,54 @@ impl Verifier {
         self.line_count = no;
         if !l.trim().is_empty() {
             self.last_text = Some(no);
+            if let Some(f) = &mut self.folded {
+                f.last_text(l);
+            }
         }
-        let parsed = if l.len() > limits.max_line_len {
-            Err(FindingKind::Syntax(SyntaxError::LineTooLong(
-                limits.max_line_len,
-            )))
-        } else {
-            parse::parse_line(l)
-        };
-        let m = &mut self.m;
-        match parsed {
-            Ok(mut b) if self.surface.adjusted => {
-                if let Err(kind) = to_drawing_frame(&mut b, &self.surface, self.rise) {
-                    self.extra.push(Raw {
+        let before = (self.m.findings.len(), self.extra.len());
+        let (surface, rise, extra) = (&self.surface, self.rise, &mut self.extra);
+        execute(&mut self.m, no, l, limits.max_line_len, |b| {
+            if surface.adjusted {
+                if let Err(kind) = to_drawing_frame(b, surface, rise) {
+                    extra.push(Raw {
                         line: Some(no),
                         kind: FindingKind::Adjusted(kind),
                         severity: Severity::Error,
                     });
                 }
-                m.exec(no, &b)
             }
-            Ok(b) => m.exec(no, &b),
-            Err(kind) => {
-                if m.ended {
-                    // the controller does not read past the end
-                    m.after_end(no);
-                } else {
-                    m.findings.push(Raw {
-                        line: Some(no),
-                        kind,
-                        severity: Severity::Error,
-                    });
-                }
+        });
+        if let Some(f) = &mut self.folded {
+            f.fold(self.m.moves.drain(..));
+            // the texts of the lines found wanting now: the second reading skips comments
+            let found = self.m.findings[before.0..].iter();
+            if found
+                .chain(&self.extra[before.1..])
+                .any(|f| f.line == Some(no))
+            {
+                f.named(no, l);
             }
         }
-        if m.findings.len() > limits.max_findings {
+        if self.m.findings.len() > limits.max_findings {
             self.done = true;
         }
         !self.done
     }
 
     /// The report: the end of the program, the clamps, the depths and the stock model.
-    /// `texts(lines)` gives the texts of the lines findings point at (sorted, 1-based; a
-    /// line it leaves out gets no text).
-    pub fn finish(self, texts: impl FnOnce(&[usize]) -> HashMap<usize, String>) -> Report {
+    /// `replay(feed)` gives the program's lines again, in order, to `feed` until it answers
+    /// `false`: for the texts of the lines findings name, and for a lean checker's checks
+    /// (it is not called when nothing needs it).
+    pub fn finish(self, replay: impl FnOnce(&mut dyn FnMut(&str) -> bool)) -> Report {
+        let mut again = self.reread();
+        if again.wants_lines() {
+            replay(&mut |l| again.line(l));
+        }
+        again.finish()
+    }
+
+    /// The end of the first reading: what the second needs ([`Rereading::line`]).
+    fn reread(self) -> Rereading {
         let Verifier {
             options,
             mut m,
@@ -154,6 +179,7 @@ impl Verifier {
             extra,
             line_count,
             last_text,
+            mut folded,
             ..
         } = self;
         let limits = options.limits;
@@ -163,6 +189,9 @@ impl Verifier {
                 kind: FindingKind::MissingProgramEnd,
                 severity: Severity::Error,
             });
+            if let (Some(f), Some(no)) = (&mut folded, last_text) {
+                f.last_text_named(no);
+            }
         }
         // the values: options over the comment
         let comment = m.stock.unwrap_or_default();
@@ -176,98 +205,123 @@ impl Verifier {
         };
         let mut findings = std::mem::take(&mut m.findings);
         findings.extend(extra);
-        // on a height map: the moves back to the drawing's frame, within the roundings; cuts
-        // also sampled inside (a piece whose straight Z misses the surface between its ends)
-        check_clamps(&m.moves, &options, params.tool, &mut findings);
-        let mut ztol = Z_TOLERANCE;
-        let mut inside: Vec<Option<(f64, f64, f64)>> = Vec::new();
-        if let Some(map) = &map {
-            let frame = surface_frame::Frame::new(map);
-            ztol += surface_frame::ROUNDING;
-            if params.bottom.is_some() {
-                inside = m.moves.iter().map(|mv| frame.lowest_inside(mv)).collect();
-            }
-            frame.to_drawing(&mut m.moves);
-        }
-        if let Some(bottom) = params.bottom {
-            let inside_tol = ztol + surface_frame::SPLIT_TOLERANCE;
-            for (k, mv) in m.moves.iter().enumerate() {
-                if mv.kind != MoveKind::Cut {
-                    continue;
-                }
-                let ends = mv.from[2].min(mv.to[2]);
-                let low_inside = inside.get(k).copied().flatten().map(|l| l.0);
-                let below_ends = ends < bottom - ztol;
-                let below_inside = low_inside.is_some_and(|z| z < bottom - inside_tol);
-                if below_ends || below_inside {
-                    let z = match low_inside {
-                        Some(z) if below_inside => z.min(ends),
-                        _ => ends,
-                    };
-                    findings.push(Raw {
-                        line: Some(mv.line),
-                        kind: FindingKind::BelowBottom { z, bottom },
-                        severity: Severity::Error,
-                    });
-                }
-            }
-        }
         let mut report = Report {
             params,
             lines: line_count,
-            moves: m.moves.len(),
-            surface: map,
             ..Default::default()
         };
-        match (params.top, params.tool) {
-            _ if options.skip_stock => {}
-            (Some(top), Some(tool)) => {
-                let stock = (top, tool, ztol);
-                run_stock(&m.moves, stock, &limits, &mut findings, &mut report);
+        match folded {
+            Some(folded) => Rereading::lean(options, findings, report, folded),
+            None => {
+                let moves = std::mem::take(&mut m.moves);
+                drop(m);
+                kept_checks(&options, moves, map, &mut findings, &mut report);
+                Rereading::kept(options.limits, findings, report)
             }
-            (top, tool) => findings.push(Raw {
-                line: None,
-                kind: FindingKind::StockSkipped(StockSkip::MissingParams {
-                    top: top.is_none(),
-                    tool: tool.is_none(),
-                }),
-                severity: Severity::Note,
-            }),
         }
-        if let (Some(req), Some(top), Some(tool)) = (&options.view, params.top, params.tool) {
-            let cell = report.stock.map(|s| s.cell);
-            report.view = stock_view::stock_view(&m.moves, top, tool, cell, req);
+    }
+}
+
+/// One line (without its `\r`) parsed and executed by `m` as line `no`; `adjust` changes
+/// the parsed words first (an adjusted program's heights).
+pub(crate) fn execute(
+    m: &mut Machine,
+    no: usize,
+    l: &str,
+    max_line_len: usize,
+    adjust: impl FnOnce(&mut parse::Block),
+) {
+    let parsed = if l.len() > max_line_len {
+        Err(FindingKind::Syntax(SyntaxError::LineTooLong(max_line_len)))
+    } else {
+        parse::parse_line(l)
+    };
+    match parsed {
+        Ok(mut b) => {
+            adjust(&mut b);
+            m.exec(no, &b)
         }
-        drop(m);
-        findings.sort_by_key(|f| f.line.unwrap_or(0));
-        if findings.len() > limits.max_findings {
-            findings.truncate(limits.max_findings);
-            findings.push(Raw {
-                line: None,
-                kind: FindingKind::Limit(Limit::Findings(limits.max_findings)),
-                severity: Severity::Note,
-            });
+        Err(kind) => {
+            if m.ended {
+                // the controller does not read past the end
+                m.after_end(no);
+            } else {
+                m.findings.push(Raw {
+                    line: Some(no),
+                    kind,
+                    severity: Severity::Error,
+                });
+            }
         }
-        let mut wanted: Vec<usize> = findings.iter().filter_map(|f| f.line).collect();
-        wanted.dedup();
-        let texts = if wanted.is_empty() {
-            HashMap::new()
-        } else {
-            texts(&wanted)
-        };
-        report.findings = findings
-            .into_iter()
-            .map(|f| Finding {
-                text: f
-                    .line
-                    .and_then(|l| texts.get(&l))
-                    .map(|t| t.trim().chars().take(200).collect())
-                    .unwrap_or_default(),
-                line: f.line,
-                kind: f.kind,
-                severity: f.severity,
-            })
-            .collect();
-        report
+    }
+}
+
+/// The end checks over the moves kept: clamps (machine coordinates), then on a height map
+/// the moves back to the drawing's frame, within the roundings (cuts also sampled inside: a
+/// piece whose straight Z misses the surface between its ends), the depths, the stock
+/// model and its view.
+fn kept_checks(
+    options: &Options,
+    mut moves: Vec<Move>,
+    map: Option<HeightMap>,
+    findings: &mut Vec<Raw>,
+    report: &mut Report,
+) {
+    let params = report.params;
+    if let Some(mut check) = ClampCheck::new(options, params.tool, 0, findings) {
+        for mv in &moves {
+            check.step(mv, clamps_of(options), findings);
+        }
+    }
+    let mut ztol = Z_TOLERANCE;
+    let mut inside: Vec<Option<(f64, f64, f64)>> = Vec::new();
+    if let Some(map) = &map {
+        let frame = surface_frame::Frame::new(map);
+        ztol += surface_frame::ROUNDING;
+        if params.bottom.is_some() {
+            inside = moves.iter().map(|mv| frame.lowest_inside(mv)).collect();
+        }
+        frame.to_drawing(&mut moves);
+    }
+    if let Some(bottom) = params.bottom {
+        let tols = (ztol, ztol + surface_frame::SPLIT_TOLERANCE);
+        for (k, mv) in moves.iter().enumerate() {
+            let low_inside = inside.get(k).copied().flatten().map(|l| l.0);
+            findings.extend(below_bottom(mv, bottom, tols, low_inside));
+        }
+    }
+    report.moves = moves.len();
+    report.surface = map;
+    match (params.top, params.tool) {
+        _ if options.skip_stock => {}
+        (Some(top), Some(tool)) => {
+            let mut extent = Extent::default();
+            moves.iter().for_each(|mv| extent.add_move(mv));
+            if let Some(mut run) =
+                StockRun::new(&extent, (top, tool, ztol), &options.limits, findings)
+            {
+                for mv in &moves {
+                    run.step(mv, findings);
+                }
+                run.finish(report);
+            }
+        }
+        (top, tool) => findings.push(missing_params(top, tool)),
+    }
+    if let (Some(req), Some(top), Some(tool)) = (&options.view, params.top, params.tool) {
+        let cell = report.stock.map(|s| s.cell);
+        report.view = stock_view::stock_view(&moves, top, tool, cell, req);
+    }
+}
+
+/// The stock model cannot run: top or tool unknown.
+pub(crate) fn missing_params(top: Option<f64>, tool: Option<f64>) -> Raw {
+    Raw {
+        line: None,
+        kind: FindingKind::StockSkipped(StockSkip::MissingParams {
+            top: top.is_none(),
+            tool: tool.is_none(),
+        }),
+        severity: Severity::Note,
     }
 }
