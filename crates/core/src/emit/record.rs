@@ -97,13 +97,12 @@ impl Record {
             sums: Stats::default(),
             moves: 0,
         };
-        for it in self.items.drain(..) {
+        // the room reserved for a list is given back, not kept
+        for it in std::mem::replace(&mut self.items, Vec::with_capacity(2)) {
             fold.sums.add(&it, sweep_speed);
             fold.moves += 1;
         }
-        self.item_lines.clear();
-        self.items.shrink_to(2);
-        self.item_lines.shrink_to(2);
+        self.item_lines = Vec::with_capacity(2);
         self.fold = Some(fold);
     }
 
