@@ -2,8 +2,10 @@
 # Peak memory and time of `check` and `compile` per drawing size: one chain of N segments and
 # N segments in chains of 10 (bench/drawings.rs, written as `.mpath` by dxf2text), for each
 # N given (default 20000 100000 500000). Prints one row per case: the input's size, peak RSS
-# (GNU time's maximum resident set), the ratio of the two and wall seconds; then the growth of
-# check's peak from the smallest to the largest N.
+# (GNU time's maximum resident set), the ratio of the two, what the peak needs beyond ten times
+# the input (the target: at most a constant, the process at rest plus the checker's stock grid
+# at its bound of 4,000,000 cells of 8 bytes), and wall seconds; then the growth of check's peak
+# from the smallest to the largest N.
 #   bash bench/memory.sh [N...]            (MILLPATH=path/to/millpath to use a built binary)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -28,7 +30,13 @@ measure() {
   cat "$work/time" | tail -1
 }
 
-printf '%-8s %-12s %9s %11s %7s %8s\n' command case input_MB peak_MB ratio seconds
+# the constant: the process checking a drawing of one segment, plus the stock grid's bound
+mkdir -p "$work/tiny"
+printf 'path 1000.1P {\n  start (0, 0)  O2 T2 I1,2 B-0,3\n  end (1, 1)\n  mill (0, 0) -> (1, 1)\n}\n' \
+  >"$work/tiny/1000.mpath"
+read -r rest _ < <(cd "$work/tiny" && measure "$MILLPATH" check --quiet "${machine[@]}" 1000.mpath)
+awk -v r="$rest" 'BEGIN { printf "at rest: %.1f MB; the constant allowed: %.1f MB (with the stock grid, 4,000,000 cells of 8 bytes)\n", r/1024, r/1024 + 32e6/1048576 }'
+printf '%-8s %-12s %9s %11s %7s %10s %8s\n' command case input_MB peak_MB ratio over_10x seconds
 declare -A peak
 for n in "${sizes[@]}"; do
   for kind in chain chains; do
@@ -44,7 +52,7 @@ for n in "${sizes[@]}"; do
       rm -f "$dir"/*.gcode "$dir"/*_Z.txt
       peak[$cmd-$kind-$n]=$kb
       awk -v c="$cmd" -v k="$kind-$n" -v s="$size" -v m="$kb" -v t="$secs" 'BEGIN {
-        printf "%-8s %-12s %9.1f %11.1f %7.1f %8.2f\n", c, k, s/1e6, m/1024, m*1024/s, t }'
+        printf "%-8s %-12s %9.1f %11.1f %7.1f %10.1f %8.2f\n", c, k, s/1e6, m/1024, m*1024/s, (m*1024 - 10*s)/1048576, t }'
     done
   done
 done
