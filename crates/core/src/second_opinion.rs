@@ -10,7 +10,8 @@ use crate::emit::{LineSink, MAX_ITEMS, MAX_LINES};
 use crate::model::{Element, Model};
 use lz4_flex::frame::{FrameDecoder, FrameEncoder};
 use millpath_verify::{
-    only_a_comment, verify, Clamp, Dialect, FindingKind, Limits, Options, Severity, Verifier,
+    feed_lines, only_a_comment, verify, Clamp, Dialect, FindingKind, Limits, Options, Severity,
+    Verifier,
 };
 use std::io::{BufRead, BufReader, Write};
 
@@ -54,19 +55,8 @@ pub fn review(
     clamps_only: bool,
 ) -> Review {
     let mut reviewer = Reviewer::new(model, dialect, clamps, clamps_only);
-    let body = program.strip_suffix('\n').unwrap_or(program);
-    for line in body.split('\n') {
-        if !reviewer.verifier.line(line) {
-            break;
-        }
-    }
-    reviewer.finish(model, line_sources, lang, |feed| {
-        for line in body.split('\n') {
-            if !feed(line) {
-                break;
-            }
-        }
-    })
+    feed_lines(program, &mut |l| reviewer.verifier.line(l));
+    reviewer.finish(model, line_sources, lang, |feed| feed_lines(program, feed))
 }
 
 /// The checker of one program as it is written: a [`LineSink`] the emitter feeds line by

@@ -35,27 +35,10 @@ fn programs_of(file: &Path, dialect: Dialect) -> Vec<(String, String)> {
         .collect()
 }
 
-fn run(v: Verifier, program: &str) -> Report {
-    let body = program.strip_suffix('\n').unwrap_or(program);
-    let mut v = v;
-    for line in body.split('\n') {
-        if !v.line(line) {
-            break;
-        }
-    }
-    v.finish(|feed| {
-        for line in body.split('\n') {
-            if !feed(line) {
-                break;
-            }
-        }
-    })
-}
-
 /// Both checkers' reports, asserted equal to the last bit.
 fn same(name: &str, program: &str, o: &Options) -> Report {
-    let kept = run(Verifier::new(o.clone()), program);
-    let lean = run(Verifier::lean(o.clone()), program);
+    let kept = Verifier::new(o.clone()).read_text(program);
+    let lean = Verifier::lean(o.clone()).read_text(program);
     assert_eq!(
         format!("{kept:#?}"),
         format!("{lean:#?}"),

@@ -44,7 +44,7 @@ pub use finding::{
 };
 pub use parse::{parse_line, Block, Word, MAX_MAGNITUDE};
 pub use stock_view::{StockView, ViewRequest};
-pub use stream::Verifier;
+pub use stream::{feed_lines, Verifier};
 pub use surface::{HeightMap, SurfaceProblem};
 pub use surface_frame::{ROUNDING as SURFACE_ROUNDING, SPLIT_TOLERANCE};
 
@@ -292,19 +292,7 @@ pub fn verify_on_surface(
             None => Ok(None),
         },
     };
-    let mut v = Verifier::scanned(options.clone(), surface, problems, map);
-    for line in body.split('\n') {
-        if !v.line(line) {
-            break;
-        }
-    }
-    v.finish(|feed| {
-        for line in body.split('\n') {
-            if !feed(line) {
-                break;
-            }
-        }
-    })
+    Verifier::scanned(options.clone(), surface, problems, map).read_text(program)
 }
 
 /// Moves the Z of a line of an adjusted program to the drawing's frame ([`adjusted`]).

@@ -158,6 +158,12 @@ impl Verifier {
         !self.done
     }
 
+    /// Reads a whole program text and finishes with the same text as its second reading.
+    pub fn read_text(mut self, program: &str) -> Report {
+        feed_lines(program, &mut |l| self.line(l));
+        self.finish(|feed| feed_lines(program, feed))
+    }
+
     /// The report: the end of the program, the clamps, the depths and the stock model.
     /// `replay(feed)` gives the program's lines again, in order, to `feed` until it answers
     /// `false`: for the texts of the lines findings name, and for a lean checker's checks
@@ -323,5 +329,17 @@ pub(crate) fn missing_params(top: Option<f64>, tool: Option<f64>) -> Raw {
             tool: tool.is_none(),
         }),
         severity: Severity::Note,
+    }
+}
+
+/// The lines of a program text (a final `\n` ends its last line) to `feed` until it answers
+/// `false`: how a written program is given to a [`Verifier`], and again to its
+/// [`Verifier::finish`].
+pub fn feed_lines(program: &str, feed: &mut dyn FnMut(&str) -> bool) {
+    let body = program.strip_suffix('\n').unwrap_or(program);
+    for line in body.split('\n') {
+        if !feed(line) {
+            break;
+        }
     }
 }

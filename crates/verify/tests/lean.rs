@@ -7,64 +7,20 @@ use millpath_verify::{
     Clamp, Dialect, FindingKind, Limits, Options, Report, Severity, StockSkip, Verifier,
 };
 
-/// xorshift64*: reproducible without a dependency.
-struct Rng(u64);
+mod common;
 
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-}
-
-/// One program read by a checker, its lines given again when it asks.
-fn run(v: Verifier, program: &str) -> Report {
-    let body = program.strip_suffix('\n').unwrap_or(program);
-    let mut v = v;
-    for line in body.split('\n') {
-        if !v.line(line) {
-            break;
-        }
-    }
-    v.finish(|feed| {
-        for line in body.split('\n') {
-            if !feed(line) {
-                break;
-            }
-        }
-    })
-}
+use common::{mutate, opts, program, Rng};
 
 /// Both checkers' reports, asserted equal (Debug: every number to its last bit, NaN too).
 fn same(program: &str, o: &Options) -> Report {
-    let kept = run(Verifier::new(o.clone()), program);
-    let lean = run(Verifier::lean(o.clone()), program);
+    let kept = Verifier::new(o.clone()).read_text(program);
+    let lean = Verifier::lean(o.clone()).read_text(program);
     assert_eq!(
         format!("{kept:#?}"),
         format!("{lean:#?}"),
         "lean and kept differ on\n{program}\nwith {o:?}"
     );
     kept
-}
-
-const HEADER: &str =
-    "%\nF150\nG17 G21 G40 G49 G54 G80 G90 G94\nT1\nG00 Z5.000\nG00 X0.000 Y0.000\n";
-
-fn program(body: &str) -> String {
-    format!("{HEADER}{body}M30\n%\n")
-}
-
-fn opts(top: f64, tool: f64) -> Options {
-    Options {
-        top: Some(top),
-        tool: Some(tool),
-        ..Default::default()
-    }
 }
 
 fn clamp(name: &str, min: [f64; 3], max: [f64; 3]) -> Clamp {
@@ -272,32 +228,7 @@ fn mutated_programs_give_the_same_report() {
     for round in 0..600 {
         let mut prog: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
         for _ in 0..1 + rng.below(5) {
-            let i = rng.below(prog.len());
-            match rng.below(5) {
-                0 => {
-                    prog.remove(i);
-                    if prog.is_empty() {
-                        prog.push(String::new());
-                    }
-                }
-                1 => {
-                    let l = prog[i].clone();
-                    prog.insert(i, l);
-                }
-                2 => {
-                    let mut chars: Vec<char> = prog[i].chars().collect();
-                    if !chars.is_empty() {
-                        let k = rng.below(chars.len());
-                        chars[k] = ALPHABET[rng.below(ALPHABET.len())] as char;
-                    }
-                    prog[i] = chars.into_iter().collect();
-                }
-                3 => {
-                    let j = rng.below(prog.len());
-                    prog.swap(i, j);
-                }
-                _ => prog.truncate(i.max(1)),
-            }
+            mutate(&mut prog, &mut rng, ALPHABET);
         }
         let text = prog.join("\n");
         let o = Options {

@@ -6,21 +6,9 @@ use millpath_verify::{
     SyntaxError,
 };
 
-const HEADER: &str =
-    "%\nF150\nG17 G21 G40 G49 G54 G80 G90 G94\nT1\nG00 Z5.000\nG00 X0.000 Y0.000\n";
-// the header has 6 lines: the body starts on line 7
+mod common;
 
-fn program(body: &str) -> String {
-    format!("{HEADER}{body}M30\n%\n")
-}
-
-fn opts(top: f64, tool: f64) -> Options {
-    Options {
-        top: Some(top),
-        tool: Some(tool),
-        ..Default::default()
-    }
-}
+use common::{opts, program};
 
 /// Errors and warnings (notes left out).
 fn problems(text: &str, o: &Options) -> Vec<Finding> {

@@ -3,20 +3,9 @@
 
 use millpath_verify::{verify, Dialect, FindingKind, Limit, Limits, Options, Severity, StockSkip};
 
-/// xorshift64*: reproducible without a dependency.
-struct Rng(u64);
+mod common;
 
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-}
+use common::{mutate, Rng};
 
 const GOOD: &str = "%\n(millpath)\nF150\nG17 G21 G40 G49 G54 G80 G90 G94\nT1\n(MILLPATH-STOCK T=2.000 O=2.000 BOTTOM=-0.300)\n\
 G00 Z5.000\nG00 X0.000 Y0.000\nG00 X10.000 Y-0.050\nG00 Z4.000\n\
@@ -76,52 +65,7 @@ fn mutated_programs_never_panic() {
     for round in 0..1500 {
         let mut prog: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
         for _ in 0..1 + rng.below(6) {
-            let i = rng.below(prog.len());
-            match rng.below(7) {
-                0 => {
-                    prog.remove(i);
-                    if prog.is_empty() {
-                        prog.push(String::new());
-                    }
-                }
-                1 => {
-                    let l = prog[i].clone();
-                    prog.insert(i, l);
-                }
-                2 => {
-                    // change a digit or a letter
-                    let mut chars: Vec<char> = prog[i].chars().collect();
-                    if !chars.is_empty() {
-                        let k = rng.below(chars.len());
-                        chars[k] = ALPHABET[rng.below(ALPHABET.len())] as char;
-                    }
-                    prog[i] = chars.into_iter().collect();
-                }
-                3 => {
-                    // truncate the line
-                    let chars: Vec<char> = prog[i].chars().collect();
-                    let k = rng.below(chars.len() + 1);
-                    prog[i] = chars[..k].iter().collect();
-                }
-                4 => {
-                    let j = rng.below(prog.len());
-                    prog.swap(i, j);
-                }
-                5 => {
-                    // absurd or extreme values
-                    let v = [
-                        "1e6",
-                        "-999999.999",
-                        "0.0000001",
-                        "NaN",
-                        "1e308",
-                        "00000000000000000000001",
-                    ][rng.below(6)];
-                    let letter = ["X", "Y", "Z", "I", "J", "R", "F", "P"][rng.below(8)];
-                    prog[i] = format!("{} {letter}{v}", prog[i]);
-                }
-                _ => prog.truncate(i.max(1)),
-            }
+            mutate(&mut prog, &mut rng, ALPHABET);
         }
         let text = prog.join(if round % 2 == 0 { "\n" } else { "\r\n" });
         let r = verify(&text, &all_dialects()[round % 3]);
