@@ -5,8 +5,8 @@
 //! staged file once the program is complete.
 
 use crate::diag::{Diagnostic, Msg, Origin};
+use crate::digest::{banner_index_of_first, banner_with_digest, set_digest_lines};
 use crate::emit::LineSink;
-use crate::probe::adjustz::{banner_index_of_first, banner_with_digest, set_digest_lines};
 use crate::second_opinion::{replay_lines, Reviewer};
 use crate::{args, emit::as_comment};
 use std::fs::File;

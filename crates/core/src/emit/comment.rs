@@ -16,7 +16,7 @@
 
 use crate::args;
 use crate::diag::{Diagnostic, Msg, Origin};
-use crate::emit::dialect::Dialect;
+use crate::machine::Dialect;
 use crate::model::{Element, Model};
 
 /// LinuxCNC's comment words that make a comment do something (checked case-insensitively).

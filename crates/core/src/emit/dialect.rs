@@ -6,52 +6,13 @@
 //! no `%` program delimiters — no `%` lines.
 
 use crate::emit::comment::comment_line;
-use crate::emit::timing::Machine;
-use crate::front::drawing::Style;
 use crate::geom::{f3, P3};
 use crate::load::settings::Settings;
-use crate::model::{Element, Model};
+use crate::machine::{Dialect, Machine, DEFAULT_SPINDLE_DWELL};
+use crate::model::Model;
 use crate::params::fmt_num;
 use crate::probe::heightmap::Heightmap;
-use serde::Deserialize;
-
-/// The controller a program is written for.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Dialect {
-    /// PathDxf2GCode's output, byte-identical (the default).
-    #[default]
-    Reference,
-    /// LinuxCNC (rs274ngc).
-    #[serde(rename = "linuxcnc")]
-    LinuxCnc,
-    /// GRBL 1.1.
-    Grbl,
-}
-
-impl Dialect {
-    pub const ALL: [Dialect; 3] = [Dialect::Reference, Dialect::LinuxCnc, Dialect::Grbl];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Dialect::Reference => "reference",
-            Dialect::LinuxCnc => "linuxcnc",
-            Dialect::Grbl => "grbl",
-        }
-    }
-
-    pub fn from_name(name: &str) -> Option<Dialect> {
-        Dialect::ALL
-            .into_iter()
-            .find(|d| d.name().eq_ignore_ascii_case(name.trim()))
-    }
-}
-
-impl std::fmt::Display for Dialect {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
-    }
-}
+use crate::stock::stock_of;
 
 /// What the program writer needs to know about the controller.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -212,14 +173,11 @@ impl Controller {
     }
 }
 
-/// Seconds the program waits after starting the spindle, unless set.
-pub const DEFAULT_SPINDLE_DWELL: f64 = 2.0;
-
 /// `(MILLPATH-STOCK T=<top> O=<tool diameter> BOTTOM=<lowest drawn depth>)`: what an
 /// independent verifier needs to know about the stock and the tool.
 pub fn stock_comment(model: &Model) -> String {
     // the same figures the compiler's own second opinion uses
-    let (top, tool, bottom) = crate::second_opinion::stock_of(model);
+    let (top, tool, bottom) = stock_of(model);
     format!(
         "(MILLPATH-STOCK T={} O={} BOTTOM={})",
         f3(top),
@@ -228,56 +186,9 @@ pub fn stock_comment(model: &Model) -> String {
     )
 }
 
-/// The lowest Z a model's elements ask for (`h` + B or D), subpaths with their H included.
-pub fn lowest_depth(model: &Model, h: f64, depth: usize) -> Option<f64> {
-    let pick = |style: Style, b: Option<f64>, d: Option<f64>| match style {
-        Style::Mark => d,
-        Style::Mill | Style::Support => b,
-    };
-    let mut lowest: Option<f64> = None;
-    let mut take = |z: Option<f64>| {
-        if let Some(z) = z {
-            lowest = Some(lowest.map_or(z, |l: f64| l.min(z)));
-        }
-    };
-    for e in &model.elements {
-        match e {
-            Element::Chain(c) => c
-                .segs
-                .iter()
-                .for_each(|s| take(pick(s.style, s.b, s.d).map(|z| h + z))),
-            Element::Drill(d) => take(pick(d.style, d.b, d.d).map(|z| h + z)),
-            Element::Helix(x) => {
-                let z = match (x.style, &x.bars) {
-                    (Style::Support, None) => x.d,
-                    (style, _) => pick(style, x.b, x.d),
-                };
-                take(z.map(|z| h + z));
-            }
-            Element::Subpath(emb) => {
-                if let (Some(t), true) = (&emb.target, depth < 10) {
-                    take(lowest_depth(t, h + emb.h, depth + 1));
-                }
-            }
-            Element::Sweep(_) => {}
-        }
-    }
-    lowest
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn names_round_trip() {
-        for d in Dialect::ALL {
-            assert_eq!(Dialect::from_name(d.name()), Some(d));
-        }
-        assert_eq!(Dialect::from_name("LinuxCNC"), Some(Dialect::LinuxCnc));
-        assert_eq!(Dialect::from_name("mach3"), None);
-        assert_eq!(Dialect::default(), Dialect::Reference);
-    }
 
     #[test]
     fn plunge_feeds() {

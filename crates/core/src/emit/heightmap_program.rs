@@ -6,11 +6,13 @@
 
 use crate::diag::{Diagnostic, Msg};
 use crate::emit::comment::comment_line;
-use crate::emit::dialect::{Controller, Dialect};
+use crate::emit::dialect::Controller;
+use crate::emit::extent::cut_extent;
 use crate::emit::{as_comment, Item, NamedProbe};
 use crate::geom::{f3, F3, P2};
+use crate::machine::Dialect;
 use crate::model::Model;
-use crate::probe::heightmap::{cut_extent, var_name, Grid, Heightmap};
+use crate::probe::heightmap::{var_name, Grid, Heightmap};
 
 /// The probing program's lines (without the set's digest) and the `_Z.txt` lines.
 pub(crate) struct GridSet {

@@ -2,6 +2,7 @@
 //! (of drawn probes, or of a height map's grid: `heightmap_program.rs`).
 
 use crate::diag::{Diagnostic, Lang, Origin};
+use crate::digest::{banner_index, banner_with_digest, set_digest};
 use crate::emit::as_comment;
 use crate::emit::dialect::Controller;
 use crate::emit::heightmap_program::{grid_of, grid_set, probe_close, probe_open, GridSet};
@@ -9,7 +10,6 @@ use crate::emit::stats::Stats;
 use crate::emit::{emit_into, emit_quick, emit_until, start_height, Emitted, LineSink};
 use crate::geom::{near, F3, P2, P3};
 use crate::model::*;
-use crate::probe::adjustz::{banner_index, banner_with_digest, set_digest};
 
 /// The files of one compiled path.
 #[derive(Debug, Clone, PartialEq)]
@@ -205,7 +205,7 @@ fn generate_job(
     };
     stats.split = split;
     // the file LinuxCNC logs the probe contacts to (PROBEOPEN), beside the set
-    let log = crate::output_prefix(std::path::Path::new(file_name), &model.params.r);
+    let log = crate::load::paths::output_prefix(std::path::Path::new(file_name), &model.params.r);
     let log = format!("{}_probes.txt", log.display());
     // a height map's probing set needs the cutting moves before they become lines
     let grid = match &ctl.heightmap {
