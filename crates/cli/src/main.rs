@@ -9,6 +9,7 @@ mod compat;
 mod config;
 mod help_de;
 mod inputs;
+mod measured;
 mod output;
 mod png;
 mod report;
@@ -168,6 +169,10 @@ enum Command {
         /// Overwrite an existing DXF even if drawing content would be lost
         #[arg(long, conflicts_with = "into")]
         force: bool,
+        /// With --into: delete the paths of the drawing that the text does not define
+        /// (without it, --into names them and writes nothing)
+        #[arg(long, requires = "into")]
+        delete_missing_paths: bool,
         #[command(flatten)]
         names: NameArgs,
     },
@@ -339,12 +344,14 @@ fn main() -> ExitCode {
             output,
             into,
             force,
+            delete_missing_paths,
             names,
         } => commands::text2dxf::run(
             &file,
             output.as_deref(),
             into.as_deref(),
             force,
+            delete_missing_paths,
             &names.machine(),
         ),
         Command::Fmt { check, lang, paths } => {

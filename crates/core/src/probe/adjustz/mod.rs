@@ -6,6 +6,7 @@
 //! agree with it and hold exactly the probes used there; `_Clean.gcode` must be a complete
 //! program; lines and expression nesting are bounded. [`adjust`] is the one entry point.
 
+mod carry;
 mod digest;
 mod expr;
 mod follow;
@@ -15,6 +16,7 @@ mod probe_log;
 mod rewrite;
 mod zfile;
 
+pub use carry::{plan_new_z, Aside, OldZ, Unreadable, ZPlan};
 pub use digest::{
     banner_index, banner_index_of_first, banner_with_digest, check_set, set_digest,
     set_digest_lines, stored_digest, SetFile, SET_WORD,
