@@ -105,18 +105,13 @@ pub fn prepare(
     let bytes = read_bounded(z);
     let prefix = z.to_string_lossy();
     let prefix = prefix.strip_suffix("_Z.txt").unwrap_or(&prefix).to_string();
-    let mut old = OldZ {
+    // the old set's files are read only when its values are to be compared
+    let points = || old_points(&prefix, bytes.as_deref().ok()?);
+    let old = OldZ {
         bytes: bytes.as_deref().map_err(Clone::clone),
-        points: None,
+        points: &points,
     };
-    let mut plan = adjustz::plan_new_z(&old, new_z, new_probing);
-    if let (ZPlan::Aside { .. }, Ok(b)) = (&plan, &bytes) {
-        // the old set's files are read only when its values are to be compared
-        old.points = old_points(&prefix, b);
-        if old.points.is_some() {
-            plan = adjustz::plan_new_z(&old, new_z, new_probing);
-        }
-    }
+    let plan = adjustz::plan_new_z(&old, new_z, new_probing);
     let (content, why) = match plan {
         ZPlan::Write => return Ok(ZWrite::AsIs),
         ZPlan::Keep { .. } => return Ok(ZWrite::Keep),

@@ -22,8 +22,9 @@ pub struct OldZ<'a> {
     /// Its bytes, or why they could not be read (the OS's words).
     pub bytes: Result<&'a [u8], String>,
     /// The probe points of the old probing program, when it is of the same compile as the
-    /// old `_Z.txt` (its digest is that of the old `_Z.txt` and `_Clean.gcode`).
-    pub points: Option<Vec<ProbePoint>>,
+    /// old `_Z.txt` (its digest is that of the old `_Z.txt` and `_Clean.gcode`); asked only
+    /// when the old file holds values (the old `_Clean.gcode` may be large).
+    pub points: &'a dyn Fn() -> Option<Vec<ProbePoint>>,
 }
 
 /// What to do with the old `_Z.txt`.
@@ -31,8 +32,9 @@ pub struct OldZ<'a> {
 pub enum ZPlan {
     /// It holds nothing the new file does not: write the new one over it.
     Write,
-    /// It names the same probes, line by line, and holds `values` measured values: leave it
-    /// exactly as it is (and do not write the new one).
+    /// It names the same probes, line by line, touched at the same points of the program,
+    /// and holds `values` measured values: leave it exactly as it is (and do not write the
+    /// new one).
     Keep { values: usize },
     /// It holds what the new file would lose: keep it beside under another name, and write
     /// `content` (the new file, with the values carried over that [`Aside`] counts).
@@ -149,29 +151,31 @@ pub fn plan_new_z(old: &OldZ, new_z: &str, new_probing: &str) -> ZPlan {
     if values == 0 {
         return ZPlan::Write;
     }
-    let Ok(new_lines) = entries(new_z) else {
+    let new_points = probe_points(new_probing);
+    let Some(new_lines) = entries(new_z).ok().filter(|l| l.len() == new_points.len()) else {
         return aside(Aside::Unchecked { values });
     };
+    let Some(old_points) = (old.points)().filter(|p| p.len() == old_lines.len()) else {
+        return aside(Aside::Unchecked { values });
+    };
+    let milli = |v: f64| (v * 1000.0).round() as i64;
     let same_probes = old_lines.len() == new_lines.len()
         && old_lines
             .iter()
             .zip(&new_lines)
-            .all(|(a, b)| a.nominal == b.nominal);
+            .all(|(a, b)| a.nominal == b.nominal)
+        && old_points
+            .iter()
+            .zip(&new_points)
+            .all(|(a, b)| (milli(a.x), milli(a.y)) == (milli(b.x), milli(b.y)));
     if same_probes {
         return ZPlan::Keep { values };
-    }
-    let Some(old_points) = old.points.as_ref().filter(|p| p.len() == old_lines.len()) else {
-        return aside(Aside::Unchecked { values });
-    };
-    let new_points = probe_points(new_probing);
-    if new_points.len() != new_lines.len() {
-        return aside(Aside::Unchecked { values });
     }
     // a last line without a line end may be cut off: `2.15` read as `2.1`
     let cut_last = !decoded.ends_with('\n') && !decoded.ends_with('\r');
     let last = old_lines.len().saturating_sub(1);
     let mut measured: HashMap<Key, VecDeque<&str>> = HashMap::new();
-    for (i, (e, p)) in old_lines.iter().zip(old_points).enumerate() {
+    for (i, (e, p)) in old_lines.iter().zip(&old_points).enumerate() {
         let usable = sane_number(e.value).is_ok() && !(cut_last && i == last);
         if let (true, Some(k)) = (usable, key(e, p)) {
             measured.entry(k).or_default().push_back(e.value);
@@ -224,10 +228,18 @@ mod tests {
             .replace("#52=", &format!("#52={b}"))
     }
 
+    fn points() -> Option<Vec<ProbePoint>> {
+        Some(probe_points(PROBING))
+    }
+
+    fn none() -> Option<Vec<ProbePoint>> {
+        None
+    }
+
     fn old(text: &str) -> OldZ<'_> {
         OldZ {
             bytes: Ok(text.as_bytes()),
-            points: Some(probe_points(PROBING)),
+            points: &points,
         }
     }
 
@@ -241,6 +253,13 @@ mod tests {
             plan_new_z(&old(&notepad), Z, PROBING),
             ZPlan::Keep { values: 2 }
         );
+        // the same probes touched elsewhere (the start point moved): compared, none carried
+        let moved = PROBING.replace("Y5.000", "Y4.000");
+        let ZPlan::Aside { content, why } = plan_new_z(&old(&z), Z, &moved) else {
+            panic!()
+        };
+        assert_eq!(content, Z);
+        assert!(matches!(why, Aside::Compared { carried: 0, .. }), "{why:?}");
         for nothing in [Z, "", "\n \n", "([10.000 5.000]/T=3.000) #51=\n"] {
             assert_eq!(
                 plan_new_z(&old(nothing), Z, PROBING),
@@ -326,7 +345,7 @@ mod tests {
         let unreadable = |bytes: &[u8]| {
             let o = OldZ {
                 bytes: Ok(bytes),
-                points: None,
+                points: &none,
             };
             match plan_new_z(&o, &new_z, PROBING) {
                 ZPlan::Aside {
@@ -348,7 +367,7 @@ mod tests {
         assert_eq!(unreadable(b"hello\n"), Unreadable::Line(1));
         let io = OldZ {
             bytes: Err("Permission denied".into()),
-            points: None,
+            points: &none,
         };
         assert!(matches!(
             plan_new_z(&io, Z, PROBING),
@@ -361,7 +380,7 @@ mod tests {
         let z = filled("2.9", "3.1");
         let o = OldZ {
             bytes: Ok(z.as_bytes()),
-            points: None,
+            points: &none,
         };
         assert_eq!(
             plan_new_z(&o, &new_z, PROBING),
