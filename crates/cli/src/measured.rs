@@ -44,14 +44,28 @@ fn read_bounded(path: &Path) -> Result<Vec<u8>, String> {
 }
 
 /// The probe points of the old probing program beside `z`, when it carries the digest of
-/// the old `_Z.txt` (`z_bytes`) with the old `_Clean.gcode` (read line by line: it may be
-/// large).
-fn old_points(prefix: &str, z_bytes: &[u8]) -> Option<Vec<adjustz::ProbePoint>> {
+/// the old `_Z.txt` (`z_bytes`) with the old `_Clean.gcode`. When both old programs carry
+/// the new set's digest `ours` and the old `_Z.txt` names the new one's probes, that is
+/// the same set, and the old `_Clean.gcode` (it may be large) is not read again.
+fn old_points(
+    prefix: &str,
+    z_bytes: &[u8],
+    new_z: &str,
+    ours: Option<&str>,
+) -> Option<Vec<adjustz::ProbePoint>> {
     let probing = read_bounded(Path::new(&format!("{prefix}_Probing.gcode"))).ok()?;
     let probing = String::from_utf8(probing).ok()?;
     let stored = adjustz::stored_digest(&probing)?;
     let z = millpath_core::load::text_file::decode(z_bytes).ok()?;
-    let clean = std::fs::File::open(format!("{prefix}_Clean.gcode")).ok()?;
+    let clean = format!("{prefix}_Clean.gcode");
+    let clean_head = millpath_core::stage::file_head(Path::new(&clean), 3);
+    let same_set = ours == Some(stored)
+        && adjustz::stored_digest(&clean_head) == Some(stored)
+        && adjustz::set_digest(&z.text, "") == adjustz::set_digest(new_z, "");
+    if same_set {
+        return Some(adjustz::probe_points(&probing));
+    }
+    let clean = std::fs::File::open(clean).ok()?;
     let mut failed = false;
     let lines = std::io::BufReader::new(clean)
         .lines()
@@ -91,11 +105,13 @@ fn keep_as(z: &Path, side: &Path, bytes: Option<&[u8]>) -> std::io::Result<()> {
 
 /// What to write for the `_Z.txt` at `z` (compile's new one: `new_z`, its probing program
 /// `new_probing`). `Err`: the old file may hold measured values and could not be kept beside;
-/// nothing of the set may be written. `lang`: the words of an unreadable file's reason.
+/// nothing of the set may be written. `ours`: the new set's digest; `lang`: the words of an
+/// unreadable file's reason.
 pub fn prepare(
     z: &Path,
     new_z: &str,
     new_probing: &str,
+    ours: Option<&str>,
     lang: millpath_core::Lang,
 ) -> Result<ZWrite, Diagnostic> {
     // nothing there, or something no write can replace (a folder: the set write says so)
@@ -106,7 +122,7 @@ pub fn prepare(
     let prefix = z.to_string_lossy();
     let prefix = prefix.strip_suffix("_Z.txt").unwrap_or(&prefix).to_string();
     // the old set's files are read only when its values are to be compared
-    let points = || old_points(&prefix, bytes.as_deref().ok()?);
+    let points = || old_points(&prefix, bytes.as_deref().ok()?, new_z, ours);
     let old = OldZ {
         bytes: bytes.as_deref().map_err(Clone::clone),
         points: &points,

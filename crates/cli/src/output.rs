@@ -96,7 +96,7 @@ pub fn write_drawing_outputs(
         let probing = outputs.iter().find(|o| ends(o, PROBING[0]));
         let probing = probing.map_or("", |o| o.content.as_str());
         let z = &outputs[zi];
-        match crate::measured::prepare(&z.path, &z.content, probing, lang) {
+        match crate::measured::prepare(&z.path, &z.content, probing, ours.as_deref(), lang) {
             Ok(ZWrite::AsIs) => {}
             Ok(ZWrite::Keep) => kept = Some(outputs.remove(zi).path),
             Ok(ZWrite::Replace {
