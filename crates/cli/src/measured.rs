@@ -5,7 +5,7 @@
 //! this reads the old files and keeps the old one.
 
 use millpath_core::diag::{Diagnostic, FileRef, Msg, Origin};
-use millpath_core::probe::adjustz::{self, Aside, OldZ, ZPlan};
+use millpath_core::probe::adjustz::{self, Aside, OldZ, Unreadable, ZPlan};
 use std::io::{BufRead, Read};
 use std::path::{Path, PathBuf};
 
@@ -32,13 +32,13 @@ const MAX_READ: u64 = 64 << 20;
 const MAX_SIDE: usize = 999;
 
 /// At most [`MAX_READ`] bytes of `path`.
-fn read_bounded(path: &Path) -> Result<Vec<u8>, String> {
+fn read_bounded(path: &Path) -> Result<Vec<u8>, Unreadable> {
     let mut bytes = Vec::new();
     std::fs::File::open(path)
         .and_then(|f| f.take(MAX_READ + 1).read_to_end(&mut bytes))
-        .map_err(|e| e.to_string())?;
+        .map_err(|e| Unreadable::Io(e.to_string()))?;
     if bytes.len() as u64 > MAX_READ {
-        return Err(format!("larger than {} MiB", MAX_READ >> 20));
+        return Err(Unreadable::TooLarge(MAX_READ >> 20));
     }
     Ok(bytes)
 }

@@ -442,6 +442,25 @@ fn hostile_z_files_are_kept_beside() {
         assert!(text.contains(said), "{what}: {text}");
         assert_eq!(bytes(d, "2020_Z.1.txt"), old, "{what}");
     }
+    // a file of 65 MiB (a device, a log saved under the name): kept beside unread
+    clear(d);
+    std::fs::write(d.join("2020.mpath"), &original).unwrap();
+    assert_eq!(run(d, &["compile", "2020.mpath"]).0, 0);
+    std::fs::File::create(d.join("2020_Z.txt"))
+        .unwrap()
+        .set_len(65 << 20)
+        .unwrap();
+    std::fs::write(d.join("2020.mpath"), &moved).unwrap();
+    let (code, text) = run(d, &["compile", "--lang", "de", "2020.mpath"]);
+    assert_eq!(code, 0, "{text}");
+    assert!(
+        text.contains("2020_Z.txt ließ sich nicht als _Z.txt lesen (sie ist größer als 64 MiB): als 2020_Z.1.txt aufbewahrt"),
+        "{text}"
+    );
+    assert_eq!(
+        std::fs::metadata(d.join("2020_Z.1.txt")).unwrap().len(),
+        65 << 20
+    );
     // read-only, its probing program gone (a failed compile removed it): kept beside with its
     // permissions, nothing compared
     clear(d);

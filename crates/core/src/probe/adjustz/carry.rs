@@ -19,8 +19,8 @@ use std::collections::{HashMap, VecDeque};
 
 /// The `_Z.txt` an earlier compile left where the new one goes.
 pub struct OldZ<'a> {
-    /// Its bytes, or why they could not be read (the OS's words).
-    pub bytes: Result<&'a [u8], String>,
+    /// Its bytes, or why they could not be read.
+    pub bytes: Result<&'a [u8], Unreadable>,
     /// The probe points of the old probing program, when it is of the same compile as the
     /// old `_Z.txt` (its digest is that of the old `_Z.txt` and `_Clean.gcode`); asked only
     /// when the old file holds values (the old `_Clean.gcode` may be large).
@@ -62,6 +62,8 @@ pub enum Aside {
 pub enum Unreadable {
     /// The file could not be read (the OS's words).
     Io(String),
+    /// It is larger than this many MiB: no `_Z.txt` compile wrote.
+    TooLarge(u64),
     /// NUL bytes without a byte-order mark, or bytes that are not UTF-8.
     NotText,
     /// This line (1-based) is not `(…/T=t) #n=value`, or too long.
@@ -72,6 +74,8 @@ impl Unreadable {
     pub fn describe(&self, lang: Lang) -> String {
         match (self, lang) {
             (Unreadable::Io(e), _) => e.clone(),
+            (Unreadable::TooLarge(mib), Lang::En) => format!("it is larger than {mib} MiB"),
+            (Unreadable::TooLarge(mib), Lang::De) => format!("sie ist größer als {mib} MiB"),
             (Unreadable::NotText, Lang::En) => "it is no UTF-8 or UTF-16 text".to_string(),
             (Unreadable::NotText, Lang::De) => "sie ist kein UTF-8- oder UTF-16-Text".to_string(),
             (Unreadable::Line(n), Lang::En) => {
@@ -134,7 +138,7 @@ pub fn plan_new_z(old: &OldZ, new_z: &str, new_probing: &str) -> ZPlan {
     };
     let bytes = match &old.bytes {
         Ok(b) => *b,
-        Err(e) => return aside(Aside::Unreadable(Unreadable::Io(e.clone()))),
+        Err(e) => return aside(Aside::Unreadable(e.clone())),
     };
     if bytes == new_z.as_bytes() || bytes.iter().all(u8::is_ascii_whitespace) {
         return ZPlan::Write;
@@ -366,7 +370,7 @@ mod tests {
         );
         assert_eq!(unreadable(b"hello\n"), Unreadable::Line(1));
         let io = OldZ {
-            bytes: Err("Permission denied".into()),
+            bytes: Err(Unreadable::Io("Permission denied".into())),
             points: &none,
         };
         assert!(matches!(
