@@ -149,7 +149,10 @@ enum Command {
     /// Write MillPath text as a DXF drawing, or into an existing drawing with --into
     ///
     /// An existing DXF that holds anything text2dxf does not write back (other layers,
-    /// dimensions, blocks) is not overwritten: use --into to keep it, or --force.
+    /// dimensions, blocks) is not overwritten: use --into to keep it, or --force. --into
+    /// does not delete the drawing's paths that the text lacks (it names them) unless
+    /// --delete-missing-paths, and leaves a drawing that already holds the text's paths
+    /// untouched.
     // the conversion options, with what two of them mean for text2dxf
     #[command(
         mut_arg("path_pattern", |a| a.help("Path-name pattern: which layers are path layers (their elements are written or replaced)")),

@@ -123,9 +123,12 @@ pub fn prepare(
     let prefix = prefix.strip_suffix("_Z.txt").unwrap_or(&prefix).to_string();
     // the old set's files are read only when its values are to be compared
     let points = || old_points(&prefix, bytes.as_deref().ok()?, new_z, ours);
+    let clean_head =
+        millpath_core::stage::file_head(Path::new(&format!("{prefix}_Clean.gcode")), 3);
     let old = OldZ {
         bytes: bytes.as_deref().map_err(Clone::clone),
         points: &points,
+        same_set: ours.is_some() && adjustz::stored_digest(&clean_head) == ours,
     };
     let plan = adjustz::plan_new_z(&old, new_z, new_probing);
     let (content, why) = match plan {

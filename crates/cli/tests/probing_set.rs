@@ -273,6 +273,12 @@ fn recompiling_an_unchanged_drawing_keeps_the_measured_values_and_the_adjusted_p
     let (code, text) = run(d, &["adjust-z", "--max", "0.5", "2020_Clean.gcode"]);
     assert_eq!(code, 0, "{text}");
     assert_eq!(bytes(d, "2020_Milling.gcode"), milling);
+    // the probing program cleaned away after probing: _Clean.gcode still says this set
+    std::fs::remove_file(d.join("2020_Probing.gcode")).unwrap();
+    let (code, text) = run(d, &["compile", "2020.mpath"]);
+    assert_eq!(code, 0, "{text}");
+    assert_eq!(bytes(d, "2020_Z.txt"), z, "{text}");
+    assert_eq!(bytes(d, "2020_Milling.gcode"), milling, "{text}");
     // in German the program's comments are German: another set, the same probes
     let (code, text) = run(d, &["compile", "--lang", "de", "2020.mpath"]);
     assert_eq!(code, 0, "{text}");

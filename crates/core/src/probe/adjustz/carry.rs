@@ -25,6 +25,9 @@ pub struct OldZ<'a> {
     /// old `_Z.txt` (its digest is that of the old `_Z.txt` and `_Clean.gcode`); asked only
     /// when the old file holds values (the old `_Clean.gcode` may be large).
     pub points: &'a dyn Fn() -> Option<Vec<ProbePoint>>,
+    /// The old `_Clean.gcode` carries the new set's digest: the old compile made this very
+    /// set (when the old `_Z.txt` names its probes).
+    pub same_set: bool,
 }
 
 /// What to do with the old `_Z.txt`.
@@ -159,15 +162,19 @@ pub fn plan_new_z(old: &OldZ, new_z: &str, new_probing: &str) -> ZPlan {
     let Some(new_lines) = entries(new_z).ok().filter(|l| l.len() == new_points.len()) else {
         return aside(Aside::Unchecked { values });
     };
+    let same_nominal = old_lines.len() == new_lines.len()
+        && old_lines
+            .iter()
+            .zip(&new_lines)
+            .all(|(a, b)| a.nominal == b.nominal);
+    if same_nominal && old.same_set {
+        return ZPlan::Keep { values };
+    }
     let Some(old_points) = (old.points)().filter(|p| p.len() == old_lines.len()) else {
         return aside(Aside::Unchecked { values });
     };
     let milli = |v: f64| (v * 1000.0).round() as i64;
-    let same_probes = old_lines.len() == new_lines.len()
-        && old_lines
-            .iter()
-            .zip(&new_lines)
-            .all(|(a, b)| a.nominal == b.nominal)
+    let same_probes = same_nominal
         && old_points
             .iter()
             .zip(&new_points)
@@ -244,6 +251,7 @@ mod tests {
         OldZ {
             bytes: Ok(text.as_bytes()),
             points: &points,
+            same_set: false,
         }
     }
 
@@ -264,6 +272,22 @@ mod tests {
         };
         assert_eq!(content, Z);
         assert!(matches!(why, Aside::Compared { carried: 0, .. }), "{why:?}");
+        // the old probing program gone, but the old _Clean.gcode is of this very set
+        let same = OldZ {
+            bytes: Ok(z.as_bytes()),
+            points: &none,
+            same_set: true,
+        };
+        assert_eq!(plan_new_z(&same, Z, PROBING), ZPlan::Keep { values: 2 });
+        // ... and only for the same probes
+        let other = Z.replace("50.000", "45.000");
+        assert!(matches!(
+            plan_new_z(&same, &other, PROBING),
+            ZPlan::Aside {
+                why: Aside::Unchecked { values: 2 },
+                ..
+            }
+        ));
         for nothing in [Z, "", "\n \n", "([10.000 5.000]/T=3.000) #51=\n"] {
             assert_eq!(
                 plan_new_z(&old(nothing), Z, PROBING),
@@ -350,6 +374,7 @@ mod tests {
             let o = OldZ {
                 bytes: Ok(bytes),
                 points: &none,
+                same_set: false,
             };
             match plan_new_z(&o, &new_z, PROBING) {
                 ZPlan::Aside {
@@ -372,6 +397,7 @@ mod tests {
         let io = OldZ {
             bytes: Err(Unreadable::Io("Permission denied".into())),
             points: &none,
+            same_set: false,
         };
         assert!(matches!(
             plan_new_z(&io, Z, PROBING),
@@ -385,6 +411,7 @@ mod tests {
         let o = OldZ {
             bytes: Ok(z.as_bytes()),
             points: &none,
+            same_set: false,
         };
         assert_eq!(
             plan_new_z(&o, &new_z, PROBING),
