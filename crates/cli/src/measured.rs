@@ -140,7 +140,10 @@ pub fn prepare(
     let side = free_side(z);
     let kept = match &side {
         Some(s) => keep_as(z, s, bytes.as_deref().ok()).map_err(|e| e.to_string()),
-        None => Err(format!("{MAX_SIDE} earlier copies")),
+        None => Err(match lang {
+            millpath_core::Lang::En => format!("{MAX_SIDE} earlier copies"),
+            millpath_core::Lang::De => format!("{MAX_SIDE} frühere Kopien"),
+        }),
     };
     let side_name = side.clone().unwrap_or_else(|| z.with_extension("N.txt"));
     if let Err(e) = kept {
