@@ -84,6 +84,7 @@ fn arg(cmd: &str, id: &str) -> Option<&'static str> {
         "textconv" => Some("Als textconv-Treiber von git: eine unlesbare Zeichnung ergibt eine Fehlerzeile als Text (Exit-Status 0), damit `git diff` weiterläuft"),
         "into" => Some("Die Pfade in diese vorhandene Zeichnung schreiben: Elemente und Texte der Pfad-Layer werden ersetzt, jeder andere Layer, jedes andere Objekt, jeder Block und jede Einstellung bleibt"),
         "force" => Some("Eine vorhandene DXF-Datei überschreiben, auch wenn dabei Zeichnungsinhalt verloren geht"),
+        "delete_missing_paths" => Some("Mit --into: die Pfade der Zeichnung löschen, die der Text nicht definiert (ohne diese Option nennt --into sie und schreibt nichts)"),
         "check" => Some("Nur prüfen: Exit-Status 1 und die nicht formatierten Dateien auflisten"),
         "path" => Some("Der zu zeichnende Pfad (Standard: der erste Pfad der Datei)"),
         "html" => Some("Die HTML-Seite hierhin schreiben (Standard, wenn weder --svg noch --png angegeben ist: <Zeichnung>_toolpath.html)"),

@@ -9,6 +9,7 @@ mod compat;
 mod config;
 mod help_de;
 mod inputs;
+mod measured;
 mod output;
 mod png;
 mod report;
@@ -148,7 +149,10 @@ enum Command {
     /// Write MillPath text as a DXF drawing, or into an existing drawing with --into
     ///
     /// An existing DXF that holds anything text2dxf does not write back (other layers,
-    /// dimensions, blocks) is not overwritten: use --into to keep it, or --force.
+    /// dimensions, blocks) is not overwritten: use --into to keep it, or --force. --into
+    /// does not delete the drawing's paths that the text lacks (it names them) unless
+    /// --delete-missing-paths, and leaves a drawing that already holds the text's paths
+    /// untouched.
     // the conversion options, with what two of them mean for text2dxf
     #[command(
         mut_arg("path_pattern", |a| a.help("Path-name pattern: which layers are path layers (their elements are written or replaced)")),
@@ -168,6 +172,10 @@ enum Command {
         /// Overwrite an existing DXF even if drawing content would be lost
         #[arg(long, conflicts_with = "into")]
         force: bool,
+        /// With --into: delete the paths of the drawing that the text does not define
+        /// (without it, --into names them and writes nothing)
+        #[arg(long, requires = "into")]
+        delete_missing_paths: bool,
         #[command(flatten)]
         names: NameArgs,
     },
@@ -339,12 +347,14 @@ fn main() -> ExitCode {
             output,
             into,
             force,
+            delete_missing_paths,
             names,
         } => commands::text2dxf::run(
             &file,
             output.as_deref(),
             into.as_deref(),
             force,
+            delete_missing_paths,
             &names.machine(),
         ),
         Command::Fmt { check, lang, paths } => {

@@ -1,5 +1,6 @@
 //! Printing diagnostics and progress, and writing output files, as every command does.
 
+use crate::measured::ZWrite;
 use crate::{out, report, write};
 use millpath_core::diag::{Diagnostic, Diags, Msg, Origin};
 use millpath_core::probe::adjustz;
@@ -61,7 +62,9 @@ const PROBING: &[&str] = &["_Probing.gcode", "_Z.txt", "_Clean.gcode"];
 /// `_Milling.gcode`, `_Probing.gcode` and `_Clean.gcode` (a filled-in `_Z.txt` holds the
 /// machinist's measurements and cannot be used without its `_Clean.gcode`: it stays);
 /// after a milling program, an older probing program and `_Clean.gcode`; after a probing
-/// set, a `_Milling.gcode` adjusted from another set. False when nothing was written.
+/// set, a `_Milling.gcode` adjusted from another set. A filled-in `_Z.txt` of the same
+/// probes stays as it is; of other probes it is kept beside (`measured.rs`). False when
+/// nothing was written.
 pub fn write_drawing_outputs(
     input: &Path,
     outcome: &millpath_core::FileOutcome,
@@ -79,34 +82,80 @@ pub fn write_drawing_outputs(
         }
         return false;
     }
-    if let Err(failed) = write_reported(&outcome.outputs, lang, diags) {
-        if outcome.outputs.len() > 1 {
+    let ends = |o: &millpath_core::OutputFile, end: &str| o.path.to_string_lossy().ends_with(end);
+    // the new set's digest, read before its staged program is renamed into place
+    let ours = outcome
+        .outputs
+        .iter()
+        .find(|o| ends(o, PROBING[2]))
+        .and_then(|clean| adjustz::stored_digest(&clean.head(3)).map(str::to_string));
+    let mut outputs = outcome.outputs.clone();
+    let mut kept = None;
+    let mut aside = None;
+    if let Some(zi) = outputs.iter().position(|o| ends(o, PROBING[1])) {
+        let probing = outputs.iter().find(|o| ends(o, PROBING[0]));
+        let probing = probing.map_or("", |o| o.content.as_str());
+        let z = &outputs[zi];
+        match crate::measured::prepare(&z.path, &z.content, probing, ours.as_deref(), lang) {
+            Ok(ZWrite::AsIs) => {}
+            Ok(ZWrite::Keep) => kept = Some(outputs.remove(zi).path),
+            Ok(ZWrite::Replace {
+                content,
+                side,
+                said,
+            }) => {
+                outputs[zi].content = content;
+                aside = Some((side, said));
+            }
+            Err(d) => {
+                diags.push(d);
+                for tmp in outputs.iter().filter_map(|o| o.staged.as_ref()) {
+                    let _ = std::fs::remove_file(tmp);
+                }
+                return false;
+            }
+        }
+    }
+    if let Err(failed) = write_reported(&outputs, lang, diags) {
+        if outputs.len() > 1 {
             diags.push(Diagnostic::warning(
                 Msg::OutputSetRestored,
                 Origin::Options,
                 millpath_core::args![failed.display()],
             ));
         }
+        // the old _Z.txt is back in place: its second name is not needed
+        if let Some((side, _)) = aside {
+            let _ = std::fs::remove_file(side);
+        }
         return false;
+    }
+    if let Some(z) = kept {
+        let verb = match lang {
+            Lang::En => "Keeping (measured values of the same probes)",
+            Lang::De => "Behalten (Messwerte derselben Messpunkte)",
+        };
+        eprintln!("---- {verb} {}", z.display());
+    }
+    if let Some((_, said)) = aside {
+        diags.push(said);
     }
     let written = |end: &str| {
         outcome.outputs.iter().find_map(|o| {
             let s = o.path.to_string_lossy();
-            s.strip_suffix(end).map(|p| (PathBuf::from(p), o))
+            s.strip_suffix(end).map(PathBuf::from)
         })
     };
-    if let Some((prefix, _)) = written(MILLING[0]) {
+    if let Some(prefix) = written(MILLING[0]) {
         for end in ["_Probing.gcode", "_Clean.gcode"] {
             remove_stale(&with_end(&prefix, end), diags);
         }
-    } else if let Some((prefix, clean)) = written(PROBING[2]) {
-        // an adjusted program of this very set (same digest) is still right
+    } else if let Some(prefix) = written(PROBING[2]) {
+        // an adjusted program of this very set (same digest) is still right; its banner
+        // line is among its first lines (the program may be long)
         let milling = with_end(&prefix, MILLING[0]);
-        let head = clean.head(3);
-        let ours = adjustz::stored_digest(&head);
-        // its banner line is among its first lines (the program may be long)
         let theirs = millpath_core::stage::file_head(&milling, 3);
-        let same = ours.is_some() && adjustz::stored_digest(&theirs) == ours;
+        let same = ours.is_some() && adjustz::stored_digest(&theirs) == ours.as_deref();
         if !same {
             remove_stale(&milling, diags);
         }

@@ -88,8 +88,16 @@ fn adjust_z_refuses_a_mix_and_a_failed_compile_leaves_no_stale_output() {
         "{text}"
     );
     assert!(!d.join("2020_Milling.gcode").exists());
-    // the consistent set is adjusted; a failed compile then removes what it cannot stand behind
-    assert_eq!(run(d, &["compile", "2020.mpath"]).0, 0);
+    // the consistent set is adjusted (the values typed beside the mixed set's program cannot
+    // be matched to its probe points: kept beside); a failed compile then removes what it
+    // cannot stand behind
+    let (code, text) = run(d, &["compile", "2020.mpath"]);
+    assert_eq!(code, 0, "{text}");
+    assert!(
+        text.contains("probing program is missing or of another compile"),
+        "{text}"
+    );
+    assert!(read(d, "2020_Z.1.txt").contains("#52=2.9"));
     fill(d, "3.1", "2.9");
     assert_eq!(run(d, &["adjust-z", "--max", "1", "2020"]).0, 0);
     std::fs::write(
@@ -202,4 +210,307 @@ fn a_set_saved_with_a_byte_order_mark_adjusts_as_the_plain_set() {
     );
     let (_, text) = run(d, &["verify", "--lang", "de", "bom.gcode"]);
     assert!(text.contains("ohne BOM speichern"), "{text}");
+}
+
+/// examples/text/2020.mpath and its millpath.toml in a folder of their own.
+fn example_2020() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    let ex = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/text");
+    for f in ["2020.mpath", "millpath.toml"] {
+        std::fs::copy(ex.join(f), dir.path().join(f)).unwrap();
+    }
+    dir
+}
+
+fn bytes(dir: &Path, name: &str) -> Vec<u8> {
+    std::fs::read(dir.join(name)).unwrap_or_default()
+}
+
+fn names(dir: &Path) -> Vec<String> {
+    let mut n: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    n.sort();
+    n
+}
+
+/// The chain of issue 31: compile, fill in `_Z.txt` (as typed on the machine: a decimal
+/// comma), adjust-z, then compile the unchanged drawing again, alone and as its folder: the
+/// measured values and the adjusted program stay byte for byte, and adjust-z still works.
+#[test]
+fn recompiling_an_unchanged_drawing_keeps_the_measured_values_and_the_adjusted_program() {
+    let dir = example_2020();
+    let d = dir.path();
+    assert_eq!(run(d, &["compile", "2020.mpath"]).0, 0);
+    fill(d, "2,95", "3.1");
+    let (code, text) = run(d, &["adjust-z", "--max", "0.5", "2020_Clean.gcode"]);
+    assert_eq!(code, 0, "{text}");
+    let (z, milling) = (bytes(d, "2020_Z.txt"), bytes(d, "2020_Milling.gcode"));
+    assert!(String::from_utf8_lossy(&z).contains("#51=2,95"));
+    for args in [&["compile", "2020.mpath"][..], &["compile", "."]] {
+        let (code, text) = run(d, args);
+        assert_eq!(code, 0, "{args:?}: {text}");
+        assert_eq!(bytes(d, "2020_Z.txt"), z, "{args:?}: {text}");
+        assert_eq!(bytes(d, "2020_Milling.gcode"), milling, "{args:?}: {text}");
+        assert!(!text.contains("MP144"), "{args:?}: {text}");
+        assert!(
+            text.contains("Keeping (measured values of the same probes)"),
+            "{args:?}: {text}"
+        );
+    }
+    assert_eq!(
+        names(d),
+        [
+            "2020.mpath",
+            "2020_Clean.gcode",
+            "2020_Milling.gcode",
+            "2020_Probing.gcode",
+            "2020_Z.txt",
+            "millpath.toml"
+        ]
+    );
+    let (code, text) = run(d, &["adjust-z", "--max", "0.5", "2020_Clean.gcode"]);
+    assert_eq!(code, 0, "{text}");
+    assert_eq!(bytes(d, "2020_Milling.gcode"), milling);
+    // the probing program cleaned away after probing: _Clean.gcode still says this set
+    std::fs::remove_file(d.join("2020_Probing.gcode")).unwrap();
+    let (code, text) = run(d, &["compile", "2020.mpath"]);
+    assert_eq!(code, 0, "{text}");
+    assert_eq!(bytes(d, "2020_Z.txt"), z, "{text}");
+    assert_eq!(bytes(d, "2020_Milling.gcode"), milling, "{text}");
+    // in German the program's comments are German: another set, the same probes
+    let (code, text) = run(d, &["compile", "--lang", "de", "2020.mpath"]);
+    assert_eq!(code, 0, "{text}");
+    assert!(
+        text.contains("---- Behalten (Messwerte derselben Messpunkte) 2020_Z.txt"),
+        "{text}"
+    );
+    assert_eq!(bytes(d, "2020_Z.txt"), z);
+    assert_eq!(run(d, &["compile", "2020.mpath"]).0, 0);
+    assert_eq!(run(d, &["adjust-z", "--max", "0.5", "2020"]).0, 0);
+    assert_eq!(bytes(d, "2020_Milling.gcode"), milling);
+    // another depth, the same probes: the values stay, the program adjusted from the other
+    // set goes, and adjust-z takes the kept values for the new set
+    std::fs::write(
+        d.join("2020.mpath"),
+        read(d, "2020.mpath").replace("B-0,2", "B-0,3"),
+    )
+    .unwrap();
+    let (code, text) = run(d, &["compile", "2020.mpath"]);
+    assert_eq!(code, 0, "{text}");
+    assert_eq!(bytes(d, "2020_Z.txt"), z);
+    assert!(text.contains("Removed 2020_Milling.gcode"), "{text}");
+    let (code, text) = run(d, &["adjust-z", "--max", "0.5", "2020_Clean.gcode"]);
+    assert_eq!(code, 0, "{text}");
+    assert!(
+        read(d, "2020_Milling.gcode").contains("Z-0.323(==-0.300+"),
+        "{}",
+        read(d, "2020_Milling.gcode")
+    );
+    // a read-only _Z.txt of the same probes is not touched either
+    let mut ro = std::fs::metadata(d.join("2020_Z.txt"))
+        .unwrap()
+        .permissions();
+    ro.set_readonly(true);
+    std::fs::set_permissions(d.join("2020_Z.txt"), ro).unwrap();
+    assert_eq!(run(d, &["compile", "2020.mpath"]).0, 0);
+    assert_eq!(bytes(d, "2020_Z.txt"), z);
+    assert!(std::fs::metadata(d.join("2020_Z.txt"))
+        .unwrap()
+        .permissions()
+        .readonly());
+}
+
+/// A probe moved, the other not: the old file is kept beside (never over an earlier one),
+/// the value of the unchanged probe is carried over, the warning says so in both languages.
+#[test]
+fn a_changed_drawing_keeps_the_old_values_beside_and_carries_over_the_unchanged_probe() {
+    let dir = example_2020();
+    let d = dir.path();
+    assert_eq!(run(d, &["compile", "2020.mpath"]).0, 0);
+    fill(d, "2,95", "3.1");
+    assert_eq!(run(d, &["adjust-z", "--max", "0.5", "2020"]).0, 0);
+    let filled = bytes(d, "2020_Z.txt");
+    let drawing = read(d, "2020.mpath");
+    std::fs::write(
+        d.join("2020.mpath"),
+        drawing.replace("probe (50, 5)", "probe (45, 5)"),
+    )
+    .unwrap();
+    let (code, text) = run(d, &["compile", "2020.mpath"]);
+    assert_eq!(code, 0, "{text}");
+    assert!(
+        text.contains(
+            "2020_Z.txt held 2 measured value(s) of another probing set: kept as 2020_Z.1.txt. 1 carried over to the new 2020_Z.txt"
+        ) && text.contains("1 probe(s) of the new set have no value yet"),
+        "{text}"
+    );
+    assert!(text.contains("Removed 2020_Milling.gcode"), "{text}");
+    assert_eq!(bytes(d, "2020_Z.1.txt"), filled);
+    assert_eq!(
+        read(d, "2020_Z.txt"),
+        "([10.000 5.000]/T=3.000) #51=2,95\n([45.000 5.000]/L:1/T=3.000) #52=\n"
+    );
+    // the second probe measured: adjust-z takes the new set
+    fill(d, "", "3.05");
+    let (code, text) = run(d, &["adjust-z", "--max", "0.5", "2020"]);
+    assert_eq!(code, 0, "{text}");
+    // moved again, in German: a second side file, the first one untouched
+    let second = bytes(d, "2020_Z.txt");
+    std::fs::write(
+        d.join("2020.mpath"),
+        drawing.replace("probe (50, 5)", "probe (40, 5)"),
+    )
+    .unwrap();
+    let (code, text) = run(d, &["compile", "--lang", "de", "2020.mpath"]);
+    assert_eq!(code, 0, "{text}");
+    assert!(
+        text.contains("2020_Z.txt enthielt 2 Messwert(e) eines anderen Antastsatzes: als 2020_Z.2.txt aufbewahrt. 1 in die neue 2020_Z.txt übernommen"),
+        "{text}"
+    );
+    assert_eq!(bytes(d, "2020_Z.1.txt"), filled);
+    assert_eq!(bytes(d, "2020_Z.2.txt"), second);
+    assert!(read(d, "2020_Z.txt").starts_with("([10.000 5.000]/T=3.000) #51=2,95\n"));
+    // the start point moved: every probe is elsewhere on the machine, nothing is carried
+    let third = bytes(d, "2020_Z.txt");
+    std::fs::write(
+        d.join("2020.mpath"),
+        drawing
+            .replace("probe (50, 5)", "probe (40, 5)")
+            .replace("start (0, 0)", "start (0, 1)")
+            .replace("mill (0, 0)", "mill (0, 1)"),
+    )
+    .unwrap();
+    let (code, text) = run(d, &["compile", "2020.mpath"]);
+    assert_eq!(code, 0, "{text}");
+    assert!(
+        text.contains("kept as 2020_Z.3.txt. 0 carried over"),
+        "{text}"
+    );
+    assert_eq!(bytes(d, "2020_Z.3.txt"), third);
+    assert!(!read(d, "2020_Z.txt").contains("2,95"));
+}
+
+/// Removes the drawing's outputs and side files.
+fn clear(d: &Path) {
+    for n in names(d) {
+        if n.contains("_Z.") || n.ends_with(".gcode") {
+            std::fs::remove_file(d.join(n)).unwrap();
+        }
+    }
+}
+
+/// A `_Z.txt` that is garbage, cut off, read-only, or whose probing program is gone is
+/// never replaced without its bytes kept beside; when no copy can be kept, nothing of the
+/// drawing is written.
+#[test]
+fn hostile_z_files_are_kept_beside() {
+    let dir = example_2020();
+    let d = dir.path();
+    assert_eq!(run(d, &["compile", "2020.mpath"]).0, 0);
+    fill(d, "2,95", "3.1");
+    let filled = read(d, "2020_Z.txt");
+    let moved = read(d, "2020.mpath").replace("probe (50, 5)", "probe (45, 5)");
+    let original = read(d, "2020.mpath");
+    let cases: [(&str, Vec<u8>, &str); 4] = [
+        (
+            "garbage",
+            b"\x00\x17\xffnot a _Z.txt".to_vec(),
+            "could not be read as a _Z.txt (it is no UTF-8 or UTF-16 text): kept as 2020_Z.1.txt",
+        ),
+        (
+            "a line",
+            b"#51=2.95\n".to_vec(),
+            "could not be read as a _Z.txt (line 1 is not of the form",
+        ),
+        // cut in its second line: that line is no probe line any more
+        (
+            "cut off",
+            filled.as_bytes()[..filled.len() - 12].to_vec(),
+            "(line 2 is not of the form",
+        ),
+        // cut in its last value: `3.1` could have been `3.15`, so it is not carried over
+        (
+            "cut value",
+            filled.trim_end().as_bytes()[..filled.trim_end().len() - 1].to_vec(),
+            "held 2 measured value(s) of another probing set: kept as 2020_Z.1.txt. 1 carried over",
+        ),
+    ];
+    for (what, old, said) in cases {
+        clear(d);
+        std::fs::write(d.join("2020.mpath"), &original).unwrap();
+        assert_eq!(run(d, &["compile", "2020.mpath"]).0, 0);
+        std::fs::write(d.join("2020_Z.txt"), &old).unwrap();
+        std::fs::write(d.join("2020.mpath"), &moved).unwrap();
+        let (code, text) = run(d, &["compile", "2020.mpath"]);
+        assert_eq!(code, 0, "{what}: {text}");
+        assert!(text.contains(said), "{what}: {text}");
+        assert_eq!(bytes(d, "2020_Z.1.txt"), old, "{what}");
+    }
+    // a file of 65 MiB (a device, a log saved under the name): kept beside unread
+    clear(d);
+    std::fs::write(d.join("2020.mpath"), &original).unwrap();
+    assert_eq!(run(d, &["compile", "2020.mpath"]).0, 0);
+    std::fs::File::create(d.join("2020_Z.txt"))
+        .unwrap()
+        .set_len(65 << 20)
+        .unwrap();
+    std::fs::write(d.join("2020.mpath"), &moved).unwrap();
+    let (code, text) = run(d, &["compile", "--lang", "de", "2020.mpath"]);
+    assert_eq!(code, 0, "{text}");
+    assert!(
+        text.contains("2020_Z.txt ließ sich nicht als _Z.txt lesen (sie ist größer als 64 MiB): als 2020_Z.1.txt aufbewahrt"),
+        "{text}"
+    );
+    assert_eq!(
+        std::fs::metadata(d.join("2020_Z.1.txt")).unwrap().len(),
+        65 << 20
+    );
+    // read-only, its probing program gone (a failed compile removed it): kept beside with its
+    // permissions, nothing compared
+    clear(d);
+    std::fs::write(d.join("2020.mpath"), &original).unwrap();
+    assert_eq!(run(d, &["compile", "2020.mpath"]).0, 0);
+    let z = d.join("2020_Z.txt");
+    std::fs::write(&z, &filled).unwrap();
+    let mut ro = std::fs::metadata(&z).unwrap().permissions();
+    ro.set_readonly(true);
+    std::fs::set_permissions(&z, ro).unwrap();
+    std::fs::remove_file(d.join("2020_Probing.gcode")).unwrap();
+    std::fs::write(d.join("2020.mpath"), &moved).unwrap();
+    let (code, text) = run(d, &["compile", "2020.mpath"]);
+    assert_eq!(code, 0, "{text}");
+    assert!(text.contains("2020_Z.txt held 2 measured value(s) of another probing set, but its probing program is missing or of another compile"), "{text}");
+    assert_eq!(read(d, "2020_Z.1.txt"), filled);
+    assert!(std::fs::metadata(d.join("2020_Z.1.txt"))
+        .unwrap()
+        .permissions()
+        .readonly());
+    // no free name for a copy: nothing of the drawing is written, nothing left behind
+    for n in 2..=999 {
+        std::fs::write(d.join(format!("2020_Z.{n}.txt")), "").unwrap();
+    }
+    fill(d, "2.9", "3.0");
+    let before: Vec<Vec<u8>> = ["2020_Z.txt", "2020_Probing.gcode", "2020_Clean.gcode"]
+        .iter()
+        .map(|f| bytes(d, f))
+        .collect();
+    std::fs::write(d.join("2020.mpath"), &original).unwrap();
+    let (code, text) = run(d, &["compile", "2020.mpath"]);
+    assert_eq!(code, 1, "{text}");
+    assert!(
+        text.contains("2020_Z.txt may hold measured values and could not be kept as"),
+        "{text}"
+    );
+    let after: Vec<Vec<u8>> = ["2020_Z.txt", "2020_Probing.gcode", "2020_Clean.gcode"]
+        .iter()
+        .map(|f| bytes(d, f))
+        .collect();
+    assert_eq!(before, after);
+    assert!(
+        !names(d).iter().any(|n| n.starts_with('.')),
+        "{:?}",
+        names(d)
+    );
 }

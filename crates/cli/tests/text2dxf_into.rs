@@ -204,6 +204,13 @@ fn into_every_shared_drawing_changes_nothing_it_should_not() {
         std::fs::write(b.join("t.mpath"), &text).unwrap();
         ok(&millpath(&b, &["text2dxf", "t.mpath", "--into", name]));
         assert_eq!(ok(&millpath(&b, &["dxf2text", name])), text, "{name}");
+        // written back again, the same text changes no byte (issue 31)
+        let once = std::fs::read(b.join(name)).unwrap();
+        ok(&millpath(&b, &["text2dxf", "t.mpath", "--into", name]));
+        assert!(
+            std::fs::read(b.join(name)).unwrap() == once,
+            "{name}: a second --into"
+        );
         let orig = std::fs::read(&f).unwrap();
         let back = std::fs::read(b.join(name)).unwrap();
         let kept = |bytes: &[u8]| -> Vec<(String, String, String)> {
@@ -325,4 +332,173 @@ fn extended_into_replaces_polylines_and_blocks_and_plain_into_warns() {
     );
     let back = std::fs::read_to_string(d.join("7001.dxf")).unwrap();
     assert!(kinds_on(&back, "7001_1P").contains(&"LWPOLYLINE".to_string()));
+}
+
+/// A library drawing of two paths, made from our own text.
+const LIBRARY: &str = "path 8998.1P {
+  start (0, 0)  M3 O2 T3 I1,5 B2,5
+  end (60, 0)
+  mill (0, 0) -> (60, 0)
+}
+
+path 8998.2P {
+  start (0, 20)  M3 O2 T3 I1,5 B2,5
+  end (40, 20)
+  mill (0, 20) -> (40, 20)
+}
+";
+
+/// The text of one path written into a library of several: the paths missing from the text
+/// are named and nothing is written; `--delete-missing-paths` deletes them on purpose.
+#[test]
+fn into_a_library_refuses_to_delete_the_paths_the_text_lacks() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::write(d.join("lib.mpath"), LIBRARY).unwrap();
+    ok(&millpath(d, &["text2dxf", "lib.mpath", "-o", "lib.dxf"]));
+    add_dimension(&d.join("lib.dxf"));
+    let one = &LIBRARY[..LIBRARY.find("\npath 8998.2P").unwrap()];
+    std::fs::write(d.join("one.mpath"), one.replace("T3", "T4")).unwrap();
+    let before = std::fs::read(d.join("lib.dxf")).unwrap();
+    for (lang, said) in [
+        ("en", "lib.dxf holds paths that one.mpath does not define: 8998.2P. --into would delete them; nothing was written"),
+        ("de", "lib.dxf enthält Pfade, die one.mpath nicht definiert: 8998.2P. --into würde sie löschen; es wurde nichts geschrieben"),
+    ] {
+        let o = millpath(d, &["text2dxf", "one.mpath", "--into", "lib.dxf", "--lang", lang]);
+        assert_eq!(o.status.code(), Some(1));
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(said) && err.contains("--delete-missing-paths"), "{err}");
+        assert!(err.contains(millpath_core::Msg::IntoWouldDeletePaths.code().as_str()), "{err}");
+        assert_eq!(std::fs::read(d.join("lib.dxf")).unwrap(), before);
+    }
+    // the option needs --into; its help in both languages
+    let o = millpath(d, &["text2dxf", "one.mpath", "--delete-missing-paths"]);
+    assert_eq!(o.status.code(), Some(2));
+    let help = ok(&millpath(d, &["text2dxf", "--help"]));
+    assert!(help.contains("--delete-missing-paths"), "{help}");
+    let help = ok(&millpath(d, &["text2dxf", "--help", "--lang", "de"]));
+    assert!(
+        help.contains("die Pfade der Zeichnung löschen, die der Text nicht definiert"),
+        "{help}"
+    );
+    // the whole text with one path edited: written, both paths there
+    std::fs::write(d.join("lib.mpath"), LIBRARY.replacen("T3", "T4", 1)).unwrap();
+    ok(&millpath(
+        d,
+        &["text2dxf", "lib.mpath", "--into", "lib.dxf"],
+    ));
+    let back = ok(&millpath(d, &["dxf2text", "lib.dxf"]));
+    assert!(
+        back.contains("path 8998.1P") && back.contains("path 8998.2P"),
+        "{back}"
+    );
+    assert!(back.contains("T4"), "{back}");
+    // a path deleted on purpose from the full text: with the option
+    ok(&millpath(
+        d,
+        &[
+            "text2dxf",
+            "one.mpath",
+            "--into",
+            "lib.dxf",
+            "--delete-missing-paths",
+        ],
+    ));
+    let back = ok(&millpath(d, &["dxf2text", "lib.dxf"]));
+    assert!(
+        back.contains("path 8998.1P") && !back.contains("8998.2P"),
+        "{back}"
+    );
+    assert!(std::fs::read_to_string(d.join("lib.dxf"))
+        .unwrap()
+        .contains(DIMENSION));
+}
+
+/// `--into` with a text the drawing already holds leaves the file byte for byte as it is
+/// (no new handles, `$HANDSEED` as it was), so version control sees no change; on our own
+/// library and on every shared sample drawing (skipped without ../shared).
+#[test]
+fn into_with_the_same_text_twice_leaves_the_drawing_byte_identical() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::write(d.join("lib.mpath"), LIBRARY).unwrap();
+    ok(&millpath(d, &["text2dxf", "lib.mpath", "-o", "lib.dxf"]));
+    add_dimension(&d.join("lib.dxf"));
+    // the first --into writes the paths (from dxf2text's order); every later one changes nothing
+    let text = ok(&millpath(d, &["dxf2text", "lib.dxf"]));
+    std::fs::write(d.join("lib.mpath"), &text).unwrap();
+    ok(&millpath(
+        d,
+        &["text2dxf", "lib.mpath", "--into", "lib.dxf"],
+    ));
+    let once = std::fs::read(d.join("lib.dxf")).unwrap();
+    for _ in 0..2 {
+        ok(&millpath(
+            d,
+            &["text2dxf", "lib.mpath", "--into", "lib.dxf"],
+        ));
+        assert_eq!(std::fs::read(d.join("lib.dxf")).unwrap(), once);
+    }
+    // into another file (-o): the same bytes
+    ok(&millpath(
+        d,
+        &[
+            "text2dxf",
+            "lib.mpath",
+            "--into",
+            "lib.dxf",
+            "-o",
+            "copy.dxf",
+        ],
+    ));
+    assert_eq!(std::fs::read(d.join("copy.dxf")).unwrap(), once);
+    // an edit is written, and written back it is the same again
+    std::fs::write(d.join("lib.mpath"), text.replacen("T3", "T4", 1)).unwrap();
+    ok(&millpath(
+        d,
+        &["text2dxf", "lib.mpath", "--into", "lib.dxf"],
+    ));
+    let edited = std::fs::read(d.join("lib.dxf")).unwrap();
+    assert_ne!(edited, once);
+    ok(&millpath(
+        d,
+        &["text2dxf", "lib.mpath", "--into", "lib.dxf"],
+    ));
+    assert_eq!(std::fs::read(d.join("lib.dxf")).unwrap(), edited);
+    // an element moved by 0.001 is a change
+    std::fs::write(
+        d.join("lib.mpath"),
+        text.replacen("(60, 0)", "(60.001, 0)", 2),
+    )
+    .unwrap();
+    ok(&millpath(
+        d,
+        &["text2dxf", "lib.mpath", "--into", "lib.dxf"],
+    ));
+    assert_ne!(std::fs::read(d.join("lib.dxf")).unwrap(), edited);
+
+    let shared = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/samples");
+    let Ok(rd) = std::fs::read_dir(&shared) else {
+        eprintln!("skipped: {} is absent", shared.display());
+        return;
+    };
+    let mut done = 0;
+    for f in rd.map(|e| e.unwrap().path()) {
+        if !f.extension().is_some_and(|e| e.eq_ignore_ascii_case("dxf")) {
+            continue;
+        }
+        std::fs::copy(&f, d.join("s.dxf")).unwrap();
+        let text = ok(&millpath(d, &["dxf2text", "s.dxf"]));
+        std::fs::write(d.join("s.mpath"), &text).unwrap();
+        ok(&millpath(d, &["text2dxf", "s.mpath", "--into", "s.dxf"]));
+        let once = std::fs::read(d.join("s.dxf")).unwrap();
+        ok(&millpath(d, &["text2dxf", "s.mpath", "--into", "s.dxf"]));
+        assert!(
+            std::fs::read(d.join("s.dxf")).unwrap() == once,
+            "{}",
+            f.display()
+        );
+        done += 1;
+    }
+    assert!(done > 0);
 }

@@ -404,6 +404,12 @@ messages! {
     TooManyLines = "The program would have more than {0} lines", "Das Programm hätte mehr als {0} Zeilen";
     // check's report when the settings cannot be read (issue 20): the reader's own words
     SettingsUnusable = "{0}", "{0}";
+    // nothing the user made is lost (issue 31): measured values, paths of a library drawing
+    ZKeptAside = "{0} held {2} measured value(s) of another probing set: kept as {1}. {3} carried over to the new {0} (the same point in the drawing and in the program, the same nominal height); {4} probe(s) of the new set have no value yet", "{0} enthielt {2} Messwert(e) eines anderen Antastsatzes: als {1} aufbewahrt. {3} in die neue {0} übernommen (derselbe Punkt in der Zeichnung und im Programm, dieselbe Soll-Höhe); {4} Messpunkt(e) des neuen Satzes haben noch keinen Wert";
+    ZKeptAsideUnchecked = "{0} held {2} measured value(s) of another probing set, but its probing program is missing or of another compile, so no probe point could be compared: kept as {1}; the new {0} has no values", "{0} enthielt {2} Messwert(e) eines anderen Antastsatzes, aber sein Antastprogramm fehlt oder stammt aus einer anderen Übersetzung, also ließ sich kein Messpunkt vergleichen: als {1} aufbewahrt; die neue {0} hat keine Werte";
+    ZKeptAsideUnreadable = "{0} could not be read as a _Z.txt ({2}): kept as {1}; the new {0} has no values", "{0} ließ sich nicht als _Z.txt lesen ({2}): als {1} aufbewahrt; die neue {0} hat keine Werte";
+    ZCannotKeepAside = "{0} may hold measured values and could not be kept as {1} ({2}): nothing of this drawing was written; move {0} away and compile again", "{0} kann Messwerte enthalten und ließ sich nicht als {1} aufbewahren ({2}): von dieser Zeichnung wurde nichts geschrieben; {0} beiseitelegen und neu übersetzen";
+    IntoWouldDeletePaths = "{0} holds paths that {2} does not define: {1}. --into would delete them; nothing was written: add them to the text (dxf2text {0} writes them), or pass --delete-missing-paths to delete them", "{0} enthält Pfade, die {2} nicht definiert: {1}. --into würde sie löschen; es wurde nichts geschrieben: sie in den Text aufnehmen (dxf2text {0} schreibt sie), oder mit --delete-missing-paths löschen";
 }
 
 impl Msg {

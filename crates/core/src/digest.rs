@@ -28,7 +28,7 @@ pub fn banner_index_of_first(first: Option<&str>) -> usize {
 
 /// The nominal part of a `_Z.txt` line: `(comment) #n=` without the value and blanks; a line
 /// of another form as it is (it is reported when the file is read).
-fn nominal_z_line(line: &str) -> String {
+pub(crate) fn nominal_z_line(line: &str) -> String {
     let t = line.trim();
     let nominal = (|| {
         let close = t.strip_prefix('(')?.find(')')? + 1;

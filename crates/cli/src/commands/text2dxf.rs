@@ -1,11 +1,13 @@
 //! `millpath text2dxf`: MillPath text as a DXF drawing, or written into an existing drawing
 //! (`--into`). It never destroys a drawing: an existing DXF that holds anything it would not
-//! write back is overwritten only with `--force`.
+//! write back is overwritten only with `--force`, and `--into` deletes the paths the text
+//! does not define only with `--delete-missing-paths`.
 
 use crate::args::MachineArgs;
 use crate::inputs::conversion_input;
 use crate::output::print_human;
 use crate::{report, write};
+use millpath_core::convert::IntoOutcome;
 use millpath_core::diag::FileRef;
 use millpath_core::{args, Diagnostic, InputMode, Lang, Msg, Origin};
 use std::path::{Path, PathBuf};
@@ -15,6 +17,7 @@ pub fn run(
     output: Option<&Path>,
     into: Option<&Path>,
     force: bool,
+    delete_missing_paths: bool,
     m: &MachineArgs,
 ) -> u8 {
     let (patterns, lang, bytes) = match conversion_input(file, m) {
@@ -47,12 +50,24 @@ pub fn run(
             };
             let tref = FileRef::new(drawing.to_path_buf());
             let out = millpath_core::convert::text_into_dxf(
-                &src, &fref, &patterns, &target, &tref, input,
+                &src,
+                &fref,
+                &patterns,
+                &target,
+                &tref,
+                input,
+                delete_missing_paths,
             );
             if out.is_ok() && input == InputMode::Reference {
                 warn_kept_extended(drawing, &target, &src, &fref, &patterns, lang);
             }
-            out
+            match out {
+                // the drawing already holds these paths: not touched (git sees no change)
+                Ok(IntoOutcome::Unchanged) if dest.as_deref() == Some(drawing) => return 0,
+                Ok(IntoOutcome::Unchanged) => Ok(target),
+                Ok(IntoOutcome::Written(dxf)) => Ok(dxf),
+                Err(d) => Err(d),
+            }
         }
         None => {
             if let (Some(d), false) = (&dest, force) {

@@ -7,8 +7,10 @@
 //! polylines and block references, which `dxf2text --extended` turned into elements);
 //! every other entity, layer, block, table entry and header value stays.
 
-use super::{front_options, layer_name, plan, settle, text_objects};
+use super::{front_options, layer_name, plan, settle, text_objects, texts_match};
 use crate::diag::{FileRef, Lang};
+use crate::front::drawing::DrawnObject;
+use crate::front::dxf::dxf_objects;
 use crate::front::layer::{effective_layer, path_name_of_layer};
 use crate::front::options::InputMode;
 use crate::load::names::Patterns;
@@ -63,9 +65,22 @@ fn load_error(file: &Arc<FileRef>, e: DxfError) -> Diagnostic {
     )
 }
 
+/// What `text2dxf --into` makes of the drawing.
+#[derive(Debug, Clone, PartialEq)]
+pub enum IntoOutcome {
+    /// The drawing with the paths of the text in place of its path objects.
+    Written(Vec<u8>),
+    /// The drawing's path objects read back exactly as those the text would write (same
+    /// paths, order, shapes, line types and texts): the file is left as it is, byte for byte,
+    /// so version control sees no change.
+    Unchanged,
+}
+
 /// `text2dxf --into`: the drawing `target` with the paths of the text in place of its path
 /// objects. A target that is no readable DXF is a located error; nothing is half-written
-/// because the result is returned whole.
+/// because the result is returned whole. The objects of paths the text does not define
+/// would be deleted: refused naming them ([`Msg::IntoWouldDeletePaths`]) unless
+/// `delete_missing`.
 pub fn text_into_dxf(
     src: &str,
     file: &Arc<FileRef>,
@@ -73,15 +88,77 @@ pub fn text_into_dxf(
     target: &[u8],
     target_file: &Arc<FileRef>,
     input: InputMode,
-) -> Result<Vec<u8>, Vec<Diagnostic>> {
+    delete_missing: bool,
+) -> Result<IntoOutcome, Vec<Diagnostic>> {
     let objects = text_objects(src, file)?;
     let t = scan(target).map_err(|e| vec![load_error(target_file, e)])?;
     let paths: Vec<String> = objects.iter().map(|o| o.path.to_string()).collect();
     let layers = PathLayers::new(patterns, &paths);
     let remove = |r: &Record| layers.replaces(r, input);
-    Ok(settle(&objects, patterns, &|suffixes| {
+    let missing = missing_paths(&t, &layers, input);
+    if !missing.is_empty() && !delete_missing {
+        return Err(vec![Diagnostic::error(
+            Msg::IntoWouldDeletePaths,
+            Origin::File(target_file.clone()),
+            vec![
+                target_file.path.display().to_string(),
+                missing.join(", "),
+                file.path.display().to_string(),
+            ],
+        )]);
+    }
+    let out = settle(&objects, patterns, &|suffixes| {
         t.splice(&remove, &plan(&objects, suffixes).1)
-    }))
+    });
+    let all_read = paths.iter().all(|p| {
+        let layer = path_name_of_layer(&layer_name(p, None));
+        front_options(patterns, input)
+            .layer_pattern
+            .is_match(&layer)
+    });
+    // a path the pattern does not read is no object of either file: compared, it would hide
+    // the text's changes to it
+    if all_read && same_path_objects(target, &out, patterns, input) {
+        return Ok(IntoOutcome::Unchanged);
+    }
+    Ok(IntoOutcome::Written(out))
+}
+
+/// The paths whose objects `--into` would take out of `t` and the text does not define:
+/// each once, spelt as its first layer, in name order.
+fn missing_paths(t: &Target, layers: &PathLayers, input: InputMode) -> Vec<String> {
+    let mut names: BTreeMap<String, String> = BTreeMap::new();
+    for r in t.entities().iter().filter(|r| layers.replaces(r, input)) {
+        let path = path_name_of_layer(effective_layer(&r.layer));
+        let key = path.to_lowercase();
+        if !layers.own.contains(&key) {
+            names.entry(key).or_insert(path);
+        }
+    }
+    names.into_values().collect()
+}
+
+/// Whether two drawings hold the same path objects, in the same order (the order breaks
+/// ties of the traversal): path, line type, shape and the text each element is given. Their
+/// other entities are no business of the compiler.
+fn same_path_objects(a: &[u8], b: &[u8], patterns: &Patterns, input: InputMode) -> bool {
+    let read = |bytes: &[u8]| -> Option<Vec<DrawnObject>> {
+        let d = millpath_dxf::read_dxf(bytes).ok()?;
+        let file = FileRef::new("into.dxf".into());
+        let mut diags = crate::diag::Diags::default();
+        let opts = front_options(patterns, input);
+        dxf_objects(&d, &file, &opts, &mut diags).ok().map(|o| o.0)
+    };
+    let (Some(a), Some(b)) = (read(a), read(b)) else {
+        return false;
+    };
+    a.len() == b.len()
+        && a.iter().zip(&b).all(|(x, y)| {
+            x.path == y.path
+                && x.linetype == y.linetype
+                && x.shape == y.shape
+                && texts_match(x.text.as_deref(), y.text.as_deref())
+        })
 }
 
 /// What `--into` without the extended mode keeps on the path layers of `target` that the

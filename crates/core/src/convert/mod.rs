@@ -4,7 +4,7 @@
 //! an existing drawing and keeps the rest of it (`into.rs`).
 
 mod into;
-pub use into::{kept_extended_geometry, overwrite_losses, text_into_dxf, Losses};
+pub use into::{kept_extended_geometry, overwrite_losses, text_into_dxf, IntoOutcome, Losses};
 
 use crate::build::walk::walk;
 use crate::diag::{Diags, FileRef};
@@ -357,7 +357,10 @@ fn write_dxf(objects: &[DrawnObject], suffixes: &[Option<String>]) -> String {
     w.finish()
 }
 
-fn texts_match(a: Option<&crate::params::ParamText>, b: Option<&crate::params::ParamText>) -> bool {
+pub(super) fn texts_match(
+    a: Option<&crate::params::ParamText>,
+    b: Option<&crate::params::ParamText>,
+) -> bool {
     let toks = |t: Option<&crate::params::ParamText>| {
         t.as_ref().map(|t| t.tokens.clone()).unwrap_or_default()
     };

@@ -12,7 +12,7 @@ use millpath_verify::surface::{HeightMap, SurfaceProblem, MAX_NODES};
 const SAME_LINE: f64 = 1e-6;
 
 /// The `[x y]` at the start of a `_Z.txt` line's comment.
-fn point_of(line: &str) -> Option<(f64, f64)> {
+pub(super) fn point_of(line: &str) -> Option<(f64, f64)> {
     let inner = line.trim().strip_prefix("([")?;
     let (xy, _) = inner.split_once(']')?;
     let mut it = xy.split_whitespace().map(|v| v.parse::<f64>().ok());

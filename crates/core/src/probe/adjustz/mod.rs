@@ -7,6 +7,7 @@
 //! program; lines and expression nesting are bounded. [`adjust`] is the one entry point.
 
 mod bounds;
+mod carry;
 mod expr;
 mod follow;
 mod grid_set;
@@ -16,6 +17,7 @@ mod rewrite;
 mod set_check;
 mod zfile;
 
+pub use carry::{plan_new_z, Aside, OldZ, Unreadable, ZPlan};
 pub use crate::digest::{
     banner_index, banner_index_of_first, banner_with_digest, set_digest, set_digest_lines,
     stored_digest, SET_WORD,

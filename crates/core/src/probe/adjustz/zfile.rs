@@ -6,7 +6,7 @@ use crate::diag::{Diags, Msg};
 use crate::params::{parse_number_checked, NumberError};
 
 /// A number of `_Z.txt`: `Err(message)` unless finite and within ±[`LIMIT`].
-fn sane_number(text: &str) -> Result<f64, Msg> {
+pub(super) fn sane_number(text: &str) -> Result<f64, Msg> {
     match parse_number_checked(text) {
         Ok(v) if v.abs() <= LIMIT => Ok(v),
         Ok(_) | Err(NumberError::OutOfRange) => Err(Msg::ZOutOfRange),
