@@ -15,8 +15,8 @@
 //! their errors never cost the file (`Drawing::extra_errors`).
 
 use crate::decode::{decode_value_into, encoding_for};
-use crate::entity::{records, Ctx, EntityRecord, Kind};
 use crate::extra::ExtraReader;
+use crate::record::{records, Ctx, EntityRecord, Kind};
 use crate::tokens::{int, num, raw_name, raw_str, Pair, Tokens};
 use crate::{Drawing, DxfError, DxfErrorKind, EntityKind, MText, Text};
 use std::collections::BTreeMap;

@@ -220,6 +220,24 @@ impl Eval<'_> {
     }
 }
 
+/// Moves the Z of a line of an adjusted program to the drawing's frame.
+pub(crate) fn to_drawing_frame(
+    b: &mut crate::parse::Block,
+    surface: &Surface,
+    rise: f64,
+) -> Result<(), AdjustedProblem> {
+    let Some(z) = b.words.iter_mut().find(|w| w.letter == 'Z') else {
+        return Ok(());
+    };
+    match b.comments.iter().find_map(|c| c.strip_prefix("==")) {
+        Some(expr) => {
+            z.value = surface.nominal_z(z.value, expr)?;
+        }
+        None => z.value -= rise,
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -5,14 +5,14 @@
 //! moves kept ([`Verifier::new`]), or, lean ([`Verifier::lean`]), over a second reading of
 //! the program while only its extent and move count are kept from the first (`reread.rs`).
 
-use crate::adjusted;
+use crate::adjusted::{self, to_drawing_frame};
 use crate::checks::{below_bottom, clamps_of, ClampCheck, Extent, StockRun};
 use crate::execute::{execute, missing_params};
 use crate::machine::{Machine, Move, Raw};
 use crate::reread::{Folded, Rereading};
 use crate::{
-    stock_view, surface_frame, to_drawing_frame, AdjustedProblem, FindingKind, HeightMap, Limit,
-    Options, Report, Severity, StockParams, SurfaceProblem, Z_TOLERANCE,
+    stock_view, surface_frame, AdjustedProblem, FindingKind, HeightMap, Limit, Options, Report,
+    Severity, StockParams, SurfaceProblem, Z_TOLERANCE,
 };
 
 pub struct Verifier {
