@@ -1,4 +1,9 @@
 //! The G-code preview of a path, as `millpath compile` writes it.
+//!
+//! The G-code preview (= `compile`, computed once per analysis: `preview_of`); a refused path gives
+//! no G-code and its reasons in `errors` (a missing path names the file's paths);
+//! `preview_until`/`preview_of_until` stop inside the emitter when asked (`emit::generate_until`),
+//! a stopped preview is not remembered.
 
 use crate::preview_files::Preview;
 use crate::{Analysis, Workspace};

@@ -22,6 +22,10 @@
 //! Memory and time are bounded for any input: at most [`Limits::max_lines`] lines are read,
 //! the grid has at most [`Limits::max_cells`] cells, and the stock model stops after
 //! [`Limits::max_work`] cell visits (each with a finding saying so).
+//!
+//! `verify` and `verify_on_surface`: the whole-program scans (adjustment, surface record), then
+//! `Verifier` over the lines (`stream.rs`); `program_top`. Options and limits are in `options.rs`,
+//! the report in `report.rs`, the `(MILLPATH-STOCK …)` comment in `stock_comment.rs`.
 
 mod adjusted;
 mod checks;
