@@ -1,4 +1,7 @@
 //! Command-line argument types shared by several commands, and the settings they give.
+//!
+//! Options shared by commands (`MachineArgs`, `NameArgs`, formats, languages) and `settings_for`:
+//! millpath.toml, then the options.
 
 use crate::config;
 use clap::ValueEnum;

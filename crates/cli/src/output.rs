@@ -1,4 +1,9 @@
 //! Printing diagnostics and progress, and writing output files, as every command does.
+//!
+//! Printing diagnostics, statistics and progress; writing a drawing's outputs as one set
+//! (`write_outputs`), and for `compile` removing that drawing's outputs of an earlier compile that
+//! a failed compile or another set leaves behind (`write_drawing_outputs`, `remove_with` shared
+//! with adjust-z).
 
 use crate::measured::ZWrite;
 use crate::{out, report, write};

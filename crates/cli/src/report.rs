@@ -1,5 +1,13 @@
 //! Rendering diagnostics: the reference's `****` lines, human-readable text, JSON and
 //! GitHub annotations.
+//!
+//! Diagnostics as reference `****` lines, human text (one format for DXF and `.mpath`:
+//! `error[MPnnn]: message`, `--> location`, then for text the source line drawn by ariadne), JSON,
+//! GitHub annotations; locations: a path as a whole at its `path NAME` line (text) or with its name
+//! (DXF), a file that cannot be read/written/removed at that file ; GitHub and SARIF paths relative
+//! to `GITHUB_WORKSPACE` or the repository, `/`, no `./`; Windows: a file outside the root keeps
+//! its drive (`C:/…`), SARIF URIs `file:///C:/…` (UNC shares as the host), canonical paths without
+//! `\\?\` (`dunce`).
 
 use millpath_core::diag::{Diagnostic, Origin, Severity};
 use millpath_core::Lang;

@@ -2,6 +2,10 @@
 //! adjust-z reads it (LinuxCNC PROBEOPEN, GRBL `[PRB:…]`, bCNC `x y z`), a filled-in `_Z.txt`
 //! (each point's XY in its comment) or a program holding a `(MILLPATH-SURFACE …)` record.
 //! The points become a [`HeightMap`] once the nominal top T is known (each program's own).
+//!
+//! `verify --surface` / `render --surface`: a probe log (core's readers), a filled-in `_Z.txt` (XY
+//! from its comments) or a program's `MILLPATH-SURFACE` record → `HeightMap` with the program's T;
+//! located EN/DE errors, reads bounded like probe logs.
 
 use crate::report;
 use millpath_core::diag::{Diags, Msg, Origin};

@@ -1,4 +1,9 @@
 //! Atomic output: a G-code file is either complete or not there at all.
+//!
+//! Atomic output files; `write_set`: a drawing's files all or none (temporaries, or core's staged
+//! program as it is, old files moved aside, put back on a failure part-way); a rename refused
+//! because another program holds the file open (Windows: a G-code sender) is tried again for a
+//! second, then reported as `HELD_OPEN` naming the file.
 
 use millpath_core::stage::sibling;
 use std::io::Write;

@@ -1,6 +1,9 @@
 //! Structured diagnostics: a message id with its arguments, a severity, a primary origin and
 //! related origins. Rendering to text happens late, in the language the user asked for, so
 //! the CLI and a language server can show the same diagnostic in their own way.
+//!
+//! `Msg`: every message in English and German; internal reference texts such as MP063's are
+//! reworded for people outside the `****` lines; `Diagnostic`, `Origin`, de-duplicating `Diags`.
 
 use crate::geom::P2;
 use std::collections::HashSet;

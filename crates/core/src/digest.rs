@@ -9,6 +9,11 @@
 //! `_Probing.gcode` as ` set=<16 hex digits>`, a line the reference's outputs are compared
 //! without. SipHash-2-4 with fixed keys: the digest guards against files of different
 //! compiles put together by accident, not against forgery.
+//!
+//! The probing set's digest: SipHash-2-4 of the nominal `_Z.txt` lines and `_Clean.gcode` without
+//! its banner line, written by `emit/program.rs` into the banner line of
+//! `_Clean.gcode`/`_Probing.gcode` (the line the reference outputs are compared without); a mix is
+//! refused naming the files (`probe/adjustz/set_check.rs`).
 
 use siphasher::sip::SipHasher24;
 use std::hash::Hasher;

@@ -3,6 +3,9 @@
 //! The tolerance predicates are the reference tool's (reference-input.md §0.1): a relative
 //! epsilon, and points compared by their *squared* distance. Many branches of the compiler
 //! depend on them, so they are reproduced literally.
+//!
+//! Tolerance predicates `near/ge/gt` (reference-input.md §0.1), points, lines/arcs, sub-geometries,
+//! rigid transforms, `F3` formatting.
 
 use std::fmt;
 
@@ -400,6 +403,35 @@ impl Transform {
             self.from_start, self.to_start, self.from_end, self.to_end
         )
     }
+}
+
+/// The points of the circle around `c` at 0°, 90°, 180° and 270° that the arc from `a` to
+/// `b` passes (a full circle when `a` = `b`).
+pub(crate) fn arc_extremes(a: P2, b: P2, c: P2, ccw: bool) -> Vec<P2> {
+    use std::f64::consts::{FRAC_PI_2, TAU};
+    let r = a.dist(c);
+    let ang = |p: P2| (p.y - c.y).atan2(p.x - c.x);
+    let (a0, a1) = (ang(a), ang(b));
+    let turn = |d: f64| d.rem_euclid(TAU);
+    let full = a.dist(b) < 1e-9;
+    let span = if full {
+        TAU
+    } else if ccw {
+        turn(a1 - a0)
+    } else {
+        turn(a0 - a1)
+    };
+    (0..4)
+        .map(|k| k as f64 * FRAC_PI_2)
+        .filter(|&t| {
+            let d = if ccw { turn(t - a0) } else { turn(a0 - t) };
+            d <= span
+        })
+        .map(|t| P2 {
+            x: c.x + r * t.cos(),
+            y: c.y + r * t.sin(),
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -3,6 +3,9 @@
 //! outputs are returned to the caller, which writes them. The one exception is asked for by
 //! the caller: a staged program (`Settings::stage_outputs`, `stage.rs`) is written to a
 //! temporary file as it is generated, and the caller renames it.
+//!
+//! `compile_file`: one command-line file → outputs (reference-input.md §7.5); check mode is the
+//! same code without writing, the reference's `/c` keeps its rules.
 
 pub mod build;
 pub mod convert;

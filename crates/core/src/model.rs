@@ -1,5 +1,7 @@
 //! The validated path model: traversal order, chains, effective parameters, support-bar
 //! geometry and subpath connections (reference-input.md §4–§6).
+//!
+//! The built model (`Model`, `Element`, `Chain`, …): the contract between `build/` and `emit/`.
 
 use crate::diag::Origin;
 use crate::front::drawing::{RawPath, Style};

@@ -1,5 +1,8 @@
 //! Parameter texts (`T2 O2 B-0,3 :B-0.5~3.0 >8998.2P`): tokens, variables, interpolation and
 //! numeric views (reference-input.md §2, §6).
+//!
+//! Parameter-text tokens, construction checks (reference-input.md §2.1–2.2), numbers, variables
+//! with a loop guard, definitions, check values, assignment checks (reference-input.md §6).
 
 use crate::args;
 use crate::diag::{Diagnostic, Msg, Origin};

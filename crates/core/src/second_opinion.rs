@@ -1,6 +1,12 @@
 //! A second opinion on every program `compile` writes: the independent G-code checker
 //! (`millpath-verify`, which knows nothing of this compiler) simulates the program against a
 //! stock model, and each finding comes back located at the element that wrote the line.
+//!
+//! Every written program is checked by `millpath-verify`, findings located at their element.
+//! `Reviewer` is the checker as a line sink: `check` feeds it while emitting and keeps no program
+//! text and no moves (verify's lean `Verifier`); its second reading (clamps, depths, stock model)
+//! comes from the staged file for compile, from a `Spool` for check (the lines lz4-compressed as
+//! they pass, whole-comment lines kept empty: a few bytes a move).
 
 use crate::args;
 use crate::diag::{Diagnostic, Lang, Msg};

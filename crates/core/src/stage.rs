@@ -3,6 +3,12 @@
 //! times the size of its drawing is never held. The caller renames the file into place with
 //! the rest of the set (all or none) or removes it; the set's digest is stamped into the
 //! staged file once the program is complete.
+//!
+//! `compile`'s program is written to a temporary file beside its output as it is generated and read
+//! by the checker at the same time (`Settings::stage_outputs`); read again line by line for the
+//! checker's second reading; the set's digest stamped into it after; the command line renames it
+//! with the set. `sibling` names every temporary file beside an output, `file_head` reads a long
+//! program's banner.
 
 use crate::diag::{Diagnostic, Msg, Origin};
 use crate::digest::{banner_index_of_first, banner_with_digest, set_digest_lines};

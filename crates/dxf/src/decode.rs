@@ -1,4 +1,7 @@
 //! Decoding of kept string values: code pages and `\U+XXXX` escapes.
+//!
+//! Kept values: code pages (encoding_rs, ASCII taken as it is) and `\U+XXXX` escapes
+//! (reference-input.md §1.1).
 
 use encoding_rs::Encoding;
 use std::borrow::Cow;

@@ -3,6 +3,11 @@
 //! produced entity keeps the line and handle of the model-space entity it comes from, so
 //! messages point at the polyline or INSERT in the file. ELLIPSE and SPLINE are refused,
 //! never approximated; so are arcs that a non-uniform scale would turn into ellipses.
+//!
+//! The extended mode's geometry: polylines → LINE/ARC (bulges, exact centres), blocks resolved into
+//! model space (nesting, scale, rotation, mirroring, arrays, layer `0`/`ByBlock` inheritance), each
+//! result keeping its model-space entity's line; ELLIPSE/SPLINE and distorted arcs refused; depth ≤
+//! 16 and ≤ 1,000,000 results.
 
 use crate::extra::{Block, Extra, ExtraKind, Insert, Polyline};
 use crate::{Drawing, Entity, EntityKind, Point3};

@@ -2,8 +2,12 @@
 //! records, INSERT (block references, MINSERT arrays), and ELLIPSE/SPLINE (only detected).
 //! They are read in every mode: the default mode warns about them, the extended mode
 //! explodes them (`explode.rs`).
+//!
+//! The geometry the reference ignores, read in every mode: LWPOLYLINE, POLYLINE with VERTEX/SEQEND,
+//! INSERT (MINSERT arrays, ATTRIB/SEQEND skipped), ELLIPSE/SPLINE detected; the reader's hook is
+//! one call per entity record.
 
-use crate::entity::Ctx;
+use crate::record::Ctx;
 use crate::tokens::{int, num, raw_str, Pair};
 use crate::{DxfError, Entity, Point3};
 

@@ -13,10 +13,20 @@
 //! The geometry the reference ignores (polylines, inserts, curves: `extra.rs`) and the BLOCKS
 //! section (`blocks.rs`) are kept as pairs and read at the end, when the code page is known;
 //! their errors never cost the file (`Drawing::extra_errors`).
+//!
+//! The DXF structure in one pass over the pairs (one loop per kind of section, each its own
+//! function taking the usual pairs from a copy of the tokens held in registers; skipped sections
+//! only check their codes): sections, header (`$ACADVER`, `$DWGCODEPAGE`, `$TEXTSIZE`,
+//! `$INSUNITS`), LAYER and LTYPE tables, model-space LINE/ARC/CIRCLE/TEXT/MTEXT with line numbers;
+//! other entities counted, polylines/inserts/curves (→ `extra.rs`) and the BLOCKS section (→
+//! `blocks.rs`) kept as pairs and read at the end; kept strings noted as file bytes and decoded
+//! once at the end with the header's code page; errors in the order of a whole-file reader (bad
+//! code/cut pair, open section, no section, header number, entity number) with line numbers, never
+//! a panic.
 
 use crate::decode::{decode_value_into, encoding_for};
-use crate::entity::{records, Ctx, EntityRecord, Kind};
 use crate::extra::ExtraReader;
+use crate::record::{records, Ctx, EntityRecord, Kind};
 use crate::tokens::{int, num, raw_name, raw_str, Pair, Tokens};
 use crate::{Drawing, DxfError, DxfErrorKind, EntityKind, MText, Text};
 use std::collections::BTreeMap;

@@ -6,6 +6,14 @@
 //! New entities get handles from `$HANDSEED` (raised past them) where the file uses handles,
 //! the model space block record as owner where the version has owners, and the LAYER and
 //! LTYPE table entries they need.
+//!
+//! Writing entities into an existing drawing (`text2dxf --into`): `scan` (after `read_dxf`
+//! validated the file) finds the header's `$ACADVER`/`$DWGCODEPAGE`/`$HANDSEED`, the LAYER and
+//! LTYPE tables, the model space record, the blocks and the ENTITIES records (VERTEX/SEQEND/ATTRIB
+//! with their entity) as byte ranges; `splice` drops the records a caller's predicate chooses, adds
+//! new LINE/ARC/CIRCLE/MTEXT (TEXT before R13) at the section's end with handles from `$HANDSEED`
+//! (raised), owners from R2000, subclasses from R13, the file's line ends and code page, and the
+//! missing LAYER/LTYPE entries; every other byte stays.
 
 use crate::decode::{decode_value_into, encoding_for};
 use crate::tokens::{raw_name, Tokens};

@@ -3,6 +3,13 @@
 //! Values stay bytes of the file; the few helpers here turn them into text exactly as if the
 //! whole file had been decoded with [`String::from_utf8_lossy`] first (an invalid sequence
 //! never spans a line end, so a line decoded on its own is the same line of the decoded file).
+//!
+//! The group-code tokenizer over the file's bytes (no decoded copy of the file): (code, value
+//! bytes, line) pairs, each pair cut from two line ends of `lines.rs` with the usual three-wide
+//! code read in place (`quick_pair`: `  0` and `  0\r`, both line ends found by `quick_two`), every
+//! other pair by `next_pair`, every other code line the general way; value helpers that read as the
+//! lossy UTF-8 text of the file would (`raw_str`, names, numbers with exact fast paths for plain
+//! decimals and integers).
 
 use crate::lines::LineEnds;
 use crate::{DxfError, DxfErrorKind};

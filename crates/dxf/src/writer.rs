@@ -3,6 +3,9 @@
 //! It writes what path drawings need (LTYPE and LAYER tables, LINE, ARC, CIRCLE, TEXT,
 //! MTEXT) as an AutoCAD 2000 (AC1015) ASCII file in code page 1252. Used for our own test
 //! drawings and examples; the full CAD-compatible writer builds on it.
+//!
+//! Deterministic AutoCAD 2000 writer: tables, blocks, objects, line-type patterns; ezdxf audits it
+//! clean.
 
 use std::fmt::Write;
 

@@ -1,5 +1,9 @@
 //! Call hierarchy over subpath embedding: a path "calls" the subpaths its elements embed
 //! (`>NAME`), in text files and DXF drawings alike.
+//!
+//! Call hierarchy over subpath embedding: the path named at an offset (header or `>NAME`) where it
+//! is defined, the paths embedding it in every workspace file (text and DXF) with the embeddings'
+//! ranges, the subpaths it embeds.
 
 use crate::common::{location_of, lookup, Location};
 use crate::navigation::{name_token_at, objects_of_file};

@@ -1,4 +1,7 @@
 //! Code lenses: the statistics of each path, with the preview as command.
+//!
+//! One lens per path: its statistics (marked when placeholder machine settings are in use), the
+//! preview as command; `code_lenses_until` stops when asked (a cancelled request).
 
 use crate::preview::preview_of_until;
 use crate::{Analysis, Workspace};

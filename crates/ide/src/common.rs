@@ -1,4 +1,6 @@
 //! Shared helpers of the features: edits, locations, finding elements and paths.
+//!
+//! Shared helpers: `TextEdit`, `Location`, the element/path at an offset, subpath lookup.
 
 use crate::{Analysis, Pos, Workspace};
 use millpath_core::diag::Origin;

@@ -2,6 +2,11 @@
 //! program (`millpath_verify::StockView`) as JSON with binary arrays in base64 (little
 //! endian): the heights after the program, and the lowerings grouped by G-code line so the
 //! page can cut the stock move by move during playback. The page computes nothing.
+//!
+//! The cut part of the view: `verify`'s stock model of the written program (`StockView`) as JSON,
+//! base64 little-endian arrays (heights after the program; lowerings grouped by G-code line: lines,
+//! counts, cells, z); ≤ 2 M cells, ≤ 2 M lowerings; `cut_svg` for `render --cut` (row runs in 24
+//! depth levels).
 
 use base64::Engine;
 use millpath_core::machine::Dialect as Ours;

@@ -1,4 +1,7 @@
 //! Where a compiler diagnostic lands in the document, as a byte range.
+//!
+//! Where a diagnostic lands: an element's line without its trailing comment, a path's name, a
+//! drawing's entity line.
 
 use crate::common::element_at;
 use crate::{Analysis, Pos};

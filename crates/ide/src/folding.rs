@@ -1,4 +1,6 @@
 //! Folding ranges: every path block and every run of two or more comment lines.
+//!
+//! Folding ranges: paths (header to the line before `}`), runs of two or more comment lines.
 
 use crate::Analysis;
 use millpath_syntax::{Item, PathItem};

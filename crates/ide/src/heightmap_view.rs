@@ -2,6 +2,10 @@
 //! colour, so the page only draws. A path with `[heightmap]` being edited shows its probe
 //! points at the nominal top (not measured yet); a measured surface (`render --surface`)
 //! shows its heights, coloured from the lowest to the highest with a legend.
+//!
+//! The height map of the toolpath view as data: a `[heightmap]` grid at T, or a measured surface
+//! (`with_surface`) with each point's colour (blue → teal → yellow) and the legend; cells in the
+//! SVG top view.
 
 use serde_json::{json, Value};
 

@@ -1,5 +1,8 @@
 //! Document highlight: every use of a path name in the document; on an element, every
 //! element of its chain.
+//!
+//! Document highlight: every use of a name (the header as the definition), or every element of the
+//! chain under the cursor.
 
 use crate::common::*;
 use crate::navigation::name_token_at;

@@ -1,4 +1,6 @@
 //! Hover: a parameter letter, a subpath name, or an element with its effective values.
+//!
+//! Hover: parameter letters, subpath names, elements with their value table and derived facts.
 
 use crate::common::*;
 use crate::param_doc::{allowed_in, param_doc};

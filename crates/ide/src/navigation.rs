@@ -1,4 +1,7 @@
 //! Go to definition and find references of subpath names.
+//!
+//! Definition (the `path NAME` header; a drawing's start marker) and references of subpath names
+//! (text and DXF), the name token at an offset, the drawn objects of any workspace file.
 
 use crate::common::*;
 use crate::{file_ref, workspace_files, Analysis, Pos, Workspace};

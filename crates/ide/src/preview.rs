@@ -1,26 +1,15 @@
 //! The G-code preview of a path, as `millpath compile` writes it.
+//!
+//! The G-code preview (= `compile`, computed once per analysis: `preview_of`); a refused path gives
+//! no G-code and its reasons in `errors` (a missing path names the file's paths);
+//! `preview_until`/`preview_of_until` stop inside the emitter when asked (`emit::generate_until`),
+//! a stopped preview is not remembered.
 
+use crate::preview_files::Preview;
 use crate::{Analysis, Workspace};
 use millpath_core::emit::{generate_until, Controller, Output};
 use millpath_core::{Lang, Session};
 use std::path::Path;
-
-/// The G-code of one path as `millpath compile` writes it.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Preview {
-    pub path: String,
-    /// `_Milling.gcode`, or `_Clean.gcode` when the path has probes.
-    pub gcode: String,
-    pub probing: Option<String>,
-    pub z_txt: Option<String>,
-    /// The five statistics lines.
-    pub stats: Vec<String>,
-    /// The exact estimated time, `h:mm:ss` (the statistics keep whole minutes); empty when
-    /// the path is refused.
-    pub time: String,
-    /// Errors that would stop `millpath compile` from writing the files.
-    pub errors: Vec<String>,
-}
 
 /// A path built as `millpath compile` builds it, with the errors of the build.
 pub(crate) struct TopModel {

@@ -1,4 +1,7 @@
 //! Effective values of an element and where each comes from (the rows of hover and inlay hints).
+//!
+//! Effective values of an element and where each comes from (§4.2 for display); chain starts
+//! computed once per path and analysis.
 
 use crate::common::*;
 use crate::Analysis;

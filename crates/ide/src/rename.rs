@@ -1,6 +1,11 @@
 //! Rename of a path name across the workspace: every `path NAME` header and every `>NAME`
 //! in the text files (open buffers over the disk). Drawings are never edited, so a name that
 //! a DXF file defines or embeds is refused rather than left inconsistent.
+//!
+//! Rename of a path name: every `path NAME` and `>NAME` in the workspace's text files (buffers over
+//! the disk); refuses invalid names (the `/n` pattern), names in use, a file whose name no longer
+//! covers the path (reference-input.md §3.2) and names a DXF file defines or embeds (naming the
+//! drawings); prepareRename.
 
 use crate::common::*;
 use crate::navigation::{name_token_at, objects_of_file};

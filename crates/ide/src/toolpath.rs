@@ -1,4 +1,9 @@
 //! The toolpath view: moves as JSON, the standalone page and the SVG top view.
+//!
+//! The toolpath as JSON (`toolpath_until`: stops inside the emitters when asked; moves rounded to 3
+//! decimals, sources shared by index, tool O, stock T, statistics; `warnings`: placeholder machine
+//! settings; `clamps` and each move's `hits`; `cut`), the standalone page
+//! (`editors/toolpath/toolpath.html` by `include_str!`), the SVG top view.
 
 use crate::preview::{top_model_until, TopModel};
 use crate::Workspace;

@@ -1,6 +1,10 @@
 //! `millpath check` over the whole workspace for pull diagnostics: each drawing's
 //! analysis (or why it cannot be read), and a fingerprint of everything an analysis read,
 //! so an unchanged file is not analysed again.
+//!
+//! Pull diagnostics of the whole workspace: the drawings (walk + open buffers), each checked as
+//! `check` does (a file that cannot be read: `check`'s message), and the fingerprint of what an
+//! analysis read (stamps and folder listings).
 
 use crate::walk::{drawing_files, Walk};
 use crate::{analyze_with, Analysis, Workspace};

@@ -2,6 +2,41 @@
 //! All answers come from `millpath-ide`; this crate converts between LSP types and plain
 //! data (`conv`), keeps the open documents and their shared analyses (`state`), and has one
 //! file per group of handlers (`handlers/`), each turning a request into an ide call.
+//!
+//! - **One analysis per document version.** Every change bumps the document's generation;
+//!   the `Arc<Analysis>` of the current generation is made once (on tokio's blocking pool, in
+//!   a `OnceCell`) and shared by the diagnostics, hover, inlay hints, lenses, symbols, actions
+//!   and the preview. An analysis whose generation is no longer current gives up between its
+//!   stages (inside the compiler: between elements and passes) and is never published;
+//!   requests about it answer ContentModified.
+//! - **Cancellation.** Handlers await the shared analysis or run heavy work with
+//!   `spawn_blocking`, so tower-lsp-server can drop them on `$/cancelRequest` (answer
+//!   -32800); the lenses, the preview and the workspace pull also stop their work then
+//!   (`cancel.rs`, the emitter's `stop`).
+//! - **Cross-file.** The last analysis of each open document knows the files it read and the
+//!   folders it searched (the dependency graph: embedding → the file that defines the
+//!   subpath, `millpath.toml`). A change of a buffer, closing it, `didSave`, or
+//!   `workspace/didChangeWatchedFiles` (registered dynamically for `**/*.{mpath,dxf,DXF}` and
+//!   `**/millpath.toml` when the client allows it) re-analyses and republishes the open
+//!   documents that depend on the file. Opening a buffer equal to the disk changes nothing
+//!   for them. Open DXF drawings are read from the disk (an editor's text of them is
+//!   decoded).
+//! - **Sync and positions.** Incremental sync (UTF-16 or UTF-8 ranges, `positionEncoding`
+//!   negotiated: utf-8 when offered); workspace folders, else `rootUri`, else `rootPath`;
+//!   `didChangeWorkspaceFolders`.
+//! - No debounce by default (`debounceMs` init option); diagnostics carry the version they
+//!   were computed for; every handler runs under `catch_unwind`; `exit` without `shutdown`
+//!   ends with status 1. Custom requests `millpath/gcodePreview`, `millpath/toolpath`.
+//! - **Commands.** The code lenses' command is `millpath.preview`, a client-side command of
+//!   the editors (VS Code's extension, the Neovim plugin's `vim.lsp.commands` handler) that
+//!   opens the preview; the server's own `workspace/executeCommand` is
+//!   `millpath.server.preview` (returns the preview), a different name because
+//!   vscode-languageclient registers every advertised command as a VS Code command. A
+//!   non-`file:` URI (`untitled:`) and a buffer opened with the language id `millpath` get a
+//!   made-up `*.mpath` path (`to_path`): text, never a drawing to load.
+//!
+//! The `LanguageServer` impl (one line per method, delegating to `handlers/`), `service()` with the
+//! custom requests, `run_stdio` and the exit status.
 
 mod cancel;
 mod conv;

@@ -1,6 +1,10 @@
 //! Results remembered between requests: semantic tokens per document (for deltas), pulled
 //! diagnostics per drawing (for `unchanged` reports without a new analysis), and what the
 //! client said about pulling diagnostics.
+//!
+//! What is kept between requests: the last semantic tokens per document (≤ 64), the pulled
+//! diagnostics per drawing, whether the client pulls (then nothing is pushed; a dependency's change
+//! sends `workspace/diagnostic/refresh`).
 
 use millpath_ide::workspace_check::Inputs;
 use millpath_ide::RelToken;

@@ -1,5 +1,9 @@
 //! The server's state: open documents, their generations and shared analyses, the
 //! dependency graph between files, and the publication of diagnostics.
+//!
+//! `Backend` and its state: generations, the shared analysis per version (the one it replaces freed
+//! on the blocking pool, not on the way to the diagnostics), the dependency graph, debounced
+//! publication, `blocking`/`guarded`.
 
 use crate::conv::*;
 use millpath_core::load::config::FileConfig;

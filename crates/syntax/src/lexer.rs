@@ -1,4 +1,7 @@
 //! Tokens of the MillPath language (logos).
+//!
+//! Logos tokens (a byte-order mark reads as blank); quoting of words and parameter tokens;
+//! splitting the parameter part.
 
 use logos::Logos;
 use std::ops::Range;

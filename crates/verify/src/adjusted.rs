@@ -11,6 +11,11 @@
 //! judged as if the surface were that high everywhere (the surface between the probes is a
 //! weighted mean of theirs). Without measured values only the nominal heights are known:
 //! each adjusted line is checked at its drawn height, with a warning.
+//!
+//! Programs adjusted by adjust-z: `(==expr)` lines moved back to the drawing's frame with the
+//! measured heights of `(MILLPATH-PROBES …)` (a Z that is not its expression's value is an error),
+//! other Z lowered by the largest measured rise; its own small evaluator (verify stays independent
+//! of core).
 
 use crate::finding::{AdjustedProblem, FindingKind};
 use std::collections::HashMap;
@@ -218,6 +223,24 @@ impl Eval<'_> {
             _ => None,
         }
     }
+}
+
+/// Moves the Z of a line of an adjusted program to the drawing's frame.
+pub(crate) fn to_drawing_frame(
+    b: &mut crate::parse::Block,
+    surface: &Surface,
+    rise: f64,
+) -> Result<(), AdjustedProblem> {
+    let Some(z) = b.words.iter_mut().find(|w| w.letter == 'Z') else {
+        return Ok(());
+    };
+    match b.comments.iter().find_map(|c| c.strip_prefix("==")) {
+        Some(expr) => {
+            z.value = surface.nominal_z(z.value, expr)?;
+        }
+        None => z.value -= rise,
+    }
+    Ok(())
 }
 
 #[cfg(test)]

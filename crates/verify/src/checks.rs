@@ -3,6 +3,9 @@
 //! clamps, the depth below the bottom and the stock model, one move at a time. The checker
 //! that keeps its moves runs them over its list; the lean one (`reread.rs`) over the moves
 //! of a second reading, so both give the same findings in the same order.
+//!
+//! The end checks as per-move steps shared by both: `ClampCheck` (stops past the findings limit),
+//! `below_bottom`, `Extent` and `StockRun` (grid ≤ 4 M cells, cell O/8 … O/2, the work budget).
 
 use crate::machine::{Move, MoveKind, Raw};
 use crate::stock::{GridGeom, Stock};

@@ -22,6 +22,10 @@
 //! Memory and time are bounded for any input: at most [`Limits::max_lines`] lines are read,
 //! the grid has at most [`Limits::max_cells`] cells, and the stock model stops after
 //! [`Limits::max_work`] cell visits (each with a finding saying so).
+//!
+//! `verify` and `verify_on_surface`: the whole-program scans (adjustment, surface record), then
+//! `Verifier` over the lines (`stream.rs`); `program_top`. Options and limits are in `options.rs`,
+//! the report in `report.rs`, the `(MILLPATH-STOCK …)` comment in `stock_comment.rs`.
 
 mod adjusted;
 mod checks;
@@ -31,9 +35,12 @@ mod execute;
 mod finding;
 mod machine;
 mod magnitude;
+mod options;
 mod parse;
+mod report;
 mod reread;
 mod stock;
+mod stock_comment;
 mod stock_view;
 mod stream;
 pub mod surface;
@@ -47,176 +54,18 @@ pub use finding::{
     Severity, StockCommentProblem, StockSkip, SyntaxError,
 };
 pub use magnitude::MAX_MAGNITUDE;
-pub use parse::{parse_line, Block, Word};
+pub use options::{Limits, Options, XY_TOLERANCE, Z_TOLERANCE};
+pub use parse::{only_a_comment, parse_line, Block, Word};
+pub use report::{Report, StockInfo};
+pub use stock_comment::{parse_stock_comment, stock_comment, StockParams};
 pub use stock_view::{StockView, ViewRequest};
 pub use stream::{feed_lines, Verifier};
 pub use surface::{HeightMap, SurfaceProblem};
 pub use surface_frame::{ROUNDING as SURFACE_ROUNDING, SPLIT_TOLERANCE};
 
-/// The data the stock checks need; from options or a `(MILLPATH-STOCK …)` comment.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct StockParams {
-    /// Material top T, mm.
-    pub top: Option<f64>,
-    /// Tool diameter O, mm.
-    pub tool: Option<f64>,
-    /// The deepest drawn depth, mm.
-    pub bottom: Option<f64>,
-}
-
-/// Bounds on the work done for one program.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Limits {
-    pub max_lines: usize,
-    pub max_line_len: usize,
-    pub max_cells: usize,
-    /// Cell visits of the stock model.
-    pub max_work: u64,
-    pub max_findings: usize,
-}
-
-impl Default for Limits {
-    fn default() -> Limits {
-        Limits {
-            max_lines: 1_000_000,
-            max_line_len: 4096,
-            max_cells: 4_000_000,
-            max_work: 100_000_000,
-            max_findings: 10_000,
-        }
-    }
-}
-
-/// What to check against. `top`/`tool`/`bottom` override a `(MILLPATH-STOCK …)` comment.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct Options {
-    pub dialect: Dialect,
-    pub top: Option<f64>,
-    pub tool: Option<f64>,
-    pub bottom: Option<f64>,
-    pub limits: Limits,
-    /// Keep-out boxes in machine coordinates: every move is checked against them.
-    pub clamps: Vec<Clamp>,
-    /// Leave the stock model out (a quick check of the clamps and the program's words).
-    pub skip_stock: bool,
-    /// Export the stock's height field for a viewer ([`Report::view`]).
-    pub view: Option<ViewRequest>,
-}
-
-/// The grid the stock model used.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct StockInfo {
-    pub top: f64,
-    pub tool_diameter: f64,
-    /// Cell edge, mm.
-    pub cell: f64,
-    pub nx: usize,
-    pub ny: usize,
-    /// Lower left corner of the grid.
-    pub x0: f64,
-    pub y0: f64,
-}
-
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct Report {
-    /// Sorted by line (findings about the whole program first).
-    pub findings: Vec<Finding>,
-    /// ∫ (T − height) over the grid, mm³; 0 when the stock model did not run.
-    pub removed_volume_mm3: f64,
-    /// The grid, when the stock model ran.
-    pub stock: Option<StockInfo>,
-    /// The values used (options over the program's comment).
-    pub params: StockParams,
-    /// Lines read.
-    pub lines: usize,
-    /// Moves executed (G00/G01/G02/G03/G38.x with known start or end).
-    pub moves: usize,
-    /// The measured surface the moves were judged against (given, or the program's
-    /// `(MILLPATH-SURFACE …)` record).
-    pub surface: Option<HeightMap>,
-    /// The stock after the program and its lowerings, when [`Options::view`] asked for it.
-    pub view: Option<StockView>,
-}
-
-impl Report {
-    pub fn count(&self, severity: Severity) -> usize {
-        self.findings
-            .iter()
-            .filter(|f| f.severity == severity)
-            .count()
-    }
-    pub fn has_errors(&self) -> bool {
-        self.findings.iter().any(|f| f.severity == Severity::Error)
-    }
-}
-
-/// How far (mm) the tool tip may be below the stock before a rapid counts as a collision.
-pub const Z_TOLERANCE: f64 = 0.001;
-/// Extra tolerance (mm) on the footprint radius of rapids, besides one grid cell.
-pub const XY_TOLERANCE: f64 = 0.01;
-
-/// The structured comment our compiler writes:
-/// `(MILLPATH-STOCK T=2.000 O=2.000 BOTTOM=-0.300)` (BOTTOM only when known).
-pub fn stock_comment(top: f64, tool: f64, bottom: Option<f64>) -> String {
-    match bottom {
-        Some(b) => format!("(MILLPATH-STOCK T={top:.3} O={tool:.3} BOTTOM={b:.3})"),
-        None => format!("(MILLPATH-STOCK T={top:.3} O={tool:.3})"),
-    }
-}
-
-/// Reads the text of a comment (without parentheses). `None`: not a stock comment. Keys are
-/// T, O and BOTTOM; unknown keys are ignored (for later additions).
-pub fn parse_stock_comment(text: &str) -> Option<Result<StockParams, StockCommentProblem>> {
-    let rest = text.trim().strip_prefix("MILLPATH-STOCK")?;
-    if !rest.is_empty() && !rest.starts_with(char::is_whitespace) {
-        return None;
-    }
-    let mut p = StockParams::default();
-    for tok in rest.split_whitespace() {
-        let (key, value) = tok.split_once('=').unwrap_or((tok, ""));
-        let key = key.to_ascii_uppercase();
-        let plain = !value.is_empty()
-            && value
-                .chars()
-                .all(|c| c.is_ascii_digit() || matches!(c, '.' | '-' | '+'));
-        let v = value
-            .parse::<f64>()
-            .ok()
-            .filter(|v| plain && v.is_finite() && v.abs() <= MAX_MAGNITUDE);
-        let slot = match key.as_str() {
-            "T" => &mut p.top,
-            "O" => &mut p.tool,
-            "BOTTOM" => &mut p.bottom,
-            _ => continue,
-        };
-        match v {
-            Some(v) if key != "O" || v > 0.0 => *slot = Some(v),
-            _ => {
-                return Some(Err(StockCommentProblem::BadValue {
-                    key,
-                    text: value.to_string(),
-                }))
-            }
-        }
-    }
-    Some(Ok(p))
-}
-
 /// Checks one program.
 pub fn verify(program: &str, options: &Options) -> Report {
     verify_on_surface(program, options, None)
-}
-
-/// A line that is one parenthesised comment and nothing else (ASCII blanks around): it moves
-/// nothing and changes no mode, so a second reading of the program may skip it (a caller
-/// that keeps the lines for one may keep such a line empty). Bytes, so that a reader can
-/// tell before it checks the line's UTF-8.
-pub fn only_a_comment(line: impl AsRef<[u8]>) -> bool {
-    let t = line.as_ref().trim_ascii();
-    t.len() >= 2
-        && t[0] == b'('
-        && t[t.len() - 1] == b')'
-        && !t[1..t.len() - 1].iter().any(|&b| b == b'(' || b == b')')
 }
 
 /// The nominal top of a program: its `(MILLPATH-SURFACE T=…)` record's, else its
@@ -253,22 +102,4 @@ pub fn verify_on_surface(
         },
     };
     Verifier::scanned(options.clone(), surface, problems, map).read_text(program)
-}
-
-/// Moves the Z of a line of an adjusted program to the drawing's frame ([`adjusted`]).
-pub(crate) fn to_drawing_frame(
-    b: &mut parse::Block,
-    surface: &adjusted::Surface,
-    rise: f64,
-) -> Result<(), AdjustedProblem> {
-    let Some(z) = b.words.iter_mut().find(|w| w.letter == 'Z') else {
-        return Ok(());
-    };
-    match b.comments.iter().find_map(|c| c.strip_prefix("==")) {
-        Some(expr) => {
-            z.value = surface.nominal_z(z.value, expr)?;
-        }
-        None => z.value -= rise,
-    }
-    Ok(())
 }

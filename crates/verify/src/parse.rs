@@ -211,6 +211,18 @@ fn parse_number(chars: &[char], start: usize, letter: char) -> Result<(f64, usiz
     }
 }
 
+/// A line that is one parenthesised comment and nothing else (ASCII blanks around): it moves
+/// nothing and changes no mode, so a second reading of the program may skip it (a caller
+/// that keeps the lines for one may keep such a line empty). Bytes, so that a reader can
+/// tell before it checks the line's UTF-8.
+pub fn only_a_comment(line: impl AsRef<[u8]>) -> bool {
+    let t = line.as_ref().trim_ascii();
+    t.len() >= 2
+        && t[0] == b'('
+        && t[t.len() - 1] == b')'
+        && !t[1..t.len() - 1].iter().any(|&b| b == b'(' || b == b')')
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -4,6 +4,11 @@
 //! the lines again, on the grid of the first reading's extent.
 //!
 //! [`Verifier::finish`]: crate::Verifier::finish
+//!
+//! `Rereading`: the second reading; a lean checker's clamps, depths and stock model run move by
+//! move as a fresh machine reads the lines again (whole-comment lines skipped), on the grid of the
+//! first reading's extent; the findings joined in the order the keeping checker makes them, the
+//! limits alike; a second reading that differs from the first is an error.
 
 use crate::checks::{below_bottom, clamps_of, ClampCheck, Extent, StockRun};
 use crate::execute::{execute, missing_params};

@@ -3,6 +3,9 @@
 //! its height becomes the lowest tool tip over the part of the move where that holds. Both
 //! straight moves and XY arcs are handled exactly (z is linear along a move), so no sampling
 //! error enters the heights.
+//!
+//! 2.5-D height field: cells lowered exactly to the lowest tool tip over the part of a line or XY
+//! arc whose footprint covers the cell centre; rapid intrusion; removed volume.
 
 use crate::machine::ArcGeo;
 

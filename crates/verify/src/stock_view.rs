@@ -3,6 +3,10 @@
 //! footprint covers their centre), exported as data: the heights after the program, and every
 //! lowering of a cell in program order (its move's line, the cell, the new height), so that a
 //! viewer can cut the stock move by move during playback without computing anything.
+//!
+//! The stock for a viewer (`Options::view`): the same height field on a grid of the checks' cell
+//! (or asked for; coarsened to a cell budget), heights after the program and every lowering in
+//! program order (thinned to the last per cell beyond a budget).
 
 use crate::machine::{Move, MoveKind};
 use crate::stock::{visit_arc, visit_line, GridGeom};

@@ -4,15 +4,20 @@
 //! stock comment may give, the grid over the program's extent) runs at the end, over the
 //! moves kept ([`Verifier::new`]), or, lean ([`Verifier::lean`]), over a second reading of
 //! the program while only its extent and move count are kept from the first (`reread.rs`).
+//!
+//! `Verifier`: one line at a time (`line`); `new` keeps the moves for the end checks, `lean` (what
+//! a compiler writes, no view) keeps only their extent and count and the texts of the lines its
+//! findings name; `finish(replay)` gets the program's lines again: for the texts, and for a lean
+//! one's end checks.
 
-use crate::adjusted;
+use crate::adjusted::{self, to_drawing_frame};
 use crate::checks::{below_bottom, clamps_of, ClampCheck, Extent, StockRun};
 use crate::execute::{execute, missing_params};
 use crate::machine::{Machine, Move, Raw};
 use crate::reread::{Folded, Rereading};
 use crate::{
-    stock_view, surface_frame, to_drawing_frame, AdjustedProblem, FindingKind, HeightMap, Limit,
-    Options, Report, Severity, StockParams, SurfaceProblem, Z_TOLERANCE,
+    stock_view, surface_frame, AdjustedProblem, FindingKind, HeightMap, Limit, Options, Report,
+    Severity, StockParams, SurfaceProblem, Z_TOLERANCE,
 };
 
 pub struct Verifier {

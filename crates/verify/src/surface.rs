@@ -16,6 +16,10 @@
 //! `T` is the nominal top the heights were measured against; the X and Y lines give the grid
 //! columns and rows (ascending); each Z line gives row `J`'s heights from column `I` on.
 //! Long lists continue on further lines (LinuxCNC reads at most 255 characters a line).
+//!
+//! A measured height map: grid, bilinear `height`/`offset` (never extrapolated), `from_points`, and
+//! its `(MILLPATH-SURFACE …)` record in a program (written by adjust-z, read by verify; lines ≤ 255
+//! characters).
 
 use crate::magnitude::MAX_MAGNITUDE;
 

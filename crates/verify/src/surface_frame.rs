@@ -9,6 +9,10 @@
 //! lies where the drawing put it, and the stock model, "below the deepest drawn depth" and
 //! "rapid into material" judge it unchanged. A program adjusted to another surface (or the
 //! right one with a wrong program) lands elsewhere and is found.
+//!
+//! Programs on a height map (the record, or `verify_on_surface`'s map): every move's end points
+//! back to the drawing's frame (z − offset on the map, z − the highest rise off it), cuts sampled
+//! inside against the drawn depth (adjust-z's 0.005 mm + rounding).
 
 use crate::machine::{Move, MoveKind};
 use crate::surface::HeightMap;

@@ -1,6 +1,10 @@
 //! millpath in the browser: the compiler and the editor answers (`millpath-ide`) over files
 //! held in memory, exported to JavaScript by wasm-bindgen. Every answer is JSON text, made by
 //! [`playground::Playground`]; this file only forwards.
+//!
+//! Built natively too: its tests (`tests/playground.rs`) run the page's calls on the examples
+//! against `compile_file` over the disk. The page's build uses `[profile.playground]` (root
+//! `Cargo.toml`): opt-level "z", LTO, one codegen unit.
 
 mod offsets;
 pub mod playground;

@@ -1,6 +1,12 @@
 //! The playground's state: its files in memory (`.mpath` as editor buffers, `millpath.toml`
 //! and anything else as memory files under them), one analysis per file and version, and
 //! every answer as JSON text. Plain Rust, so the native tests run the code the page runs.
+//!
+//! The playground's state: `.mpath` files as buffers of an `ide::Workspace`, `millpath.toml` as a
+//! `MemFileSystem` under them (`Workspace::memory`, no disk); one analysis per file and change;
+//! diagnostics, hover, completion, format, the path at the cursor, compile's files (`compile_file`;
+//! a library: the preview of the path), the toolpath data, `dxf2text` of bytes, `text2dxf`, all as
+//! JSON with UTF-16 offsets.
 
 use crate::offsets::{from_utf16, to_utf16};
 use millpath_core::diag::{FileRef, Severity};

@@ -1,6 +1,9 @@
 //! Building the validated model of a path: traversal, chains and elements with their
 //! effective parameters, validation, support bars and subpath connection
 //! (reference-input.md §4–§6).
+//!
+//! `build_top`/`build`: elements from the traversal, chains (reference-input.md §5.3), drills,
+//! helixes, sweeps, embeddings, probes.
 
 pub mod bars;
 mod candidates;

@@ -1,6 +1,11 @@
 //! Where the traversal chose by drawing order (reference-input.md §5.2: storage order breaks
 //! ties): the equally good segments that would give another result, the warning at the
 //! chosen element, and the N value that pins the choice.
+//!
+//! Those ties: rivals that would change the result (duplicates are none, and are taken in canonical
+//! order), the warning MP118/MP119 at the chosen element with the N value that pins it (checked
+//! against the weakest winner the element lost to earlier in the walk, so no second walk), MP120
+//! where no single N can.
 
 use crate::args;
 use crate::build::eval::with_pos;

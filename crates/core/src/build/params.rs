@@ -1,4 +1,7 @@
 //! Effective parameters of a path, a chain and a chain segment, and the checks of a parameter text (reference-input.md §4.1–§4.2).
+//!
+//! Effective parameters of path, chain and segment (reference-input.md §4.2), unsupported keys (K
+//! in the reference dialect with a hint), non-numbers; `K<step>[+<margin>]` → `DrawnHeightmap`.
 
 use crate::args;
 use crate::build::bars::support_bars;

@@ -8,6 +8,13 @@
 //! texts, to tell duplicates from rivals). With all of that equal the walk takes the same
 //! steps one by one, so its steps and ties are the same. A walk that reported an error is
 //! not kept (its messages point into the text that had it).
+//!
+//! The editor's memo of walks (`Session::traversals`, `None` outside the editor): the walk of the
+//! previous analysis taken again when nothing it reads changed (each segment's shape bit for bit,
+//! kind and order key, turn markers, start and end, the texts of segments that were one of several
+//! candidates); a walk that reported an error is not kept; the memo of an analysis holds only the
+//! paths it built (test `ide/tests/traversal_memo.rs`: remembered = fresh over edits that do and do
+//! not change the walk).
 
 use crate::build::walk::{walk_with, Step, Tie};
 use crate::diag::Diags;

@@ -6,6 +6,9 @@
 //! path objects are replaced (LINE, ARC, CIRCLE, TEXT, MTEXT; in the extended mode also
 //! polylines and block references, which `dxf2text --extended` turned into elements);
 //! every other entity, layer, block, table entry and header value stays.
+//!
+//! `text2dxf --into` through `dxf::splice` on the path layers (the pattern's and the text's), and
+//! `overwrite_losses`: what a plain `text2dxf` would destroy in an existing drawing.
 
 use super::{front_options, layer_name, plan, settle, text_objects, texts_match};
 use crate::diag::{FileRef, Lang};

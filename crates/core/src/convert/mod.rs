@@ -2,6 +2,11 @@
 //! canonical text, `text2dxf` writes an AutoCAD 2000 DXF whose texts the reference's
 //! assignment rule gives back to their own elements; `text2dxf --into` writes the paths into
 //! an existing drawing and keeps the rest of it (`into.rs`).
+//!
+//! `dxf2text`, `text2dxf`, `fmt`. `dxf2text` writes a canonical order that ignores the drawing's
+//! entity order: markers by kind then position, segments in traversal order, unreached ones by kind
+//! and position; `text2dxf` plans the entities, `settle` moves texts the read-back assigns
+//! elsewhere to `PATH~A` layers.
 
 mod into;
 pub use into::{kept_extended_geometry, overwrite_losses, text_into_dxf, IntoOutcome, Losses};

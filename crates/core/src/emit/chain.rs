@@ -1,4 +1,8 @@
 //! Milling chains (reference-output.md §7): pass depths, the greedy order of fast milling, sweepless runs with back-milling, and one pass of one segment.
+//!
+//! Pass depths (reference-output.md §7.1; per chain one shared list of levels, 4 bytes a segment),
+//! fast milling (§7.2, its order kept as 4 bytes a pass), sweepless runs and back-milling (§7.3,
+//! walked twice instead of listed), one pass of a segment (§7.4); geometries transformed on demand.
 
 use crate::args;
 use crate::diag::{Diagnostic, Msg};

@@ -32,6 +32,11 @@
 //!
 //! Memory, for a chain of a million passes: 32 bytes a point (two a pass), 3 to 4 for the
 //! nodes (16 to 32 points a leaf, 44 bytes a node), 4 a segment for its passes milled.
+//!
+//! The order of fast milling (§7.2) without the quadratic scan, over a `PassSource` (a chain's ends
+//! and depths), step by step: pass end points in a k-d tree (32 bytes a point, f32 boxes), small
+//! ball queries around the head (nearest-first walk as fallback), small chains scanned directly;
+//! always the spec's order (property test `tests/chain_order.rs`).
 
 use crate::geom::{lt, EPS, P2, P3};
 use std::cmp::Reverse;

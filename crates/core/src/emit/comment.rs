@@ -13,6 +13,11 @@
 //!   0x80 (a UTF-8 `Ä` holds 0x84, the safety door). Those become `_` (German letters `ae`,
 //!   `oe`, `ue`, `ss`), and a line is at most 127 characters, so that it fits GRBL's 128-byte
 //!   receive buffer with its line end (senders that count characters need that).
+//!
+//! Text in comments made safe per dialect (`(` → `[` everywhere; LinuxCNC's active comment words
+//! and 255-byte lines; GRBL's real-time characters `!~?` and bytes ≥ 0x80, 127-character lines);
+//! `comment_changes`: a warning (`Msg::CommentTextChanged`) for each user text changed (file name,
+//! path labels, `Q` texts), the same in `check` and `compile`.
 
 use crate::args;
 use crate::diag::{Diagnostic, Msg, Origin};

@@ -4,6 +4,10 @@
 //! `F150` before it leaves the first plunge without a feed), a feed on every plunge, the
 //! optional spindle start and stop, a stock comment for verifiers, and — for GRBL, which has
 //! no `%` program delimiters — no `%` lines.
+//!
+//! Controller dialects (`reference`, `linuxcnc`, `grbl`): header and end of a program, plunge
+//! feeds, spindle, the `MILLPATH-STOCK` comment; `Controller::for_model`: the drawing's `K` over
+//! `[heightmap]`, the options over both.
 
 use crate::emit::comment::comment_line;
 use crate::geom::{f3, P3};

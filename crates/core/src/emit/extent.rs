@@ -1,8 +1,8 @@
-//! The XY extent of a program's cutting moves, arcs with the extreme points they pass: the
-//! area a height map (`probe/heightmap.rs`) must cover.
+//! The XY extent of a program's cutting moves, arcs with the extreme points they pass
+//! (`geom::arc_extremes`): the area a height map (`probe/heightmap.rs`) must cover.
 
 use crate::emit::item::{Item, Kind};
-use crate::geom::P2;
+use crate::geom::{arc_extremes, P2};
 
 /// The XY box of a program's cutting moves (mill, mark, bars, drill, helix; not sweeps),
 /// arcs with the extreme points they pass. `start` is where the program's moves start.
@@ -41,35 +41,6 @@ pub fn cut_extent(items: &[Item], start: P2) -> Option<(P2, P2)> {
         pos = to;
     }
     bbox
-}
-
-/// The points of the circle around `c` at 0°, 90°, 180° and 270° that the arc from `a` to
-/// `b` passes (a full circle when `a` = `b`).
-pub(crate) fn arc_extremes(a: P2, b: P2, c: P2, ccw: bool) -> Vec<P2> {
-    use std::f64::consts::{FRAC_PI_2, TAU};
-    let r = a.dist(c);
-    let ang = |p: P2| (p.y - c.y).atan2(p.x - c.x);
-    let (a0, a1) = (ang(a), ang(b));
-    let turn = |d: f64| d.rem_euclid(TAU);
-    let full = a.dist(b) < 1e-9;
-    let span = if full {
-        TAU
-    } else if ccw {
-        turn(a1 - a0)
-    } else {
-        turn(a0 - a1)
-    };
-    (0..4)
-        .map(|k| k as f64 * FRAC_PI_2)
-        .filter(|&t| {
-            let d = if ccw { turn(t - a0) } else { turn(a0 - t) };
-            d <= span
-        })
-        .map(|t| P2 {
-            x: c.x + r * t.cos(),
-            y: c.y + r * t.sin(),
-        })
-        .collect()
 }
 
 #[cfg(test)]

@@ -3,6 +3,10 @@
 //! T + O as drawn probes are, probed with `G38.2` down to T − `probe_depth`, and left at
 //! the sweep height again. LinuxCNC logs the contacts itself (`PROBEOPEN`); GRBL reports
 //! each as `[PRB:x,y,z:1]` in the sender's console.
+//!
+//! A height map's probing set (linuxcnc, grbl): the grid in serpentine order, `G38.2` to T −
+//! `probe_depth`, `(PROBEOPEN NAME_probes.txt)` … `(PROBECLOSE)` in linuxcnc
+//! (`probe_open`/`probe_close`, drawn probes' program too), `_Z.txt` lines `#1000` ….
 
 use crate::diag::{Diagnostic, Msg};
 use crate::emit::comment::comment_line;

@@ -2,6 +2,9 @@
 //! traversal order and records (`record.rs`, with the peephole optimizer) the program's lines
 //! and its moves (lengths, feeds, targets and source elements), which the statistics and
 //! the file layouts work on. One file per kind of element and per stage.
+//!
+//! The emitter and `emit` of a model; what it records of each move is in `item.rs` (kind, length,
+//! feed, target, source, shape).
 
 use crate::args;
 use crate::diag::{Diagnostic, Msg, Origin};

@@ -1,4 +1,7 @@
 //! Motion primitives (reference-output.md §5): DrillOrPullZ, sweeps, SafeSweep, MillLine and MillArc, and the probe-weighted Z expressions (§12.4).
+//!
+//! DrillOrPullZ, sweeps, SafeSweep, MillLine, MillArc (reference-output.md §5), probe Z expressions
+//! (§12.4); with `probe_split` a line/arc milled in pieces, each corrected at its own start.
 
 use crate::args;
 use crate::diag::{Diagnostic, Msg, Origin};

@@ -3,6 +3,10 @@
 //! too deep or too shallow. Split into pieces of at most L mm, each piece's Z word carries
 //! the correction of its own start, so the error along the move is that of one piece.
 //! linuxcnc and grbl only (the reference dialect writes PathDxf2GCode's moves).
+//!
+//! `probe_split = L` (linuxcnc, grbl, drawn probes): how many pieces of ≤ L a move becomes (≤
+//! 10,000, else an error at the element), the equal pieces of a line or arc (sub-arcs on the same
+//! circle, the last ending exactly at the move's end).
 
 use crate::geom::Geom;
 

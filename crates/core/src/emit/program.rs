@@ -1,5 +1,8 @@
 //! File layouts (reference-output.md §4, §12.2, §12.3): the milling program, the probing program and `_Z.txt`
 //! (of drawn probes, or of a height map's grid: `heightmap_program.rs`).
+//!
+//! File layouts: milling program (reference-output.md §4), probing program (§12.2; in linuxcnc its
+//! probes inside `(PROBEOPEN NAME_probes.txt)` … `(PROBECLOSE)`), `_Z.txt` (§12.3).
 
 use crate::diag::{Diagnostic, Lang, Origin};
 use crate::digest::{banner_index, banner_with_digest, set_digest};

@@ -6,6 +6,14 @@
 //! The peephole optimizer (reference-output.md §13: a horizontal sweep followed, past
 //! comments, by another one is commented out) works as the lines come: a horizontal sweep is
 //! held back with the comments after it until the next move says whether it stays.
+//!
+//! What the emitter records as it goes: the program's lines written straight into one text (no
+//! string a line) or handed to a `LineSink` (check's checker: no text kept), the element of each
+//! line (an index, 4 bytes), the moves without comments (statistics, times, toolpath, with their
+//! lines) — or, where only the statistics read them (no planner, no height map: `fold_moves`),
+//! their sums as each becomes final, bit for bit those of the list; the peephole optimizer
+//! (reference-output.md §13) as the lines come: a horizontal sweep held back with the comments
+//! after it until the next move decides.
 
 use crate::emit::stats::Stats;
 use crate::emit::{Item, Kind};

@@ -1,6 +1,11 @@
 //! Statistics: lengths, times and command count (reference-output.md §14). The times are the
 //! reference's (length / F · 1.4) unless machine limits are set: then they come from the
 //! model of LinuxCNC's planner in `timing/`, and a sixth line names that model.
+//!
+//! Statistics (reference-output.md §14); with machine limits the times come from `timing/` and a
+//! sixth line names the model; a line `Split for probes: N moves into M pieces` when `probe_split`
+//! split moves; `hms` and `time_line`: the exact time as `h:mm:ss` for every place beside the
+//! statistics.
 
 use crate::diag::Lang;
 use crate::emit::timing::plan;

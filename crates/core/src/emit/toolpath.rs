@@ -1,6 +1,11 @@
 //! The moves of a program as the machine makes them, for the toolpath view: one move per
 //! G-code line that moves, with what it makes, its source segment, its line in the written
 //! program and its time in the statistics' model.
+//!
+//! The moves as the machine makes them, for the toolpath view: one per G-code move (after the
+//! optimizer) with what it makes (`Shape`: mill/mark/bars/drill/helix, set by the emitter per
+//! element and segment), its segment's source, its line in the written program, feed and time
+//! (`timing::item_times` or the reference's length / F · 1.4).
 
 use crate::diag::{Diagnostic, Origin};
 use crate::emit::stats::Stats;

@@ -1,5 +1,10 @@
 //! The drawing model both front-ends produce: paths with their markers, probes and segments,
 //! each with its raw parameter text and its origin. From here on everything is shared.
+//!
+//! Drawn objects and `build_paths`: special circles, drill/helix by O, line types
+//! (reference-input.md §1.4–§1.6), `RawPath`/`RawSegment`/`SegKind`, allowed keys
+//! (reference-input.md §4.1; `K`, a height map, at the path start outside the reference dialect),
+//! `@` resolution (reference-input.md §4.5).
 
 use crate::args;
 use crate::diag::{Diagnostic, Diags, FileRef, Msg, Origin};

@@ -1,5 +1,9 @@
 //! The DXF front-end: entities → drawing model. Layers and path names, line types, circle
 //! classification, and the geometric assignment of texts to elements (reference-input.md §1–§2).
+//!
+//! DXF → drawn objects: path layers and names (reference-input.md §1.3), effective line types
+//! (§1.4), text search circles and assignment (§2.4; MP132 where an earlier text of the same kind
+//! took a text's best element, so the file order decides), `/x` output (§2.5).
 
 use crate::args;
 use crate::diag::{Diagnostic, Diags, EntityOrigin, FileRef, Msg, Origin};

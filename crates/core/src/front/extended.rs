@@ -3,6 +3,10 @@
 //! says how to include it; the extended mode (`--extended`, `input = "extended"`) resolves
 //! it into lines and arcs (`millpath_dxf::explode`), refuses curves with an error, and
 //! scales `$INSUNITS` drawings to millimetres.
+//!
+//! The reference mode's warning per ignored polyline/block/curve on a path layer (not printed by
+//! `pathdxf2gcode`, as the reference is silent); the extended mode's resolution (`explode.rs`), its
+//! refusals as located errors, `$INSUNITS` scaling.
 
 use crate::args;
 use crate::diag::{Diags, EntityOrigin, FileRef, Msg, Origin};

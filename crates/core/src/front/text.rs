@@ -1,5 +1,8 @@
 //! The text front-end: a `.mpath` file → drawn objects, the same as the DXF front-end
 //! produces, so that everything after it is shared.
+//!
+//! `.mpath` → drawn objects (syntax errors as diagnostics with line:column, worded per language by
+//! `syntax_diagnostic`).
 
 use crate::args;
 use crate::diag::{arg_per_lang, Diagnostic, Diags, FileRef, Msg, Origin};

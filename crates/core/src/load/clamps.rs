@@ -1,6 +1,10 @@
 //! `[[clamp]]` in `millpath.toml`: keep-out boxes (clamps, fixtures) the tool must never
 //! touch. The check itself is the independent checker's (`millpath_verify::Clamp`), run on
 //! every written program (`second_opinion.rs`); here are the settings and their bounds.
+//!
+//! `[[clamp]]` keep-out boxes of millpath.toml: names (`clamp N`), bounds (≤ 64, finite, `min <
+//! max`) located at the file; the check itself is verify's (`clamps.rs`), run on every written
+//! program by `second_opinion.rs` (also in the editor's quick check).
 
 use crate::args;
 use crate::diag::{Diagnostic, FileRef, Msg, Origin};

@@ -1,5 +1,8 @@
 //! `millpath.toml`: machine settings of a folder tree. Parsing and applying only; finding
 //! the file is the caller's (the CLI walks the file system, the language server its view).
+//!
+//! `millpath.toml` parsing (`[machine]`: `max_velocity`, `max_acceleration`, `path_tolerance`;
+//! `[heightmap]`: `step`, `margin`, `area`, `probe_feed`, `probe_depth`; `probe_split`).
 
 use crate::machine::Axes;
 use crate::machine::Dialect;

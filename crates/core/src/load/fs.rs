@@ -1,4 +1,7 @@
 //! File access through a trait, so that editors can serve unsaved buffers and tests can use memory.
+//!
+//! The `FileSystem` trait (`OsFileSystem`, `MemFileSystem`; file stamps for the parse cache);
+//! `with_file_bytes`: a read buffer each thread reuses, filled by one `read` per file.
 
 use crate::load::parse_cache::FileStamp;
 use std::path::{Path, PathBuf};

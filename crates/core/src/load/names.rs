@@ -1,4 +1,7 @@
 //! Path-name and file-name patterns: which file may contain which path (reference-input.md §3).
+//!
+//! Path/file-name patterns, "does this file contain that path" (reference-input.md §3.1–3.2;
+//! answers remembered per patterns).
 
 use crate::load::name_regex::{Groups, NameRegex};
 use crate::load::regex_cache::Memo;

@@ -3,6 +3,9 @@
 //! analyses again on every keystroke, is parsed the first time only. Entries are keyed by
 //! the file's stamp (modification time and length on disk, a content hash for an editor's
 //! buffer) and by the settings that change what parsing produces.
+//!
+//! Each file parsed once per process while unchanged (key: path, stamp, settings); drawings beyond
+//! 20,000 segments are not kept (a part, not a library: its parse would stay beside its model).
 
 use crate::diag::{Diagnostic, Lang};
 use crate::front::drawing::RawPath;

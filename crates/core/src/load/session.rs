@@ -1,6 +1,12 @@
 //! A compilation session: settings, loading files through a [`FileSystem`] (each parse
 //! shared through the process-wide parse cache), the registry of known paths and the
 //! models built so far (reference-input.md §3, §7.5).
+//!
+//! `Session`: loading a file once, registering its paths, duplicates (reference-input.md §3.1);
+//! `stop`, asked during a check (the editor abandons stale analyses); `traversals`, the editor's
+//! memo of walks (`build/traverse_memo.rs`); `one_file` (the command line's check and compile):
+//! once the models are built the drawing's segments are dropped (`release_segments`; a model keeps
+//! its path's head, `RawPath::head`), and a text's tree is dropped before its paths are made.
 
 use crate::args;
 use crate::diag::{Diagnostic, Diags, FileRef, Lang, Msg, Origin};

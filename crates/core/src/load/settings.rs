@@ -1,4 +1,8 @@
 //! Machine settings and options of a run.
+//!
+//! `Settings` of a run (`/f /v /s /z /c /d /n /p /e /x`, language, dialect, plunge feed, spindle,
+//! machine limits for the time estimates, `[heightmap]` with its bounds located at the
+//! millpath.toml or the options; `probe_split` ≥ 0.5 mm, refused in the reference dialect).
 
 use crate::args;
 use crate::diag::Lang;

@@ -1,6 +1,9 @@
 //! A height map as a setting (`[heightmap]` in millpath.toml): its bounds, and the grid of
 //! probe points over an extent (`emit/extent.rs`) in serpentine order.
 //! The probing program and `_Z.txt` of the grid are written by `emit/heightmap_program.rs`.
+//!
+//! `[heightmap]` (`Heightmap`, its bounds: step ≥ 0.5, margin ≥ 0, ≤ 4000 points), the `Grid`
+//! (every step, last line on the far edge) and its serpentine order.
 
 use crate::args;
 use crate::diag::{Diagnostic, Msg, Origin};

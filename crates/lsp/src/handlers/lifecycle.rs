@@ -1,4 +1,6 @@
 //! Initialization (capabilities, position encoding, roots), registration of the file watchers, shutdown.
+//!
+//! Initialize (capabilities, `positionEncoding`, roots), watcher registration, shutdown.
 
 use crate::conv::*;
 use crate::state::*;

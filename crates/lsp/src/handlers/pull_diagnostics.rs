@@ -2,6 +2,10 @@
 //! its result id still matches) and `workspace/diagnostic` (`millpath check`'s findings for
 //! every drawing of the workspace folders, open or not, text and DXF; a drawing is analysed
 //! again only when something it read changed).
+//!
+//! `textDocument/diagnostic` (`unchanged` while the result id matches) and `workspace/diagnostic`:
+//! every drawing of the workspace checked (`ide::workspace_check`), again only when its inputs'
+//! fingerprint changed.
 
 use crate::cancel;
 use crate::conv::*;

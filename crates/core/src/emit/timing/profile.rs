@@ -2,6 +2,9 @@
 //! them become pieces, each with a speed cap and an acceleration; a backward pass limits the
 //! speed at every join by what the rest can still brake from, a forward pass by what the
 //! pieces before can reach, and each piece takes its trapezoid. Linear in the moves.
+//!
+//! The pieces (moves shortened by their blend arcs, the arcs, consumed rests), a backward and a
+//! forward look-ahead pass (linear), trapezoids and short ramps.
 
 use super::corners::{join, Join};
 use super::segments::{Seg, NORMAL_SHARE};

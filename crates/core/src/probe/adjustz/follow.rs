@@ -15,6 +15,11 @@
 //!   function with |f''| ≤ M departs from its chord over a length L by at most M·L²/8.
 //! * A cutting move or plunge that leaves the map is an error, never an extrapolation. A
 //!   rapid off the map is written unchanged when it passes above the highest measured point.
+//!
+//! Moves that follow the measured surface (height-map sets): safe height = first `G00 Z`;
+//! lines/arcs/low rapids split at grid lines and until the chord is within 0.005 mm (bound from the
+//! cell's slope and twist), Z + bilinear offset, arcs stay arcs; off-map cuts refused, off-map
+//! rapids only above the highest point; the `MILLPATH-SURFACE` record and the split count.
 
 use super::bounds::line_origin;
 use crate::args;
@@ -542,12 +547,7 @@ pub fn follow(clean: &str, file: &str, map: &HeightMap, diags: &mut Diags) -> Op
                     return None;
                 }
                 let mut reach = vec![p0, p1];
-                reach.extend(crate::emit::extent::arc_extremes(
-                    p0,
-                    p1,
-                    c,
-                    m == Motion::Ccw,
-                ));
+                reach.extend(crate::geom::arc_extremes(p0, p1, c, m == Motion::Ccw));
                 if let Some(p) = reach.into_iter().find(|p| off_map(*p)) {
                     off_map_error(map, p, at, diags);
                     return None;

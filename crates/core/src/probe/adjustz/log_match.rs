@@ -5,6 +5,10 @@
 //! Why the probing program and not `_Z.txt`'s `[x y]`: that comment holds the probe centre in
 //! its own drawing's coordinates (reference-output.md §12.3), the program the machine runs
 //! holds it in output coordinates (start point at 0/0, subpaths placed).
+//!
+//! The probe points of `_Probing.gcode` (its `G38` moves, output coordinates), each measurement
+//! matched by XY within `--tolerance`; missing/extra/duplicate/beyond `--max` located; `_Z.txt`
+//! filled in for `adjust_with_log` (mod.rs).
 
 use super::bounds::{line_origin, LIMIT};
 use super::probe_log::Measurement;

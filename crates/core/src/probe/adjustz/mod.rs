@@ -5,6 +5,9 @@
 //! height of each probe comes from `_Clean.gcode` (the `w*[#n-TH]` terms), and `_Z.txt` must
 //! agree with it and hold exactly the probes used there; `_Clean.gcode` must be a complete
 //! program; lines and expression nesting are bounded. [`adjust`] is the one entry point.
+//!
+//! Adjust-z's entry points (`adjust`, `adjust_set`: digest check, then reading, then rewriting;
+//! reference-output.md §15) and `base_path`; the bounds on what it reads are in `bounds.rs`.
 
 mod bounds;
 mod carry;

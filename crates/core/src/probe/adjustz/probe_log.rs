@@ -9,6 +9,10 @@
 //! - lines of three numbers `x y z` (bCNC's `.xyz`; its `.probe` files start with a header
 //!   of three lines, skipped; work coordinates);
 //! - a filled-in `_Z.txt`: the caller reads it as today.
+//!
+//! `adjust-z --probe-log`: the log's format found from its content (LinuxCNC PROBEOPEN, GRBL
+//! `[PRB:…]` console with the `$#` work offset, `x y z` lines, `_Z.txt`) and its measurements read
+//! with their lines; bounded (16 MiB, 200,000 lines).
 
 use super::bounds::{line_origin, LIMIT, MAX_LINE};
 use crate::args;

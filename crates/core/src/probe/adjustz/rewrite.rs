@@ -1,4 +1,7 @@
 //! Reading `_Clean.gcode` and rewriting its probe expressions with the measured values.
+//!
+//! Reading `_Clean.gcode` (completeness, with or without `%`), matching the measured values,
+//! rewriting; `(MILLPATH-PROBES …)` for verify in our own sets.
 
 use super::bounds::{line_origin, MaxOption, MAX_LINE};
 use super::expr::{eval, shown, Parser};

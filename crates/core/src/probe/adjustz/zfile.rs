@@ -1,4 +1,6 @@
 //! Reading `_Z.txt`: one measured value per probe, `(comment/T=<t>) #<n>=<value>`.
+//!
+//! Reading `_Z.txt` (one located message per bad line; "no measured value" for an unfilled one).
 
 use super::bounds::{line_origin, LIMIT, MAX_LINE};
 use crate::args;
