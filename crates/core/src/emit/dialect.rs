@@ -1,18 +1,16 @@
-//! Controller dialects. `reference` writes what PathDxf2GCode writes, byte for byte
-//! (reference-output.md §4). `linuxcnc` and `grbl` write programs those controllers run as
-//! drawn: the feed after the modal line (LinuxCNC's G94 resets the feed, so the reference's
-//! `F150` before it leaves the first plunge without a feed), a feed on every plunge, the
-//! optional spindle start and stop, a stock comment for verifiers, and — for GRBL, which has
-//! no `%` program delimiters — no `%` lines.
+//! Controller dialects and the post that writes for one. The text of every line is the
+//! post's (`crates/post`, `posts/*.toml`): `reference` writes what PathDxf2GCode writes, byte
+//! for byte (reference-output.md §4); `linuxcnc` and `grbl` write programs those controllers
+//! run as drawn (the feed after the modal line, a feed on every plunge, the optional spindle
+//! start and stop, a stock comment for verifiers, no `%` lines for GRBL). What stays code
+//! here is what the dialect *decides*: plunge feeds, which events a program has.
 
-use crate::emit::comment::comment_line;
 use crate::emit::timing::Machine;
 use crate::front::drawing::Style;
-use crate::geom::{f3, P3};
 use crate::load::settings::Settings;
 use crate::model::{Element, Model};
-use crate::params::fmt_num;
 use crate::probe::heightmap::Heightmap;
+use millpath_post::{Event, Globals, Post, Value, Var};
 use serde::Deserialize;
 
 /// The controller a program is written for.
@@ -47,6 +45,13 @@ impl Dialect {
     }
 }
 
+impl Dialect {
+    /// The built-in post that writes this dialect's programs.
+    pub fn post(self) -> &'static Post {
+        millpath_post::builtin::get(self.name()).expect("every dialect has its built-in post")
+    }
+}
+
 impl std::fmt::Display for Dialect {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(self.name())
@@ -57,6 +62,8 @@ impl std::fmt::Display for Dialect {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Controller {
     pub dialect: Dialect,
+    /// The post that writes the text (the dialect's built-in, or a post file).
+    pub post: &'static Post,
     /// Feed of plunges (mm/min); `None`: half the element's feed.
     pub plunge_feed: Option<f64>,
     /// Spindle speed; `None`: the program does not switch the spindle.
@@ -85,6 +92,7 @@ impl Controller {
     pub fn reference() -> Controller {
         Controller {
             dialect: Dialect::Reference,
+            post: Dialect::Reference.post(),
             plunge_feed: None,
             spindle_rpm: None,
             spindle_dwell: DEFAULT_SPINDLE_DWELL,
@@ -98,6 +106,7 @@ impl Controller {
     pub fn of(s: &Settings) -> Controller {
         Controller {
             dialect: s.dialect,
+            post: s.post.unwrap_or_else(|| s.dialect.post()),
             plunge_feed: s.plunge_feed,
             spindle_rpm: s.spindle_rpm,
             spindle_dwell: s.spindle_dwell,
@@ -150,9 +159,40 @@ impl Controller {
         })
     }
 
-    /// `%` lines around the program (LinuxCNC and the reference; GRBL 1.1 rejects them).
-    fn percent(&self) -> bool {
-        self.dialect != Dialect::Grbl
+    /// The text of one event as lines (a template may hold several; an empty one none).
+    pub(crate) fn lines(
+        &self,
+        event: Event,
+        vars: &[(Var, Value)],
+        g: &Globals,
+        out: &mut Vec<String>,
+    ) {
+        if !self.post.has(event) {
+            return;
+        }
+        let text = self.post.text(event, vars, g);
+        out.extend(text.split('\n').map(str::to_string));
+    }
+
+    /// The program's values every template may use.
+    pub(crate) fn globals<'m>(model: &'m Model, file_name: &'m str) -> Globals<'m> {
+        // the same figures the compiler's own second opinion uses
+        let (top, tool, bottom) = crate::second_opinion::stock_of(model);
+        Globals {
+            file_name,
+            program_name: model.name(),
+            tool_diameter: tool,
+            clearance: model.params.s,
+            stock_top: top,
+            stock_bottom: bottom.unwrap_or(top),
+            program_feed: model.params.f,
+        }
+    }
+
+    /// Does the program switch the spindle? (A dialect without a spindle ignores the speed,
+    /// as the reference does.)
+    fn spindle_rpm(&self) -> Option<f64> {
+        self.spindle_rpm.filter(|_| self.post.capabilities.spindle)
     }
 
     /// The lines before the body: `start` is the first sweep height; `spindle` is false for
@@ -165,47 +205,44 @@ impl Controller {
         start: f64,
         spindle: bool,
     ) -> Vec<String> {
+        let g = Controller::globals(model, file_name);
         let mut v = Vec::new();
-        if self.percent() {
+        if self.post.format.percent {
             v.push("%".into());
         }
-        v.push(comment_line(self.dialect, 0, banner));
-        v.push(comment_line(self.dialect, 0, file_name));
-        if self.dialect == Dialect::Reference {
-            v.push("F150".into());
-            v.push("G17 G21 G40 G49 G54 G80 G90 G94".into());
-            v.push("T1".into());
-        } else {
-            v.push(stock_comment(model));
-            v.push("G17 G21 G40 G49 G54 G80 G90 G94".into());
-            v.push(format!("F{}", f3(model.params.f)));
-            v.push("T1".into());
-            if let (true, Some(rpm)) = (spindle, self.spindle_rpm) {
-                v.push(format!("M3 S{}", fmt_num(rpm)));
-                if self.spindle_dwell > 0.0 {
-                    v.push(format!("G4 P{}", fmt_num(self.spindle_dwell)));
-                }
+        v.push(self.post.comment(0, banner, &g));
+        v.push(self.post.comment(0, file_name, &g));
+        self.lines(Event::Stock, &[], &g, &mut v);
+        self.lines(Event::ProgramStart, &[], &g, &mut v);
+        self.lines(Event::Tool, &[(Var::ToolNumber, Value::Int(1))], &g, &mut v);
+        if let (true, Some(rpm)) = (spindle, self.spindle_rpm()) {
+            self.lines(Event::SpindleOn, &[(Var::Rpm, Value::Num(rpm))], &g, &mut v);
+            if self.spindle_dwell > 0.0 && self.post.capabilities.dwell {
+                let secs = [(Var::Seconds, Value::Num(self.spindle_dwell))];
+                self.lines(Event::Dwell, &secs, &g, &mut v);
             }
         }
-        let p = P3 {
+        let p = crate::geom::P3 {
             x: 0.0,
             y: 0.0,
             z: start,
         };
-        v.push(comment_line(self.dialect, 0, &format!("SweepSafelyTo {p}")));
-        v.push(format!("G00 Z{}", f3(start)));
-        v.push("G00 X0.000 Y0.000".into());
+        v.push(self.post.comment(0, &format!("SweepSafelyTo {p}"), &g));
+        let z = [(Var::Z, Value::Num(start)), (Var::ZProbe, Value::Text(""))];
+        self.lines(Event::RapidZ, &z, &g, &mut v);
+        let xy = [(Var::X, Value::Num(0.0)), (Var::Y, Value::Num(0.0))];
+        self.lines(Event::RapidXy, &xy, &g, &mut v);
         v
     }
 
     /// The lines after the body (and the statistics).
-    pub(crate) fn epilogue(&self, spindle: bool) -> Vec<String> {
+    pub(crate) fn epilogue(&self, spindle: bool, g: &Globals) -> Vec<String> {
         let mut v = Vec::new();
-        if spindle && self.dialect != Dialect::Reference && self.spindle_rpm.is_some() {
-            v.push("M5".into());
+        if spindle && self.spindle_rpm().is_some() {
+            self.lines(Event::SpindleOff, &[], g, &mut v);
         }
-        v.push("M30".into());
-        if self.percent() {
+        self.lines(Event::ProgramEnd, &[], g, &mut v);
+        if self.post.format.percent {
             v.push("%".into());
         }
         v
@@ -214,19 +251,6 @@ impl Controller {
 
 /// Seconds the program waits after starting the spindle, unless set.
 pub const DEFAULT_SPINDLE_DWELL: f64 = 2.0;
-
-/// `(MILLPATH-STOCK T=<top> O=<tool diameter> BOTTOM=<lowest drawn depth>)`: what an
-/// independent verifier needs to know about the stock and the tool.
-pub fn stock_comment(model: &Model) -> String {
-    // the same figures the compiler's own second opinion uses
-    let (top, tool, bottom) = crate::second_opinion::stock_of(model);
-    format!(
-        "(MILLPATH-STOCK T={} O={} BOTTOM={})",
-        f3(top),
-        f3(tool),
-        f3(bottom.unwrap_or(top))
-    )
-}
 
 /// The lowest Z a model's elements ask for (`h` + B or D), subpaths with their H included.
 pub fn lowest_depth(model: &Model, h: f64, depth: usize) -> Option<f64> {

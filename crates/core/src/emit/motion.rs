@@ -5,6 +5,7 @@ use crate::diag::{Diagnostic, Msg, Origin};
 use crate::emit::{bt, probe_split, Dialect, Emitter, Kind, NamedProbe, Target};
 use crate::geom::{near, Geom, F3, P2, P3};
 use crate::params::fmt_num;
+use millpath_post::{Event, Value, Var};
 use std::fmt;
 
 impl Emitter<'_> {
@@ -23,24 +24,25 @@ impl Emitter<'_> {
         }
         self.comment(4, || format!("DrillOrPullZFromTo {} {}", F3(from), F3(to)));
         if to > th || to > from {
-            let t = |e: &Emitter| format!("G00 Z{}", e.zexpr(to, xy));
-            self.push(Kind::VSweep, t, (from - to).abs(), 0.0);
-            self.to(Target::z(to));
+            self.rapid_z(from, to, xy);
         } else {
             if from > th {
-                let t = |e: &Emitter| format!("G00 Z{}", e.zexpr(th, xy));
-                self.push(Kind::VSweep, t, (from - th).abs(), 0.0);
-                self.to(Target::z(th));
+                self.rapid_z(from, th, xy);
             }
             if !near(to, th) {
                 // the reference writes no F (the modal feed applies); the other dialects the
                 // plunge feed, which the statistics then use as well
-                let plunge = self.ctl.plunge(feed);
-                let t = |e: &Emitter| match plunge {
-                    None => format!("G01 Z{}", e.zexpr(to, xy)),
-                    Some(f) => format!("G01 F{} Z{}", F3(f), e.zexpr(to, xy)),
+                let plunge = self.ctl.plunge(feed).unwrap_or(feed);
+                let t = |e: &Emitter| {
+                    let expr = e.zexpr(to, xy).probe_text();
+                    let vars = [
+                        (Var::Z, Value::Num(to)),
+                        (Var::ZProbe, Value::Text(&expr)),
+                        (Var::Feed, Value::Num(plunge)),
+                    ];
+                    e.text(Event::Plunge, &vars)
                 };
-                self.push(Kind::Drill, t, (th - to).abs(), plunge.unwrap_or(feed));
+                self.push(Kind::Drill, t, (th - to).abs(), plunge);
                 self.to(Target::z(to));
             }
         }
@@ -138,40 +140,66 @@ impl Emitter<'_> {
         self.pos = b.with_z(to_z);
     }
 
-    /// One `G01`/`G02`/`G03` along `g` to `to_z`, its Z corrected at `g`'s start (§12.4).
+    /// One line or arc along `g` to `to_z`, its Z corrected at `g`'s start (§12.4).
     fn mill_piece(&mut self, g: &Geom, to_z: f64, feed: f64) {
         let (a, b) = (g.start(), g.end());
         match *g {
             Geom::Line { .. } => {
                 let t = |e: &Emitter| {
-                    format!(
-                        "G01 F{} X{} Y{} Z{}",
-                        F3(feed),
-                        F3(b.x),
-                        F3(b.y),
-                        e.zexpr(to_z, a)
-                    )
+                    let expr = e.zexpr(to_z, a).probe_text();
+                    let vars = [
+                        (Var::X, Value::Num(b.x)),
+                        (Var::Y, Value::Num(b.y)),
+                        (Var::Z, Value::Num(to_z)),
+                        (Var::ZProbe, Value::Text(&expr)),
+                        (Var::Feed, Value::Num(feed)),
+                    ];
+                    e.text(Event::Linear, &vars)
                 };
                 self.push(Kind::Mill, t, a.dist(b), feed);
                 self.to(Target::xyz(b, to_z));
             }
-            Geom::Arc { c, ccw, .. } => {
-                let t = |e: &Emitter| {
-                    format!(
-                        "{} F{} I{} J{} X{} Y{} Z{}",
-                        if ccw { "G03" } else { "G02" },
-                        F3(feed),
-                        F3(c.x - a.x),
-                        F3(c.y - a.y),
-                        F3(b.x),
-                        F3(b.y),
-                        e.zexpr(to_z, a)
-                    )
-                };
-                self.push(Kind::Mill, t, g.length(), feed);
-                self.to(Target::arc(b, to_z, c, ccw));
+            Geom::Arc { c, r, ccw, .. } => {
+                let ij = (Value::Num(c.x - a.x), c.y - a.y);
+                self.arc_move(b, c, r, ccw, ij, (to_z, a), feed, g.length());
             }
         }
+    }
+
+    /// An arc to `b` around `c` of radius `r`: `ij`, the centre's offsets as
+    /// written (I a number, or the helix's whole `0`); `z`: its end height and the point
+    /// whose probes correct it.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn arc_move(
+        &mut self,
+        b: P2,
+        c: P2,
+        r: f64,
+        ccw: bool,
+        (i, j): (Value<'static>, f64),
+        (to_z, zxy): (f64, P2),
+        feed: f64,
+        len: f64,
+    ) {
+        let t = |e: &Emitter| {
+            let expr = e.zexpr(to_z, zxy).probe_text();
+            // R: negative beyond a half circle (the arc's length against the half's)
+            let half = r * std::f64::consts::PI;
+            let r_word = if len > half * (1.0 + 1e-9) { -r } else { r };
+            let vars = [
+                (Var::X, Value::Num(b.x)),
+                (Var::Y, Value::Num(b.y)),
+                (Var::Z, Value::Num(to_z)),
+                (Var::ZProbe, Value::Text(&expr)),
+                (Var::Feed, Value::Num(feed)),
+                (Var::I, i.clone()),
+                (Var::J, Value::Num(j)),
+                (Var::R, Value::Num(r_word)),
+            ];
+            e.text(if ccw { Event::ArcCcw } else { Event::ArcCw }, &vars)
+        };
+        self.push(Kind::Mill, t, len, feed);
+        self.to(Target::arc(b, to_z, c, ccw));
     }
 
     /// Pieces `g` is milled in: more than one only with drawn probes and `probe_split`
@@ -213,6 +241,19 @@ pub(crate) struct ZExpr<'p> {
     z: f64,
     xy: P2,
     probes: &'p [NamedProbe],
+}
+
+impl ZExpr<'_> {
+    /// The expression comment after the Z value (`(=1.000+0.500*[#51-0.000]…)`), empty
+    /// without probes: the post's `{z_probe}`.
+    pub(crate) fn probe_text(&self) -> String {
+        if self.probes.is_empty() {
+            return String::new();
+        }
+        let whole = self.to_string();
+        let z = F3(self.z).to_string();
+        whole[z.len()..].to_string()
+    }
 }
 
 impl fmt::Display for ZExpr<'_> {

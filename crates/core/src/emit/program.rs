@@ -10,6 +10,7 @@ use crate::emit::{emit_into, emit_quick, emit_until, start_height, Emitted, Line
 use crate::geom::{near, F3, P2, P3};
 use crate::model::*;
 use crate::probe::adjustz::{banner_index, banner_with_digest, set_digest};
+use millpath_post::{Event, Globals, LineWriter, Post, Value, Var};
 
 /// The files of one compiled path.
 #[derive(Debug, Clone, PartialEq)]
@@ -215,14 +216,21 @@ fn generate_job(
         }
         None => None,
     };
-    let mut tail: Vec<String> = stats
-        .lines(lang)
-        .iter()
-        .map(|l| format!("  ({l})"))
-        .collect();
-    tail.extend(stats.model_line(lang).map(|l| format!("  ({l})")));
-    tail.extend(stats.split_line(lang).map(|l| format!("  ({l})")));
-    tail.extend(ctl.epilogue(true));
+    let g = Controller::globals(model, file_name);
+    let mut tail: Vec<String> = Vec::new();
+    let stat_lines = stats.lines(lang).into_iter();
+    for l in stat_lines
+        .chain(stats.model_line(lang))
+        .chain(stats.split_line(lang))
+    {
+        ctl.lines(
+            Event::Statistics,
+            &[(Var::Text, Value::Text(&l))],
+            &g,
+            &mut tail,
+        );
+    }
+    tail.extend(ctl.epilogue(true, &g));
     // the program is the emitter's text (written line by line as it went), then the tail
     if rec.sink.is_none() {
         rec.text.reserve_exact(text_size(&tail));
@@ -239,10 +247,11 @@ fn generate_job(
     let streamed = sink.is_some();
     let set = |z_lines: &[String], probing: &[String], clean: String| {
         let z_txt = join(z_lines);
+        let probing = join_program(ctl.post, probing);
         let (probing, clean) = if streamed {
-            (join(probing), clean)
+            (probing, clean)
         } else {
-            stamp_set(banner, &z_txt, join(probing), clean)
+            stamp_set(banner, &z_txt, probing, clean)
         };
         Output::Probing {
             probing,
@@ -273,28 +282,31 @@ fn generate_job(
     }
     // probing program and Z file
     let mut pl = ctl.prologue(banner, file_name, model, s, false);
-    pl.extend(probe_open(ctl, &log));
+    probe_open(ctl, &log, &g, &mut pl);
     let mut cur = P2::default();
     for p in &probes {
-        if !near(p.placed.pos.dist(cur), 0.0) {
-            pl.push(format!(
-                "G00 X{} Y{}",
-                F3(p.placed.pos.x),
-                F3(p.placed.pos.y)
-            ));
+        let at = p.placed.pos;
+        if !near(at.dist(cur), 0.0) {
+            rapid_xy(ctl, &g, at, &mut pl);
         }
-        cur = p.placed.pos;
-        pl.push(format!("G00 Z{}", F3(p.placed.height() + model.params.o)));
-        pl.push(format!("G38.3 Z0 F{}", F3(p.placed.probe.z)));
-        pl.push("G04 P4".into());
-        pl.push(format!("G00 Z{}", F3(s)));
+        cur = at;
+        let above = p.placed.height() + model.params.o;
+        rapid_z(ctl, &g, Event::RapidZ, above, &mut pl);
+        let probe = [
+            (Var::X, Value::Num(at.x)),
+            (Var::Y, Value::Num(at.y)),
+            (Var::Z, Value::Num(0.0)),
+            (Var::Feed, Value::Num(p.placed.probe.z)),
+        ];
+        ctl.lines(Event::Probe, &probe, &g, &mut pl);
+        rapid_z(ctl, &g, Event::Retract, s, &mut pl);
     }
-    pl.extend(probe_close(ctl));
+    probe_close(ctl, &g, &mut pl);
     if !near(cur.dist(P2::default()), 0.0) {
-        pl.push("G00 X0.000 Y0.000".into());
+        rapid_xy(ctl, &g, P2::default(), &mut pl);
     }
-    pl.push(format!("G00 Z{}", F3(s)));
-    pl.extend(ctl.epilogue(false));
+    rapid_z(ctl, &g, Event::Retract, s, &mut pl);
+    pl.extend(ctl.epilogue(false, &g));
     let z_lines: Vec<String> = probes
         .iter()
         .map(|p| {
@@ -355,6 +367,18 @@ pub(crate) fn stamp_banner(mut text: String, stamped: &str) -> String {
     text
 }
 
+/// A rapid to `at` in the probing programs.
+pub(crate) fn rapid_xy(ctl: &Controller, g: &Globals, at: P2, out: &mut Vec<String>) {
+    let xy = [(Var::X, Value::Num(at.x)), (Var::Y, Value::Num(at.y))];
+    ctl.lines(Event::RapidXy, &xy, g, out);
+}
+
+/// A vertical rapid to `z` in the probing programs (no probes correct it).
+pub(crate) fn rapid_z(ctl: &Controller, g: &Globals, event: Event, z: f64, out: &mut Vec<String>) {
+    let vars = [(Var::Z, Value::Num(z)), (Var::ZProbe, Value::Text(""))];
+    ctl.lines(event, &vars, g, out);
+}
+
 /// Where the body's moves start: above the origin at the start height.
 fn start(sx: f64) -> P3 {
     P3 {
@@ -362,6 +386,20 @@ fn start(sx: f64) -> P3 {
         y: 0.0,
         z: sx,
     }
+}
+
+/// A program's lines as the post writes them (numbers, modal words, line ends).
+fn join_program(post: &Post, lines: &[String]) -> String {
+    let mut w = LineWriter::new(post);
+    if w.is_plain() {
+        return join(lines);
+    }
+    let mut s = String::new();
+    for l in lines {
+        s.push_str(&w.line(l));
+        s.push_str(w.end());
+    }
+    s
 }
 
 fn join<S: AsRef<str>>(lines: &[S]) -> String {

@@ -54,6 +54,9 @@ pub struct Settings {
     /// The controller the programs are written for (`reference`: byte-identical to
     /// PathDxf2GCode).
     pub dialect: Dialect,
+    /// A post file (`post = "posts/mymachine.toml"`, `--post FILE`) that writes the text
+    /// instead of the dialect's built-in post; the dialect is then the post's family's.
+    pub post: Option<&'static millpath_post::Post>,
     /// Feed of plunges in the `linuxcnc` and `grbl` dialects; `None`: half the feed of the
     /// element (a set value is never faster than the element's feed either).
     pub plunge_feed: Option<f64>,
@@ -115,6 +118,7 @@ impl Default for Settings {
             debug_pattern: None,
             lang: Lang::En,
             dialect: Dialect::Reference,
+            post: None,
             plunge_feed: None,
             spindle_rpm: None,
             spindle_dwell: DEFAULT_SPINDLE_DWELL,
