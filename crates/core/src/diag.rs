@@ -404,6 +404,8 @@ messages! {
     TooManyLines = "The program would have more than {0} lines", "Das Programm hätte mehr als {0} Zeilen";
     // check's report when the settings cannot be read (issue 20): the reader's own words
     SettingsUnusable = "{0}", "{0}";
+    // posts (issue 32): what a post cannot write is refused, never dropped
+    PostCannot = "The post {0} cannot write {1}: it has no `{2}` (in [capabilities] or [templates]); choose a post that can, or leave {1} out", "Der Post {0} kann {1} nicht schreiben: ihm fehlt `{2}` (in [capabilities] oder [templates]); einen Post wählen, der es kann, oder {1} weglassen";
 }
 
 impl Msg {

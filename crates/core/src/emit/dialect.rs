@@ -58,6 +58,66 @@ impl std::fmt::Display for Dialect {
     }
 }
 
+/// The dialect and post a `post =` setting or `--post` option names: a built-in post's name
+/// (the dialect of that name), or a post file relative to `base`, read by `read`. A post
+/// file named like a built-in (`post show` prints them so) keeps that dialect's rules (the
+/// reference's plunge feeds and refusals); any other writes as a controller of its family.
+/// The checker reads `rs274` and `grbl` programs; a post of another family is refused (the
+/// second opinion may not be skipped). The error is the message in `lang`.
+pub fn select_post(
+    name_or_path: &str,
+    base: &std::path::Path,
+    read: &dyn Fn(&std::path::Path) -> Result<String, String>,
+    lang: crate::diag::Lang,
+) -> Result<(Dialect, Option<&'static Post>), String> {
+    let post_lang = match lang {
+        crate::diag::Lang::De => millpath_post::Lang::De,
+        _ => millpath_post::Lang::En,
+    };
+    let post = millpath_post::resolve(name_or_path, base, read).map_err(|e| e.render(post_lang))?;
+    if post.origin.starts_with("builtin:") {
+        let d = Dialect::from_name(&post.name).expect("every built-in post is a dialect");
+        return Ok((d, None));
+    }
+    let dialect = match (Dialect::from_name(&post.name), post.family) {
+        (Some(d), _) => d,
+        (None, millpath_post::Family::Rs274) => Dialect::LinuxCnc,
+        (None, millpath_post::Family::Grbl) => Dialect::Grbl,
+        (None, family) => {
+            return Err(match lang {
+                crate::diag::Lang::De => format!(
+                    "{}: Programme der Familie {} kann die Zweitprüfung (verify) noch nicht lesen; ungeprüft wird nichts geschrieben",
+                    post.origin,
+                    family.name()
+                ),
+                _ => format!(
+                    "{}: the second opinion (verify) cannot read programs of the {} family yet; nothing is written unchecked",
+                    post.origin,
+                    family.name()
+                ),
+            })
+        }
+    };
+    Ok((dialect, Some(intern(post))))
+}
+
+/// A loaded post kept for the rest of the process (a `Controller` is `Copy`): each distinct
+/// post file once, so an editor that reloads the same file does not keep copies.
+fn intern(post: Post) -> &'static Post {
+    use std::sync::Mutex;
+    static KEPT: Mutex<Vec<&'static Post>> = Mutex::new(Vec::new());
+    let mut kept = KEPT.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(p) = kept
+        .iter()
+        .find(|p| p.source == post.source && p.origin == post.origin)
+    {
+        return p;
+    }
+    let p: &'static Post = Box::leak(Box::new(post));
+    kept.push(p);
+    p
+}
+
 /// What the program writer needs to know about the controller.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Controller {

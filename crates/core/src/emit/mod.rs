@@ -18,6 +18,7 @@ pub mod bars;
 pub mod chain;
 pub mod chain_order;
 pub mod comment;
+mod contour;
 pub mod dialect;
 pub mod elements;
 pub mod heightmap_program;
@@ -357,6 +358,7 @@ impl<'a> Emitter<'a> {
                 Element::Helix(_) => Shape::Helix,
                 _ => Shape::Mill,
             };
+            self.contour_start(fr, e);
             let r = match e {
                 Element::Chain(c) => self.chain(fr, c),
                 Element::Drill(d) => self.drill(fr, d),
@@ -371,6 +373,7 @@ impl<'a> Emitter<'a> {
                 self.errors.push(d);
                 self.lost = true;
             }
+            self.contour_end(fr, e);
         }
     }
 }

@@ -70,6 +70,7 @@ pub fn check_until(
 ) -> Result<Stats, Vec<Diagnostic>> {
     let e = emit_until(model, true, ctl, stop)?;
     refuse_bad_grid(model, ctl, &e)?;
+    refuse_unwritable_probes(ctl, &e)?;
     let mut stats = Stats::timed(&e.rec.items, sweep_speed, start(e.sx), ctl.machine.as_ref());
     stats.split = e.split;
     Ok(stats)
@@ -83,7 +84,23 @@ pub fn quick_check_until(
     stop: Option<&dyn Fn() -> bool>,
 ) -> Result<(), Vec<Diagnostic>> {
     let e = emit_quick(model, ctl, stop)?;
-    refuse_bad_grid(model, ctl, &e)
+    refuse_bad_grid(model, ctl, &e)?;
+    refuse_unwritable_probes(ctl, &e)
+}
+
+/// Drawn probes on a post that cannot write them are refused at the first probe.
+fn refuse_unwritable_probes(ctl: &Controller, e: &Emitted) -> Result<(), Vec<Diagnostic>> {
+    let Some(first) = e.probes.first() else {
+        return Ok(());
+    };
+    match ctl.post.missing_for(true, false, false, false) {
+        Some(missing) => Err(vec![Diagnostic::error(
+            crate::diag::Msg::PostCannot,
+            first.placed.probe.origin.clone(),
+            crate::args![ctl.post.name.clone(), "Z probes", missing.key()],
+        )]),
+        None => Ok(()),
+    }
 }
 
 /// A check refuses a height map's grid as compile does.
@@ -197,6 +214,15 @@ fn generate_job(
         split,
         ..
     } = emit_into(model, ctl, stop, &prologue, sink, fold)?;
+    if let Some(first) = probes.first() {
+        if let Some(missing) = ctl.post.missing_for(true, false, false, false) {
+            return Err(vec![Diagnostic::error(
+                crate::diag::Msg::PostCannot,
+                first.placed.probe.origin.clone(),
+                crate::args![ctl.post.name.clone(), "Z probes", missing.key()],
+            )]);
+        }
+    }
     let s = model.params.s;
     let items = &rec.items;
 
@@ -251,7 +277,7 @@ fn generate_job(
         let (probing, clean) = if streamed {
             (probing, clean)
         } else {
-            stamp_set(banner, &z_txt, probing, clean)
+            stamp_set(ctl.post, banner, &z_txt, probing, clean)
         };
         Output::Probing {
             probing,
@@ -339,8 +365,15 @@ fn generate_job(
 /// The set's digest in the banner line of both programs (the line the reference's outputs
 /// are compared without): adjust-z refuses files of different compiles. Returns the stamped
 /// probing and clean programs.
-fn stamp_set(banner: &str, z_txt: &str, probing: String, clean: String) -> (String, String) {
-    let stamped = as_comment(0, &banner_with_digest(banner, &set_digest(z_txt, &clean)));
+fn stamp_set(
+    post: &Post,
+    banner: &str,
+    z_txt: &str,
+    probing: String,
+    clean: String,
+) -> (String, String) {
+    let text = banner_with_digest(banner, &set_digest(z_txt, &clean));
+    let stamped = post.comment(0, &text, &Globals::default());
     (
         stamp_banner(probing, &stamped),
         stamp_banner(clean, &stamped),
@@ -363,8 +396,16 @@ pub(crate) fn stamp_banner(mut text: String, stamped: &str) -> String {
     } else {
         end
     };
-    text.replace_range(start..end, stamped);
+    let line = stamped_line(&text[start..end], stamped);
+    text.replace_range(start..end, &line);
     text
+}
+
+/// The banner line `old` with its comment replaced by `stamped`: what the post wrote before
+/// the comment (a line number) stays.
+pub(crate) fn stamped_line(old: &str, stamped: &str) -> String {
+    let at = old.find(['(', ';']).unwrap_or(0);
+    format!("{}{stamped}", &old[..at])
 }
 
 /// A rapid to `at` in the probing programs.
