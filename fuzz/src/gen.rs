@@ -13,7 +13,7 @@
 //! by `text2dxf` (the DXF front-end).
 
 use arbitrary::{Result, Unstructured};
-use millpath_core::emit::timing::Axes;
+use millpath_core::machine::Axes;
 use millpath_core::{Dialect, Settings};
 use millpath_syntax::ast::{Element, File, Geometry, Item, Kind, PathBlock, PathItem, Point};
 use millpath_syntax::ast::{Spanned, Style};

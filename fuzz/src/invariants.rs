@@ -9,7 +9,7 @@
 use crate::gen::Case;
 use millpath_core::diag::FileRef;
 use millpath_core::load::names::{Patterns, DEFAULT_FILE_PATTERN, DEFAULT_PATH_PATTERN};
-use millpath_core::second_opinion::stock_of;
+use millpath_core::stock::stock_of;
 use millpath_core::{compile_file, Diagnostic, Dialect, MemFileSystem, Msg, Session, Severity};
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};

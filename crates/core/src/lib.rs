@@ -7,22 +7,26 @@
 pub mod build;
 pub mod convert;
 pub mod diag;
+pub mod digest;
 pub mod emit;
 pub mod front;
 pub mod geom;
 pub mod load;
+pub mod machine;
 pub mod model;
 pub mod params;
 pub mod probe;
 pub mod second_opinion;
 pub mod stage;
+pub mod stock;
 
 pub use diag::{Diagnostic, Diags, Lang, Msg, Origin, Severity};
-pub use emit::Dialect;
-pub use front::extended::InputMode;
+pub use front::options::InputMode;
 pub use load::fs::{FileSystem, MemFileSystem, OsFileSystem};
+pub use load::paths::{complete_input, output_prefix};
 pub use load::session::Session;
 pub use load::settings::Settings;
+pub use machine::Dialect;
 
 use emit::{generate_for, stats::Stats, Controller, Output};
 use std::path::{Path, PathBuf};
@@ -67,27 +71,6 @@ pub struct FileOutcome {
     pub stats: Vec<(String, Stats)>,
     /// Material removed by the written program (mm³, the second opinion's stock model).
     pub removed_volume: Option<f64>,
-}
-
-/// The input argument completed like the reference does: `.dxf` appended when missing.
-pub fn complete_input(arg: &str) -> PathBuf {
-    let lower = arg.to_ascii_lowercase();
-    if lower.ends_with(".dxf") || lower.ends_with(".mpath") {
-        PathBuf::from(arg)
-    } else {
-        PathBuf::from(format!("{arg}.dxf"))
-    }
-}
-
-/// Output prefix: the input path minus its extension, plus the path's `R` suffix (public:
-/// the command line finds the outputs of an earlier compile of a drawing by it).
-pub fn output_prefix(input: &Path, suffix: &str) -> PathBuf {
-    let s = input.to_string_lossy();
-    let cut = match s.rfind('.') {
-        Some(p) if !s[p..].contains('/') => &s[..p],
-        _ => &s[..],
-    };
-    PathBuf::from(format!("{cut}{suffix}"))
 }
 
 /// Compiles one command-line file (reference-input.md §7.5). Errors go to `session.diags`.

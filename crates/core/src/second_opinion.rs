@@ -4,41 +4,16 @@
 
 use crate::args;
 use crate::diag::{Diagnostic, Lang, Msg};
-use crate::emit::dialect::lowest_depth;
 use crate::emit::program::LineSources;
 use crate::emit::{LineSink, MAX_ITEMS, MAX_LINES};
-use crate::model::{Element, Model};
+use crate::model::Model;
+use crate::stock::stock_of;
 use lz4_flex::frame::{FrameDecoder, FrameEncoder};
 use millpath_verify::{
     feed_lines, only_a_comment, verify, Clamp, Dialect, FindingKind, Limits, Options, Severity,
     Verifier,
 };
 use std::io::{BufRead, BufReader, Write};
-
-/// The material top, tool diameter and deepest drawn depth the checker needs. The checker's
-/// stock is one block, but a subpath's H moves its material top (T + H): every part of the
-/// program comes down to its own top, so the block's top is the lowest of them. A block as
-/// high as the highest would put the rest's approaches "into material" and refuse valid
-/// programs (found by fuzzing); above a raised part the block is air, as it is above any cut.
-pub fn stock_of(model: &Model) -> (f64, f64, Option<f64>) {
-    fn lowest_top(m: &Model, h: f64, depth: usize) -> f64 {
-        m.elements
-            .iter()
-            .filter_map(|e| match e {
-                Element::Subpath(emb) if depth < 10 => emb
-                    .target
-                    .as_ref()
-                    .map(|t| lowest_top(t, h + emb.h, depth + 1)),
-                _ => None,
-            })
-            .fold(h + m.params.t, f64::min)
-    }
-    (
-        lowest_top(model, 0.0, 0),
-        model.params.o,
-        lowest_depth(model, 0.0, 0),
-    )
-}
 
 /// Checks one written program; findings become diagnostics at the element of their line. In
 /// the reference dialect they are warnings (its output must stay byte-identical to the
@@ -50,7 +25,7 @@ pub fn review(
     model: &Model,
     line_sources: &LineSources,
     lang: Lang,
-    dialect: crate::emit::dialect::Dialect,
+    dialect: crate::machine::Dialect,
     clamps: &[Clamp],
     clamps_only: bool,
 ) -> Review {
@@ -91,11 +66,11 @@ impl LineSink for Reviewer {
 impl Reviewer {
     pub fn new(
         model: &Model,
-        dialect: crate::emit::dialect::Dialect,
+        dialect: crate::machine::Dialect,
         clamps: &[Clamp],
         clamps_only: bool,
     ) -> Reviewer {
-        use crate::emit::dialect::Dialect as Ours;
+        use crate::machine::Dialect as Ours;
         let (checked_as, strict) = match dialect {
             Ours::Reference => (Dialect::Reference, false),
             Ours::LinuxCnc => (Dialect::LinuxCnc, true),
@@ -282,10 +257,10 @@ pub struct Review {
 pub fn clamp_hits(
     program: &str,
     model: &Model,
-    dialect: crate::emit::dialect::Dialect,
+    dialect: crate::machine::Dialect,
     clamps: &[Clamp],
 ) -> Vec<(usize, usize)> {
-    use crate::emit::dialect::Dialect as Ours;
+    use crate::machine::Dialect as Ours;
     if clamps.is_empty() {
         return Vec::new();
     }

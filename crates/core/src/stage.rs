@@ -6,8 +6,8 @@
 
 use crate::args;
 use crate::diag::{Diagnostic, Msg, Origin};
+use crate::digest::{banner_index_of_first, banner_with_digest, set_digest_lines};
 use crate::emit::LineSink;
-use crate::probe::adjustz::{banner_index_of_first, banner_with_digest, set_digest_lines};
 use crate::second_opinion::{replay_lines, Reviewer};
 use std::fs::File;
 use std::io::{BufRead, BufReader, BufWriter, Write};

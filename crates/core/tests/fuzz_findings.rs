@@ -4,8 +4,8 @@
 mod support;
 
 use millpath_core::diag::{FileRef, Msg, Severity};
-use millpath_core::emit::dialect::Dialect;
 use millpath_core::load::names::{Patterns, DEFAULT_FILE_PATTERN, DEFAULT_PATH_PATTERN};
+use millpath_core::machine::Dialect;
 use std::path::PathBuf;
 use support::*;
 

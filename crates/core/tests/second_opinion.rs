@@ -25,7 +25,7 @@ fn clean_programs_get_no_remarks() {
 /// text it is, and the second opinion has nothing to object to, in every dialect.
 #[test]
 fn a_q_text_with_a_parenthesis_is_written_safely_at_its_element() {
-    use millpath_core::emit::dialect::Dialect;
+    use millpath_core::machine::Dialect;
     for dialect in [Dialect::Reference, Dialect::LinuxCnc, Dialect::Grbl] {
         let mut d = Drawing::new();
         d.start(L, (0.0, 0.0), "O2 T2 I1,2 B-0,3")

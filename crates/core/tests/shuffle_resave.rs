@@ -7,7 +7,7 @@
 //!   shuffle gives the same G-code.
 
 use millpath_core::build::order_choice::{pin, pin_by_walking};
-use millpath_core::build::traverse::walk;
+use millpath_core::build::walk::walk;
 use millpath_core::convert::{dxf_to_text, text_to_dxf};
 use millpath_core::diag::{FileRef, Lang};
 use millpath_core::emit::{generate, Output};

@@ -13,9 +13,9 @@ mod support;
 
 use millpath_core::diag::{Lang, Msg};
 use millpath_core::emit::stats::Stats;
-use millpath_core::emit::timing::{Axes, Machine};
 use millpath_core::emit::{Item, Kind, Target};
 use millpath_core::geom::{P2, P3};
+use millpath_core::machine::{Axes, Machine};
 use millpath_core::Settings;
 use support::*;
 

@@ -2,8 +2,8 @@
 //! extended mode. The model and paper space blocks are left out (their entities are the
 //! ENTITIES section's).
 
+use crate::entity::{read_entity, records, Ctx};
 use crate::extra::{Block, ExtraReader};
-use crate::reader::{read_entity, records, Ctx};
 use crate::tokens::{num, raw_str, Pair};
 use crate::Drawing;
 

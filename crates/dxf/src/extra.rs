@@ -3,7 +3,7 @@
 //! They are read in every mode: the default mode warns about them, the extended mode
 //! explodes them (`explode.rs`).
 
-use crate::reader::Ctx;
+use crate::entity::Ctx;
 use crate::tokens::{int, num, raw_str, Pair};
 use crate::{DxfError, Entity, Point3};
 

@@ -8,6 +8,7 @@
 
 mod blocks;
 mod decode;
+mod entity;
 pub mod explode;
 mod extra;
 mod lines;

@@ -4,7 +4,7 @@
 //! page can cut the stock move by move during playback. The page computes nothing.
 
 use base64::Engine;
-use millpath_core::emit::dialect::Dialect as Ours;
+use millpath_core::machine::Dialect as Ours;
 use millpath_verify::{verify, Dialect, Options, ViewRequest};
 use serde_json::{json, Value};
 

@@ -117,7 +117,7 @@ pub(crate) fn objects_of_file(ws: &Workspace, f: &std::path::Path) -> Vec<DrawnO
     else {
         return Vec::new();
     };
-    let opts = millpath_core::front::dxf::FrontOptions {
+    let opts = millpath_core::front::options::FrontOptions {
         layer_pattern: &p.path_full,
         path_pattern: &p.path_cs,
         pattern_text: &p.path_text,

@@ -4,7 +4,7 @@
 
 mod support;
 
-use millpath_core::build::traverse::walk;
+use millpath_core::build::walk::walk;
 use millpath_core::Diags;
 use millpath_ide::*;
 use support::{p, workspace};

@@ -228,10 +228,6 @@ pub fn service() -> (LspService<Backend>, tower_lsp_server::ClientSocket) {
     .finish()
 }
 
-/// `shutdown` was received (the exit status of [`run_stdio`]).
-pub(crate) static SHUT_DOWN: std::sync::atomic::AtomicBool =
-    std::sync::atomic::AtomicBool::new(false);
-
 /// Serves LSP over standard input and output until the client exits; the exit status is 0
 /// after `shutdown`, 1 when the client exits (or the input ends) without it.
 pub fn run_stdio() -> u8 {
@@ -250,5 +246,5 @@ pub fn run_stdio() -> u8 {
     });
     // blocking analyses still running are not waited for
     rt.shutdown_background();
-    u8::from(!SHUT_DOWN.load(std::sync::atomic::Ordering::SeqCst))
+    u8::from(!handlers::lifecycle::SHUT_DOWN.load(std::sync::atomic::Ordering::SeqCst))
 }

@@ -5,8 +5,6 @@
 //! 0x80 as real-time commands); `active_words`: a comment starting with one of them (followed
 //! by `,`, a blank or nothing; LinuxCNC's `MSG`, `PROBEOPEN`, …) gets a `_` in front.
 
-use crate::CommentRules;
-
 /// The text of a comment (without its delimiters) under `rules`.
 pub fn safe_text(rules: &CommentRules, text: &str) -> String {
     let mut out = String::with_capacity(text.len());
@@ -56,4 +54,21 @@ fn active(rules: &CommentRules, text: &str) -> bool {
         .iter()
         .any(|w| w.eq_ignore_ascii_case(word))
         && matches!(next, None | Some(',' | ' ' | '\t'))
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CommentStyle {
+    Parens,
+    Semicolon,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct CommentRules {
+    pub style: CommentStyle,
+    /// Characters replaced by `_`.
+    pub reserved: String,
+    /// Only ASCII (German letters transliterated, others `_`).
+    pub ascii: bool,
+    /// Comment words the controller executes.
+    pub active_words: Vec<String>,
 }

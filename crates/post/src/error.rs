@@ -25,8 +25,8 @@ pub enum ErrorKind {
     BadValue(&'static str),
     /// The post file is larger than [`crate::MAX_POST_FILE`].
     TooLarge(usize),
-    /// No built-in post has this name, and no such file exists.
-    Unknown(String),
+    /// No built-in post has this name (the name, the built-in names).
+    Unknown(String, String),
     /// The file could not be read.
     Unreadable(String),
 }
@@ -105,14 +105,10 @@ impl PostError {
                 "the post file has {n} bytes, at most {} are allowed",
                 crate::MAX_POST_FILE
             ),
-            Unknown(n) if de => format!(
-                "kein Post `{n}`: weder eingebaut ({}) noch eine Datei",
-                crate::builtin::NAMES.join(", ")
-            ),
-            Unknown(n) => format!(
-                "no post `{n}`: neither built in ({}) nor a file",
-                crate::builtin::NAMES.join(", ")
-            ),
+            Unknown(n, known) if de => {
+                format!("kein Post `{n}`: weder eingebaut ({known}) noch eine Datei")
+            }
+            Unknown(n, known) => format!("no post `{n}`: neither built in ({known}) nor a file"),
             Unreadable(e) if de => format!("nicht lesbar: {e}"),
             Unreadable(e) => format!("cannot be read: {e}"),
         }

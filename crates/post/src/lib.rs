@@ -21,13 +21,16 @@ pub mod error;
 pub mod event;
 mod load;
 pub mod number;
+mod resolve;
 pub mod template;
 pub mod writer;
 
+pub use comment::{CommentRules, CommentStyle};
 pub use error::{ErrorKind, Lang, PostError};
 pub use event::{Event, Value, Var, GLOBALS};
-pub use load::{load, resolve};
+pub use load::load;
 pub use number::{Decimals, NumberFormat};
+pub use resolve::resolve;
 pub use template::{Piece, Template};
 pub use writer::LineWriter;
 
@@ -117,23 +120,6 @@ pub struct LineNumbers {
     pub step: u64,
     /// Digits at least (zero-padded).
     pub width: usize,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum CommentStyle {
-    Parens,
-    Semicolon,
-}
-
-#[derive(Debug, Clone, PartialEq)]
-pub struct CommentRules {
-    pub style: CommentStyle,
-    /// Characters replaced by `_`.
-    pub reserved: String,
-    /// Only ASCII (German letters transliterated, others `_`).
-    pub ascii: bool,
-    /// Comment words the controller executes.
-    pub active_words: Vec<String>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -26,8 +26,11 @@
 mod adjusted;
 mod checks;
 mod clamps;
+mod dialect;
+mod execute;
 mod finding;
 mod machine;
+mod magnitude;
 mod parse;
 mod reread;
 mod stock;
@@ -38,60 +41,17 @@ mod surface_frame;
 
 pub use adjusted::PROBES_WORD;
 pub use clamps::{Clamp, MAX_CLAMPS};
+pub use dialect::Dialect;
 pub use finding::{
     AdjustedProblem, ArcProblem, Finding, FindingKind, Lang, Limit, NoFeedReason, NumberProblem,
     Severity, StockCommentProblem, StockSkip, SyntaxError,
 };
-pub use parse::{parse_line, Block, Word, MAX_MAGNITUDE};
+pub use magnitude::MAX_MAGNITUDE;
+pub use parse::{parse_line, Block, Word};
 pub use stock_view::{StockView, ViewRequest};
 pub use stream::{feed_lines, Verifier};
 pub use surface::{HeightMap, SurfaceProblem};
 pub use surface_frame::{ROUNDING as SURFACE_ROUNDING, SPLIT_TOLERANCE};
-
-/// Whose rules decide the feed-rate checks (and a few strictness details).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
-pub enum Dialect {
-    /// F is modal and never reset (what the reference tool's programs assume).
-    #[default]
-    Reference,
-    /// LinuxCNC's rs274ngc: G93/G94/G95 reset the feed rate (executed before F on the same
-    /// line); nested comments are errors; axis words need a motion mode.
-    LinuxCnc,
-    /// grbl 1.1: F is kept across G94; leaving G93 resets it; starts in G00.
-    Grbl,
-}
-
-impl Dialect {
-    pub fn name(self) -> &'static str {
-        match self {
-            Dialect::Reference => "reference",
-            Dialect::LinuxCnc => "linuxcnc",
-            Dialect::Grbl => "grbl",
-        }
-    }
-    /// The controller's name as shown in messages.
-    pub fn controller(self) -> &'static str {
-        match self {
-            Dialect::Reference => "the reference controller",
-            Dialect::LinuxCnc => "LinuxCNC",
-            Dialect::Grbl => "grbl",
-        }
-    }
-}
-
-impl std::str::FromStr for Dialect {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Dialect, String> {
-        match s.to_ascii_lowercase().as_str() {
-            "reference" => Ok(Dialect::Reference),
-            "linuxcnc" => Ok(Dialect::LinuxCnc),
-            "grbl" => Ok(Dialect::Grbl),
-            other => Err(format!(
-                "unknown dialect {other:?} (reference, linuxcnc or grbl)"
-            )),
-        }
-    }
-}
 
 /// The data the stock checks need; from options or a `(MILLPATH-STOCK …)` comment.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]

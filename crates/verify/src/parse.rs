@@ -3,9 +3,7 @@
 //! finding, never a panic.
 
 use crate::finding::{FindingKind, NumberProblem, SyntaxError};
-
-/// Largest accepted magnitude of any number.
-pub const MAX_MAGNITUDE: f64 = 1e6;
+use crate::magnitude::MAX_MAGNITUDE;
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Word {

@@ -6,9 +6,9 @@
 //! [`Verifier::finish`]: crate::Verifier::finish
 
 use crate::checks::{below_bottom, clamps_of, ClampCheck, Extent, StockRun};
+use crate::execute::{execute, missing_params};
 use crate::machine::{Machine, Move, Raw};
 use crate::only_a_comment;
-use crate::stream::{execute, missing_params};
 use crate::{
     Finding, FindingKind, Limit, Limits, Options, Report, Severity, SPLIT_TOLERANCE, Z_TOLERANCE,
 };

@@ -7,12 +7,12 @@
 
 use crate::adjusted;
 use crate::checks::{below_bottom, clamps_of, ClampCheck, Extent, StockRun};
+use crate::execute::{execute, missing_params};
 use crate::machine::{Machine, Move, Raw};
 use crate::reread::{Folded, Rereading};
 use crate::{
-    parse, stock_view, surface_frame, to_drawing_frame, AdjustedProblem, FindingKind, HeightMap,
-    Limit, Options, Report, Severity, StockParams, StockSkip, SurfaceProblem, SyntaxError,
-    Z_TOLERANCE,
+    stock_view, surface_frame, to_drawing_frame, AdjustedProblem, FindingKind, HeightMap, Limit,
+    Options, Report, Severity, StockParams, SurfaceProblem, Z_TOLERANCE,
 };
 
 pub struct Verifier {
@@ -228,40 +228,6 @@ impl Verifier {
     }
 }
 
-/// One line (without its `\r`) parsed and executed by `m` as line `no`; `adjust` changes
-/// the parsed words first (an adjusted program's heights).
-pub(crate) fn execute(
-    m: &mut Machine,
-    no: usize,
-    l: &str,
-    max_line_len: usize,
-    adjust: impl FnOnce(&mut parse::Block),
-) {
-    let parsed = if l.len() > max_line_len {
-        Err(FindingKind::Syntax(SyntaxError::LineTooLong(max_line_len)))
-    } else {
-        parse::parse_line(l)
-    };
-    match parsed {
-        Ok(mut b) => {
-            adjust(&mut b);
-            m.exec(no, &b)
-        }
-        Err(kind) => {
-            if m.ended {
-                // the controller does not read past the end
-                m.after_end(no);
-            } else {
-                m.findings.push(Raw {
-                    line: Some(no),
-                    kind,
-                    severity: Severity::Error,
-                });
-            }
-        }
-    }
-}
-
 /// The end checks over the moves kept: clamps (machine coordinates), then on a height map
 /// the moves back to the drawing's frame, within the roundings (cuts also sampled inside: a
 /// piece whose straight Z misses the surface between its ends), the depths, the stock
@@ -317,18 +283,6 @@ fn kept_checks(
     if let (Some(req), Some(top), Some(tool)) = (&options.view, params.top, params.tool) {
         let cell = report.stock.map(|s| s.cell);
         report.view = stock_view::stock_view(&moves, top, tool, cell, req);
-    }
-}
-
-/// The stock model cannot run: top or tool unknown.
-pub(crate) fn missing_params(top: Option<f64>, tool: Option<f64>) -> Raw {
-    Raw {
-        line: None,
-        kind: FindingKind::StockSkipped(StockSkip::MissingParams {
-            top: top.is_none(),
-            tool: tool.is_none(),
-        }),
-        severity: Severity::Note,
     }
 }
 

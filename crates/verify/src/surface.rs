@@ -17,7 +17,7 @@
 //! columns and rows (ascending); each Z line gives row `J`'s heights from column `I` on.
 //! Long lists continue on further lines (LinuxCNC reads at most 255 characters a line).
 
-use crate::parse::MAX_MAGNITUDE;
+use crate::magnitude::MAX_MAGNITUDE;
 
 /// The word that starts every line of the record.
 pub const SURFACE_WORD: &str = "MILLPATH-SURFACE";

@@ -1,7 +1,7 @@
 //! Subpath connection: restrictions, search, material/bit/thickness agreement and variable assignments (reference-input.md §5.5, §6.5).
 
 use crate::args;
-use crate::build::{with_pos, BuildCtx, Eval};
+use crate::build::eval::{with_pos, BuildCtx, Eval};
 use crate::diag::{Diagnostic, Msg, Origin};
 use crate::front::drawing::{RawPath, RawSegment};
 use crate::geom::near;

@@ -3,61 +3,30 @@
 //! (reference-input.md §4–§6).
 
 pub mod bars;
+mod candidates;
 pub mod connect;
+pub(crate) mod eval;
 pub mod order_choice;
 pub mod params;
 pub mod traverse;
 pub mod traverse_memo;
 pub mod validate;
+pub mod walk;
 
 use crate::args;
 use crate::build::bars::support_bars;
-use crate::build::traverse::{traverse_in, turn_back_kind, Step};
+use crate::build::eval::{BuildCtx, Eval};
+use crate::build::traverse::traverse_in;
+use crate::build::walk::{turn_back_kind, Step};
 use crate::diag::{Diagnostic, Msg, Origin};
 use crate::front::drawing::{
     RawPath, SegKind, Shape, Style, SweepKind, PATH_KEYS, PATH_KEYS_HEIGHTMAP, PROBE_KEYS,
 };
-use crate::geom::{absnear, f3, gt, le, Geom, Transform, P2};
+use crate::geom::{absnear, f3, gt, le, Geom, Transform};
 use crate::load::session::{Abort, Session};
 use crate::model::*;
-use crate::params::{check_values, fmt_num, parse_number, ParamText, Vars};
+use crate::params::{check_values, fmt_num, Vars};
 use std::sync::Arc;
-
-pub(crate) struct BuildCtx {
-    pub(crate) depth: usize,
-    pub(crate) top: bool,
-}
-
-/// Parameter values of one build, interpolated with its variables.
-pub(crate) struct Eval<'v> {
-    pub(crate) vars: &'v Vars,
-}
-
-impl Eval<'_> {
-    pub(crate) fn string(&self, t: Option<&ParamText>, key: char) -> Option<String> {
-        let raw = t?.raw(key)?;
-        Some(
-            self.vars
-                .interpolate(raw)
-                .unwrap_or_else(|_| raw.to_string()),
-        )
-    }
-    pub(crate) fn num(&self, t: Option<&ParamText>, key: char) -> Option<f64> {
-        parse_number(&self.string(t, key)?)
-    }
-}
-
-/// The same origin with another reported position.
-pub(crate) fn with_pos(o: &Origin, pos: P2) -> Origin {
-    match o {
-        Origin::Entity(e) => {
-            let mut e = e.clone();
-            std::sync::Arc::make_mut(&mut e).pos = pos;
-            Origin::Entity(e)
-        }
-        o => o.clone(),
-    }
-}
 
 impl Session<'_> {
     /// Builds (or fetches) the model of a top-level path.

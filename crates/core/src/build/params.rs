@@ -2,7 +2,7 @@
 
 use crate::args;
 use crate::build::bars::support_bars;
-use crate::build::{BuildCtx, Eval};
+use crate::build::eval::{BuildCtx, Eval};
 use crate::diag::{Diagnostic, Diags, Msg, Origin};
 use crate::front::drawing::{RawPath, RawSegment, Style, CHAIN_KEYS, HEIGHTMAP_KEY, PATH_KEYS};
 use crate::geom::{le, Geom};

@@ -9,7 +9,7 @@
 //! steps one by one, so its steps and ties are the same. A walk that reported an error is
 //! not kept (its messages point into the text that had it).
 
-use crate::build::traverse::{walk_with, Step, Tie};
+use crate::build::walk::{walk_with, Step, Tie};
 use crate::diag::Diags;
 use crate::front::drawing::{RawPath, SegKind, Shape};
 use crate::geom::{Geom, P2};

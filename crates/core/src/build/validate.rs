@@ -1,29 +1,13 @@
 //! Range checks of parameter values (reference-input.md §4.3) and self-referencing variables.
 
 use crate::args;
-use crate::build::Eval;
-use crate::diag::{Diagnostic, Diags, Msg, Origin};
+use crate::build::eval::Eval;
+use crate::diag::{Diags, Msg, Origin};
 use crate::front::drawing::RawPath;
 use crate::geom::{ge, le};
 use crate::load::session::Session;
 use crate::model::*;
-use crate::params::{fmt_num, ParamText, Vars};
-
-/// The slowest feed (mm/min) a drawing or the settings may give: below it no machine moves
-/// usefully (1 mm/min is 6 cm an hour), and a value such as `F0,0001` would be written as
-/// `F0.000`, a feed of nothing. A typo, not a wish: an error, not a warning.
-pub const MIN_FEED: f64 = 1.0;
-
-/// The error of a feed above 0 but below [`MIN_FEED`] (`what` names it: `F`, `Z`, `feed`).
-pub fn feed_too_small(what: &str, v: f64, origin: &Origin) -> Option<Diagnostic> {
-    (v > 0.0 && v < MIN_FEED).then(|| {
-        Diagnostic::error(
-            Msg::FeedTooSmall,
-            origin.clone(),
-            args![what, fmt_num(v), fmt_num(MIN_FEED), format!("{v:.3}")],
-        )
-    })
-}
+use crate::params::{feed_too_small, fmt_num, ParamText, Vars};
 
 impl Session<'_> {
     pub(crate) fn check_self_references(&mut self, raw: &RawPath, vars: &Vars) {

@@ -9,8 +9,8 @@
 
 use super::{front_options, layer_name, plan, settle, text_objects};
 use crate::diag::{FileRef, Lang};
-use crate::front::dxf::{effective_layer, path_name_of_layer};
-use crate::front::extended::InputMode;
+use crate::front::layer::{effective_layer, path_name_of_layer};
+use crate::front::options::InputMode;
 use crate::load::names::Patterns;
 use crate::{Diagnostic, Msg, Origin};
 use millpath_dxf::splice::{scan, Record, Target};

@@ -6,11 +6,12 @@
 mod into;
 pub use into::{kept_extended_geometry, overwrite_losses, text_into_dxf, Losses};
 
-use crate::build::traverse::walk;
+use crate::build::walk::walk;
 use crate::diag::{Diags, FileRef};
 use crate::front::drawing::{build_paths, DrawnObject, RawPath, Shape};
-use crate::front::dxf::{dxf_objects, FrontOptions};
-use crate::front::extended::InputMode;
+use crate::front::dxf::dxf_objects;
+use crate::front::options::FrontOptions;
+use crate::front::options::InputMode;
 use crate::geom::{near, Geom};
 use crate::load::names::Patterns;
 use crate::params::parse_number;

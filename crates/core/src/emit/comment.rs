@@ -17,7 +17,7 @@
 
 use crate::args;
 use crate::diag::{Diagnostic, Msg, Origin};
-use crate::emit::dialect::Dialect;
+use crate::machine::Dialect;
 use crate::model::{Element, Model};
 
 /// A comment line: `indent` blanks and the text, trimmed and made safe for `dialect` by its

@@ -5,56 +5,17 @@
 //! start and stop, a stock comment for verifiers, no `%` lines for GRBL). What stays code
 //! here is what the dialect *decides*: plunge feeds, which events a program has.
 
-use crate::emit::timing::Machine;
-use crate::front::drawing::Style;
 use crate::load::settings::Settings;
-use crate::model::{Element, Model};
+use crate::machine::{Dialect, Machine, DEFAULT_SPINDLE_DWELL};
+use crate::model::Model;
 use crate::probe::heightmap::Heightmap;
+use crate::stock::stock_of;
 use millpath_post::{Event, Globals, Post, Value, Var};
-use serde::Deserialize;
-
-/// The controller a program is written for.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Dialect {
-    /// PathDxf2GCode's output, byte-identical (the default).
-    #[default]
-    Reference,
-    /// LinuxCNC (rs274ngc).
-    #[serde(rename = "linuxcnc")]
-    LinuxCnc,
-    /// GRBL 1.1.
-    Grbl,
-}
-
-impl Dialect {
-    pub const ALL: [Dialect; 3] = [Dialect::Reference, Dialect::LinuxCnc, Dialect::Grbl];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Dialect::Reference => "reference",
-            Dialect::LinuxCnc => "linuxcnc",
-            Dialect::Grbl => "grbl",
-        }
-    }
-
-    pub fn from_name(name: &str) -> Option<Dialect> {
-        Dialect::ALL
-            .into_iter()
-            .find(|d| d.name().eq_ignore_ascii_case(name.trim()))
-    }
-}
 
 impl Dialect {
     /// The built-in post that writes this dialect's programs.
     pub fn post(self) -> &'static Post {
         millpath_post::builtin::get(self.name()).expect("every dialect has its built-in post")
-    }
-}
-
-impl std::fmt::Display for Dialect {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
     }
 }
 
@@ -237,7 +198,7 @@ impl Controller {
     /// The program's values every template may use.
     pub(crate) fn globals<'m>(model: &'m Model, file_name: &'m str) -> Globals<'m> {
         // the same figures the compiler's own second opinion uses
-        let (top, tool, bottom) = crate::second_opinion::stock_of(model);
+        let (top, tool, bottom) = stock_of(model);
         Globals {
             file_name,
             program_name: model.name(),
@@ -295,6 +256,18 @@ impl Controller {
         v
     }
 
+    /// A rapid to `at` (the probing programs').
+    pub(crate) fn rapid_xy(&self, g: &Globals, at: crate::geom::P2, out: &mut Vec<String>) {
+        let xy = [(Var::X, Value::Num(at.x)), (Var::Y, Value::Num(at.y))];
+        self.lines(Event::RapidXy, &xy, g, out);
+    }
+
+    /// A vertical rapid to `z` (the probing programs': no probes correct it).
+    pub(crate) fn rapid_z(&self, g: &Globals, event: Event, z: f64, out: &mut Vec<String>) {
+        let vars = [(Var::Z, Value::Num(z)), (Var::ZProbe, Value::Text(""))];
+        self.lines(event, &vars, g, out);
+    }
+
     /// The lines after the body (and the statistics).
     pub(crate) fn epilogue(&self, spindle: bool, g: &Globals) -> Vec<String> {
         let mut v = Vec::new();
@@ -309,59 +282,9 @@ impl Controller {
     }
 }
 
-/// Seconds the program waits after starting the spindle, unless set.
-pub const DEFAULT_SPINDLE_DWELL: f64 = 2.0;
-
-/// The lowest Z a model's elements ask for (`h` + B or D), subpaths with their H included.
-pub fn lowest_depth(model: &Model, h: f64, depth: usize) -> Option<f64> {
-    let pick = |style: Style, b: Option<f64>, d: Option<f64>| match style {
-        Style::Mark => d,
-        Style::Mill | Style::Support => b,
-    };
-    let mut lowest: Option<f64> = None;
-    let mut take = |z: Option<f64>| {
-        if let Some(z) = z {
-            lowest = Some(lowest.map_or(z, |l: f64| l.min(z)));
-        }
-    };
-    for e in &model.elements {
-        match e {
-            Element::Chain(c) => c
-                .segs
-                .iter()
-                .for_each(|s| take(pick(s.style, s.b, s.d).map(|z| h + z))),
-            Element::Drill(d) => take(pick(d.style, d.b, d.d).map(|z| h + z)),
-            Element::Helix(x) => {
-                let z = match (x.style, &x.bars) {
-                    (Style::Support, None) => x.d,
-                    (style, _) => pick(style, x.b, x.d),
-                };
-                take(z.map(|z| h + z));
-            }
-            Element::Subpath(emb) => {
-                if let (Some(t), true) = (&emb.target, depth < 10) {
-                    take(lowest_depth(t, h + emb.h, depth + 1));
-                }
-            }
-            Element::Sweep(_) => {}
-        }
-    }
-    lowest
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn names_round_trip() {
-        for d in Dialect::ALL {
-            assert_eq!(Dialect::from_name(d.name()), Some(d));
-        }
-        assert_eq!(Dialect::from_name("LinuxCNC"), Some(Dialect::LinuxCnc));
-        assert_eq!(Dialect::from_name("mach3"), None);
-        assert_eq!(Dialect::default(), Dialect::Reference);
-    }
 
     #[test]
     fn plunge_feeds() {

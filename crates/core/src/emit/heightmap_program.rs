@@ -5,12 +5,13 @@
 //! each as `[PRB:x,y,z:1]` in the sender's console.
 
 use crate::diag::{Diagnostic, Msg};
-use crate::emit::dialect::{Controller, Dialect};
-use crate::emit::program::{rapid_xy, rapid_z};
+use crate::emit::dialect::Controller;
+use crate::emit::extent::cut_extent;
 use crate::emit::{as_comment, Item, NamedProbe};
 use crate::geom::{f3, F3, P2};
+use crate::machine::Dialect;
 use crate::model::Model;
-use crate::probe::heightmap::{cut_extent, var_name, Grid, Heightmap};
+use crate::probe::heightmap::{var_name, Grid, Heightmap};
 use millpath_post::{Event, Globals, Value, Var};
 
 /// The probing program's lines (without the set's digest) and the `_Z.txt` lines.
@@ -120,10 +121,10 @@ pub(crate) fn grid_set(
     let mut cur = P2::default();
     for p in &points {
         if p.dist(cur) > 0.0 {
-            rapid_xy(ctl, &g, *p, &mut pl);
+            ctl.rapid_xy(&g, *p, &mut pl);
         }
         cur = *p;
-        rapid_z(ctl, &g, Event::RapidZ, t + o, &mut pl);
+        ctl.rapid_z(&g, Event::RapidZ, t + o, &mut pl);
         let probe = [
             (Var::X, Value::Num(p.x)),
             (Var::Y, Value::Num(p.y)),
@@ -131,13 +132,13 @@ pub(crate) fn grid_set(
             (Var::Feed, Value::Num(feed)),
         ];
         ctl.lines(Event::GridProbe, &probe, &g, &mut pl);
-        rapid_z(ctl, &g, Event::Retract, s, &mut pl);
+        ctl.rapid_z(&g, Event::Retract, s, &mut pl);
     }
     probe_close(ctl, &g, &mut pl);
     if cur.dist(P2::default()) > 0.0 {
-        rapid_xy(ctl, &g, P2::default(), &mut pl);
+        ctl.rapid_xy(&g, P2::default(), &mut pl);
     }
-    rapid_z(ctl, &g, Event::Retract, s, &mut pl);
+    ctl.rapid_z(&g, Event::Retract, s, &mut pl);
     pl.extend(ctl.epilogue(false, &g));
     let z_lines = points
         .iter()

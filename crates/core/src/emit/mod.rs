@@ -9,6 +9,7 @@ use crate::emit::record::Record;
 pub use crate::emit::record::{LineSink, NO_SOURCE};
 use crate::front::drawing::Style;
 use crate::geom::{Transform, F3, P2, P3};
+use crate::machine::Dialect;
 use crate::model::*;
 use crate::params::MAX_MAGNITUDE;
 use crate::probe::tour::{collect_probes, probe_tour, PlacedProbe};
@@ -21,8 +22,10 @@ pub mod comment;
 mod contour;
 pub mod dialect;
 pub mod elements;
+pub mod extent;
 pub mod heightmap_program;
 pub mod helix;
+pub mod item;
 pub mod motion;
 pub mod probe_split;
 pub mod program;
@@ -31,7 +34,8 @@ pub mod stats;
 pub mod timing;
 pub mod toolpath;
 
-pub use dialect::{Controller, Dialect};
+pub use dialect::Controller;
+pub use item::{Item, Kind, Shape, Target};
 pub use program::{
     check, check_for, check_until, generate, generate_for, generate_into, generate_until,
     quick_check_until, Generated, Output,
@@ -76,92 +80,6 @@ pub(crate) fn bounded_passes(
 
 /// Relative epsilon factor of the start height: guarantees that the first Z move is emitted.
 pub(crate) const START_OFFSET: f64 = 1.0 + 2.0 * 1e-6;
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Kind {
-    /// `G00 X… Y…`
-    HSweep,
-    /// `G00 Z…`
-    VSweep,
-    Mill,
-    Drill,
-    Comment,
-}
-
-/// What a cutting move makes (after the element it belongs to), for the toolpath view.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Shape {
-    #[default]
-    Mill,
-    Mark,
-    Bars,
-    Drill,
-    Helix,
-}
-
-impl Shape {
-    pub fn name(self) -> &'static str {
-        match self {
-            Shape::Mill => "mill",
-            Shape::Mark => "mark",
-            Shape::Bars => "bars",
-            Shape::Drill => "drill",
-            Shape::Helix => "helix",
-        }
-    }
-}
-
-#[derive(Debug, Clone)]
-pub struct Item {
-    pub kind: Kind,
-    pub len: f64,
-    pub feed: f64,
-    /// Where a move goes (axes it does not name stay); for the toolpath view.
-    pub target: Target,
-    /// Index into the emitter's element origins (for chains: the segment's).
-    pub source: Option<u32>,
-    /// What the move makes (cuts only; sweeps are rapids whatever this says).
-    pub shape: Shape,
-}
-
-/// The end of a move: the axes it sets, and for arcs the centre and direction.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Target {
-    pub x: Option<f64>,
-    pub y: Option<f64>,
-    pub z: Option<f64>,
-    pub arc: Option<(P2, bool)>,
-}
-
-impl Target {
-    pub(crate) fn z(z: f64) -> Target {
-        Target {
-            z: Some(z),
-            ..Default::default()
-        }
-    }
-    pub(crate) fn xy(x: f64, y: f64) -> Target {
-        Target {
-            x: Some(x),
-            y: Some(y),
-            ..Default::default()
-        }
-    }
-    pub(crate) fn xyz(p: P2, z: f64) -> Target {
-        Target {
-            x: Some(p.x),
-            y: Some(p.y),
-            z: Some(z),
-            arc: None,
-        }
-    }
-    pub(crate) fn arc(p: P2, z: f64, c: P2, ccw: bool) -> Target {
-        Target {
-            arc: Some((c, ccw)),
-            ..Target::xyz(p, z)
-        }
-    }
-}
 
 /// A probe with its name, for Z expressions.
 #[derive(Debug, Clone)]

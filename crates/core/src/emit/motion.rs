@@ -2,8 +2,9 @@
 
 use crate::args;
 use crate::diag::{Diagnostic, Msg, Origin};
-use crate::emit::{bt, probe_split, Dialect, Emitter, Kind, NamedProbe, Target};
+use crate::emit::{bt, probe_split, Emitter, Kind, NamedProbe, Target};
 use crate::geom::{near, Geom, F3, P2, P3};
+use crate::machine::Dialect;
 use crate::params::fmt_num;
 use millpath_post::{Event, Value, Var};
 use std::fmt;

@@ -2,6 +2,7 @@
 //! (of drawn probes, or of a height map's grid: `heightmap_program.rs`).
 
 use crate::diag::{Diagnostic, Lang, Origin};
+use crate::digest::{banner_index, banner_with_digest, set_digest};
 use crate::emit::as_comment;
 use crate::emit::dialect::Controller;
 use crate::emit::heightmap_program::{grid_of, grid_set, probe_close, probe_open, GridSet};
@@ -9,7 +10,6 @@ use crate::emit::stats::Stats;
 use crate::emit::{emit_into, emit_quick, emit_until, start_height, Emitted, LineSink};
 use crate::geom::{near, F3, P2, P3};
 use crate::model::*;
-use crate::probe::adjustz::{banner_index, banner_with_digest, set_digest};
 use millpath_post::{Event, Globals, LineWriter, Post, Value, Var};
 
 /// The files of one compiled path.
@@ -232,7 +232,7 @@ fn generate_job(
     };
     stats.split = split;
     // the file LinuxCNC logs the probe contacts to (PROBEOPEN), beside the set
-    let log = crate::output_prefix(std::path::Path::new(file_name), &model.params.r);
+    let log = crate::load::paths::output_prefix(std::path::Path::new(file_name), &model.params.r);
     let log = format!("{}_probes.txt", log.display());
     // a height map's probing set needs the cutting moves before they become lines
     let grid = match &ctl.heightmap {
@@ -313,11 +313,11 @@ fn generate_job(
     for p in &probes {
         let at = p.placed.pos;
         if !near(at.dist(cur), 0.0) {
-            rapid_xy(ctl, &g, at, &mut pl);
+            ctl.rapid_xy(&g, at, &mut pl);
         }
         cur = at;
         let above = p.placed.height() + model.params.o;
-        rapid_z(ctl, &g, Event::RapidZ, above, &mut pl);
+        ctl.rapid_z(&g, Event::RapidZ, above, &mut pl);
         let probe = [
             (Var::X, Value::Num(at.x)),
             (Var::Y, Value::Num(at.y)),
@@ -325,13 +325,13 @@ fn generate_job(
             (Var::Feed, Value::Num(p.placed.probe.z)),
         ];
         ctl.lines(Event::Probe, &probe, &g, &mut pl);
-        rapid_z(ctl, &g, Event::Retract, s, &mut pl);
+        ctl.rapid_z(&g, Event::Retract, s, &mut pl);
     }
     probe_close(ctl, &g, &mut pl);
     if !near(cur.dist(P2::default()), 0.0) {
-        rapid_xy(ctl, &g, P2::default(), &mut pl);
+        ctl.rapid_xy(&g, P2::default(), &mut pl);
     }
-    rapid_z(ctl, &g, Event::Retract, s, &mut pl);
+    ctl.rapid_z(&g, Event::Retract, s, &mut pl);
     pl.extend(ctl.epilogue(false, &g));
     let z_lines: Vec<String> = probes
         .iter()
@@ -406,18 +406,6 @@ pub(crate) fn stamp_banner(mut text: String, stamped: &str) -> String {
 pub(crate) fn stamped_line(old: &str, stamped: &str) -> String {
     let at = old.find(['(', ';']).unwrap_or(0);
     format!("{}{stamped}", &old[..at])
-}
-
-/// A rapid to `at` in the probing programs.
-pub(crate) fn rapid_xy(ctl: &Controller, g: &Globals, at: P2, out: &mut Vec<String>) {
-    let xy = [(Var::X, Value::Num(at.x)), (Var::Y, Value::Num(at.y))];
-    ctl.lines(Event::RapidXy, &xy, g, out);
-}
-
-/// A vertical rapid to `z` in the probing programs (no probes correct it).
-pub(crate) fn rapid_z(ctl: &Controller, g: &Globals, event: Event, z: f64, out: &mut Vec<String>) {
-    let vars = [(Var::Z, Value::Num(z)), (Var::ZProbe, Value::Text(""))];
-    ctl.lines(event, &vars, g, out);
 }
 
 /// Where the body's moves start: above the origin at the start height.

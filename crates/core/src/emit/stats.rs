@@ -3,9 +3,10 @@
 //! model of LinuxCNC's planner in `timing/`, and a sixth line names that model.
 
 use crate::diag::Lang;
-use crate::emit::timing::{plan, Machine};
+use crate::emit::timing::plan;
 use crate::emit::{Item, Kind};
 use crate::geom::P3;
+use crate::machine::Machine;
 use crate::params::fmt_num;
 
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -99,7 +100,7 @@ impl Stats {
     /// reference's model (whose output has five lines).
     pub fn model_line(&self, lang: Lang) -> Option<String> {
         let m = self.machine?;
-        let axes = |a: &crate::emit::timing::Axes| {
+        let axes = |a: &crate::machine::Axes| {
             format!("X{}/Y{}/Z{}", fmt_num(a.x), fmt_num(a.y), fmt_num(a.z))
         };
         let label = match lang {

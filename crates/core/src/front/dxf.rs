@@ -4,50 +4,15 @@
 use crate::args;
 use crate::diag::{Diagnostic, Diags, EntityOrigin, FileRef, Msg, Origin};
 use crate::front::drawing::{build_paths, DrawingFile, DrawnObject, Shape};
-use crate::front::extended::{self, InputMode};
+use crate::front::extended;
+use crate::front::layer::{effective_layer, path_name_of_layer};
 use crate::front::linetype_alias;
 use crate::front::mtext::{mtext_plain, replace_percent_codes};
+use crate::front::options::{FrontOptions, InputMode};
 use crate::geom::{f3, near, normalize_angle, Geom, P2};
-use crate::load::name_regex::NameRegex;
 use crate::params::ParamText;
 use millpath_dxf::{Drawing, Entity, EntityKind, Point3};
-use regex::Regex;
 use std::sync::Arc;
-
-/// What the front-end needs from the settings.
-pub struct FrontOptions<'a> {
-    /// The path-name pattern, anchored and case-insensitive (`^(?i:…)$`).
-    pub layer_pattern: &'a NameRegex,
-    /// The path-name pattern, unanchored and case-sensitive (for `@`).
-    pub path_pattern: &'a NameRegex,
-    pub pattern_text: &'a str,
-    /// `/x`: print the text assignments whose text matches.
-    pub debug: Option<&'a Regex>,
-    /// Reference or extended reading of polylines, blocks, line types and units.
-    pub input: InputMode,
-}
-
-/// Normalised path name of a layer: drop a trailing `~letters` suffix, `_` → `.`.
-pub fn path_name_of_layer(layer: &str) -> String {
-    let base = match layer.rfind('~') {
-        Some(p)
-            if p + 1 < layer.len() && layer[p + 1..].chars().all(|c| c.is_ascii_alphabetic()) =>
-        {
-            &layer[..p]
-        }
-        _ => layer,
-    };
-    base.replace('_', ".")
-}
-
-/// Layer names with characters CAD programs forbid end up on layer `0` (as in netDxf).
-pub(crate) fn effective_layer(name: &str) -> &str {
-    if name.chars().any(|c| "\\/:*?\"<>|;,=`".contains(c)) {
-        "0"
-    } else {
-        name
-    }
-}
 
 /// OCS → WCS by the DXF arbitrary axis algorithm.
 fn ocs_to_wcs(p: Point3, n: Point3) -> Point3 {

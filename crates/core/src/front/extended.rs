@@ -6,29 +6,17 @@
 
 use crate::args;
 use crate::diag::{Diags, EntityOrigin, FileRef, Msg, Origin};
-use crate::front::dxf::{path_name_of_layer, FrontOptions};
+use crate::front::layer::{effective_layer, path_name_of_layer};
+use crate::front::options::FrontOptions;
 use crate::geom::P2;
 use millpath_dxf::explode::{self, Reason};
 use millpath_dxf::{Drawing, ExtraKind, Point3};
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
-/// How a DXF drawing's geometry is read.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, serde::Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum InputMode {
-    /// As the reference: LINE, ARC, CIRCLE, TEXT, MTEXT; a warning for the rest.
-    #[default]
-    Reference,
-    /// Also polylines, blocks, line-type aliases and units.
-    Extended,
-}
-
 fn on_path_layer(layer: &str, opts: &FrontOptions) -> bool {
     opts.layer_pattern
-        .is_match(&path_name_of_layer(crate::front::dxf::effective_layer(
-            layer,
-        )))
+        .is_match(&path_name_of_layer(effective_layer(layer)))
 }
 
 fn origin(
@@ -39,7 +27,7 @@ fn origin(
     code_name: &'static str,
     pos: Point3,
 ) -> Origin {
-    let layer = crate::front::dxf::effective_layer(layer);
+    let layer = effective_layer(layer);
     Origin::Entity(Arc::new(EntityOrigin {
         file: file.clone(),
         line,

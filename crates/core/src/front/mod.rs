@@ -4,6 +4,8 @@
 pub mod drawing;
 pub mod dxf;
 pub mod extended;
+pub mod layer;
 pub mod linetype_alias;
 pub mod mtext;
+pub mod options;
 pub mod text;

@@ -1,8 +1,8 @@
 //! `millpath.toml`: machine settings of a folder tree. Parsing and applying only; finding
 //! the file is the caller's (the CLI walks the file system, the language server its view).
 
-use crate::emit::dialect::Dialect;
-use crate::emit::timing::Axes;
+use crate::machine::Axes;
+use crate::machine::Dialect;
 use crate::probe::heightmap::Heightmap;
 use crate::Settings;
 use serde::Deserialize;

@@ -7,6 +7,7 @@ pub mod fs;
 pub mod name_regex;
 pub mod names;
 pub mod parse_cache;
+pub mod paths;
 pub mod regex_cache;
 pub mod search;
 pub mod session;

@@ -5,7 +5,8 @@
 use crate::args;
 use crate::diag::{Diagnostic, Diags, FileRef, Lang, Msg, Origin};
 use crate::front::drawing::RawPath;
-use crate::front::dxf::{dxf_to_drawing, FrontOptions};
+use crate::front::dxf::dxf_to_drawing;
+use crate::front::options::FrontOptions;
 use crate::load::fs::{
     is_text_file, with_file_bytes, with_stamped_file_bytes, FileSystem, MAX_FILE_BYTES,
 };

@@ -3,8 +3,7 @@
 use crate::args;
 use crate::diag::Lang;
 use crate::diag::{Diagnostic, Msg, Origin};
-use crate::emit::dialect::{Dialect, DEFAULT_SPINDLE_DWELL};
-use crate::emit::timing::{Axes, Machine, DEFAULT_PATH_TOLERANCE};
+use crate::machine::{Axes, Dialect, Machine, DEFAULT_PATH_TOLERANCE, DEFAULT_SPINDLE_DWELL};
 use crate::params::MAX_MAGNITUDE;
 use crate::probe::heightmap::Heightmap;
 use std::path::PathBuf;
@@ -204,9 +203,11 @@ impl Settings {
         let mut feeds = vec![("feed", self.feed), ("sweep_speed", self.sweep_speed)];
         feeds.extend(self.probe_feed.map(|z| ("probe_feed", z)));
         feeds.extend(self.plunge_feed.map(|v| ("plunge_feed", v)));
-        errors.extend(feeds.into_iter().filter_map(|(name, v)| {
-            crate::build::validate::feed_too_small(name, v, &self.origin_of(name))
-        }));
+        errors.extend(
+            feeds.into_iter().filter_map(|(name, v)| {
+                crate::params::feed_too_small(name, v, &self.origin_of(name))
+            }),
+        );
         if finite(self.spindle_dwell) && self.spindle_dwell < 0.0 {
             errors.push(Diagnostic::error(
                 Msg::OptionNegative,
@@ -249,7 +250,7 @@ impl Settings {
         let mut errors = hm.errors(&at);
         // a probe feed that rounds to nothing in the program
         if let Some(v) = hm.probe_feed.filter(|v| v.is_finite() && *v > 0.0) {
-            errors.extend(crate::build::validate::feed_too_small(
+            errors.extend(crate::params::feed_too_small(
                 "heightmap.probe_feed",
                 v,
                 &file(),

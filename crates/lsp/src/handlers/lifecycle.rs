@@ -170,7 +170,11 @@ pub(crate) async fn initialized(b: &Backend) {
     });
 }
 
+/// `shutdown` was received (the exit status of [`crate::run_stdio`]).
+pub(crate) static SHUT_DOWN: std::sync::atomic::AtomicBool =
+    std::sync::atomic::AtomicBool::new(false);
+
 pub(crate) async fn shutdown(_: &Backend) -> Result<()> {
-    crate::SHUT_DOWN.store(true, std::sync::atomic::Ordering::SeqCst);
+    SHUT_DOWN.store(true, std::sync::atomic::Ordering::SeqCst);
     Ok(())
 }

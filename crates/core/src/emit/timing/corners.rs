@@ -3,7 +3,8 @@
 //! tolerance, or the older parabolic blend, whichever it judges fastest.
 
 use super::segments::{dot, Seg, NORMAL_SHARE};
-use super::{Machine, CYCLE};
+use super::CYCLE;
+use crate::machine::Machine;
 use std::f64::consts::PI;
 
 /// A join of two moves.

@@ -31,56 +31,14 @@
 //! Moves without length take no time and do not break a blend (nor do comments).
 
 mod corners;
+mod plan;
 mod profile;
 mod segments;
 
-use crate::emit::Item;
-use crate::geom::P3;
-use serde::Deserialize;
+pub use plan::{item_times, plan, Times};
 
 /// LinuxCNC's servo period (s): the planner's time step.
 const CYCLE: f64 = 0.001;
-
-/// The path tolerance (G64 P, mm) when none is set.
-pub const DEFAULT_PATH_TOLERANCE: f64 = 0.05;
-
-/// One value per axis.
-#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Axes {
-    pub x: f64,
-    pub y: f64,
-    pub z: f64,
-}
-
-impl Axes {
-    /// The same value on every axis.
-    pub fn all(v: f64) -> Axes {
-        Axes { x: v, y: v, z: v }
-    }
-    pub fn values(&self) -> [(&'static str, f64); 3] {
-        [("x", self.x), ("y", self.y), ("z", self.z)]
-    }
-}
-
-/// The machine's limits.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Machine {
-    /// Maximum velocity per axis (mm/min); sweeps run at it.
-    pub max_velocity: Axes,
-    /// MAX_ACCELERATION per axis (mm/s²).
-    pub max_acceleration: Axes,
-    /// G64 P: how far (mm) a blended corner may leave the programmed path.
-    pub path_tolerance: f64,
-}
-
-/// Estimated times in seconds, by statistics line.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Times {
-    pub mill: f64,
-    pub drill: f64,
-    pub sweep: f64,
-}
 
 #[derive(Debug, Clone, Copy)]
 enum Bucket {
@@ -102,32 +60,4 @@ pub fn trapezoid(l: f64, v: f64, a: f64, v0: f64, v1: f64) -> f64 {
             .max(v0.max(v1));
         (vp - v0) / a + (vp - v1) / a
     }
-}
-
-/// The estimated times of a program's items, the tool starting at rest at `start`.
-pub fn plan(items: &[Item], start: P3, m: &Machine) -> Times {
-    let mut times = Times::default();
-    for (_, bucket, t) in planned(items, start, m) {
-        match bucket {
-            Bucket::Mill => times.mill += t,
-            Bucket::Drill => times.drill += t,
-            Bucket::Sweep => times.sweep += t,
-        }
-    }
-    times
-}
-
-/// The estimated time (seconds) of every item, the tool starting at rest at `start`
-/// (comments and moves without length: 0).
-pub fn item_times(items: &[Item], start: P3, m: &Machine) -> Vec<f64> {
-    let mut out = vec![0.0; items.len()];
-    for (item, _, t) in planned(items, start, m) {
-        out[item] += t;
-    }
-    out
-}
-
-/// The time of each planned move with its item and statistics line, in program order.
-fn planned(items: &[Item], start: P3, m: &Machine) -> Vec<(usize, Bucket, f64)> {
-    profile::times(&segments::segments(items, start, m), m)
 }

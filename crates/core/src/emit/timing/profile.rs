@@ -5,7 +5,8 @@
 
 use super::corners::{join, Join};
 use super::segments::{Seg, NORMAL_SHARE};
-use super::{trapezoid, Bucket, Machine, CYCLE};
+use super::{trapezoid, Bucket, CYCLE};
+use crate::machine::Machine;
 
 /// What is left of a move before a blend arc is taken into the arc when it would take less
 /// than this (s): ARC_BLEND_GAP_CYCLES (4) servo cycles.

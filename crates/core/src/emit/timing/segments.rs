@@ -3,9 +3,10 @@
 //! axis limits projected on the move; for arcs and helixes the in-plane limits, the
 //! centripetal cap and the helix's effective radius), and the tangents at both ends.
 
-use super::{Axes, Bucket, Machine};
+use super::Bucket;
 use crate::emit::{Item, Kind};
 use crate::geom::P3;
+use crate::machine::{Axes, Machine};
 
 /// The share of the acceleration an arc may use sideways (LinuxCNC's
 /// BLEND_ACC_RATIO_NORMAL: √(1 − 0.5²), the tangential share being 0.5).

@@ -1,8 +1,8 @@
 //! Probe expressions of `_Clean.gcode` (reference-output.md §15.4): syntax, probe terms
 //! `[#n-TH]` and their value with the measured heights.
 
-use super::LIMIT;
-use super::MAX_DEPTH;
+use super::bounds::LIMIT;
+use super::bounds::MAX_DEPTH;
 use crate::args;
 use crate::diag::Msg;
 use regex::Regex;

@@ -16,7 +16,7 @@
 //! * A cutting move or plunge that leaves the map is an error, never an extrapolation. A
 //!   rapid off the map is written unchanged when it passes above the highest measured point.
 
-use super::line_origin;
+use super::bounds::line_origin;
 use crate::args;
 use crate::diag::{Diags, Msg, Origin};
 use crate::geom::{F3, P2};
@@ -542,7 +542,7 @@ pub fn follow(clean: &str, file: &str, map: &HeightMap, diags: &mut Diags) -> Op
                     return None;
                 }
                 let mut reach = vec![p0, p1];
-                reach.extend(crate::probe::heightmap::arc_extremes(
+                reach.extend(crate::emit::extent::arc_extremes(
                     p0,
                     p1,
                     c,

@@ -1,8 +1,8 @@
 //! The measured surface of a height-map set: the `_Z.txt` of `[heightmap]` names every grid
 //! point with its XY (`([x y]/T=t) #1000=h`), so its filled-in values are the map.
 
+use super::bounds::{line_origin, MaxOption};
 use super::zfile::ZLine;
-use super::{line_origin, MaxOption};
 use crate::args;
 use crate::diag::{Diags, Msg};
 use crate::geom::F3;

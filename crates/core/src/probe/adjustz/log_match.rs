@@ -6,9 +6,9 @@
 //! its own drawing's coordinates (reference-output.md §12.3), the program the machine runs
 //! holds it in output coordinates (start point at 0/0, subpaths placed).
 
+use super::bounds::{line_origin, LIMIT};
 use super::probe_log::Measurement;
 use super::zfile::split_z_line;
-use super::{line_origin, LIMIT};
 use crate::args;
 use crate::diag::{Diags, Msg, Origin};
 use crate::geom::f3;

@@ -6,19 +6,21 @@
 //! agree with it and hold exactly the probes used there; `_Clean.gcode` must be a complete
 //! program; lines and expression nesting are bounded. [`adjust`] is the one entry point.
 
-mod digest;
+mod bounds;
 mod expr;
 mod follow;
 mod grid_set;
 mod log_match;
 mod probe_log;
 mod rewrite;
+mod set_check;
 mod zfile;
 
-pub use digest::{
-    banner_index, banner_index_of_first, banner_with_digest, check_set, set_digest,
-    set_digest_lines, stored_digest, SetFile, SET_WORD,
+pub use crate::digest::{
+    banner_index, banner_index_of_first, banner_with_digest, set_digest, set_digest_lines,
+    stored_digest, SET_WORD,
 };
+pub use bounds::{check_max, MaxOption, LIMIT, MAX_DEPTH, MAX_LINE};
 pub use expr::eval;
 pub use follow::{split_summary, Followed, CHORD_TOL, MAX_LINES, SPLIT_WORD};
 pub use log_match::{
@@ -30,17 +32,12 @@ pub use probe_log::{
 };
 use rewrite::rewrite_program;
 pub use rewrite::{measured_values, read_clean, CleanProgram, Probe, PROBES_WORD};
+pub use set_check::{check_set, SetFile};
 pub use zfile::{parse_z_file, ZLine};
 
 use crate::args;
-use crate::diag::{Diagnostic, Diags, Msg, Origin};
-
-/// Largest absolute value of any number adjust-z reads or writes (mm).
-pub const LIMIT: f64 = 1e6;
-/// Longest line of `_Clean.gcode` or `_Z.txt`, in bytes.
-pub const MAX_LINE: usize = 10_000;
-/// Deepest nesting of `(`, `[` and unary `-` in a probe expression.
-pub const MAX_DEPTH: usize = 64;
+use crate::diag::{Diags, Msg, Origin};
+use bounds::line_origin;
 
 /// The file argument reduced to its base: `.dxf`, `_Clean.gcode`, `_Z.txt` or `.gcode` removed.
 pub fn base_path(arg: &str) -> String {
@@ -53,41 +50,6 @@ pub fn base_path(arg: &str) -> String {
     arg.to_string()
 }
 
-/// The limit option as the user spelled it: `/m` (reference command line) or `--max`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum MaxOption {
-    Slash,
-    Long,
-}
-
-impl MaxOption {
-    pub fn name(self) -> &'static str {
-        match self {
-            MaxOption::Slash => "/m",
-            MaxOption::Long => "--max",
-        }
-    }
-}
-
-/// `None` when `max` is a usable limit (finite, > 0, ≤ [`LIMIT`]), else the option error.
-pub fn check_max(max: f64, text: &str, opt: MaxOption) -> Option<Diagnostic> {
-    if max.is_finite() && max > 0.0 && max <= LIMIT {
-        None
-    } else {
-        Some(Diagnostic::error(
-            Msg::MaxInvalid,
-            Origin::Options,
-            args![opt.name(), text],
-        ))
-    }
-}
-
-fn line_origin(file: &str, line: usize) -> Origin {
-    Origin::FileLine {
-        file: file.into(),
-        line,
-    }
-}
 /// The whole of adjust-z for one part: `_Milling.gcode`'s content, or `None` after errors
 /// (each naming its file and line). Nothing is produced unless every check passes.
 pub fn adjust(
@@ -170,7 +132,7 @@ pub fn adjust_set(
     }
     // only our own compiles (with a digest) get the measured values for `verify`: a reference
     // `_Clean.gcode` gives the reference's `_Milling.gcode` unchanged
-    Some(match digest::stored_digest(clean_text) {
+    Some(match stored_digest(clean_text) {
         Some(_) => rewrite::record_measured(&milling, &prog, &vars),
         None => milling,
     })

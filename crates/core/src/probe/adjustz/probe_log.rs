@@ -10,7 +10,7 @@
 //!   of three lines, skipped; work coordinates);
 //! - a filled-in `_Z.txt`: the caller reads it as today.
 
-use super::{line_origin, LIMIT, MAX_LINE};
+use super::bounds::{line_origin, LIMIT, MAX_LINE};
 use crate::args;
 use crate::diag::{Diags, Msg};
 

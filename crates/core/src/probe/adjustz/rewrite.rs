@@ -1,8 +1,8 @@
 //! Reading `_Clean.gcode` and rewriting its probe expressions with the measured values.
 
+use super::bounds::{line_origin, MaxOption, MAX_LINE};
 use super::expr::{eval, shown, Parser};
 use super::zfile::ZLine;
-use super::{line_origin, MaxOption, MAX_LINE};
 use crate::args;
 use crate::diag::{Diags, Msg};
 use crate::geom::f3;
@@ -263,7 +263,7 @@ pub(super) fn record_measured(
     if words.is_empty() {
         return milling.to_string();
     }
-    let banner = super::banner_index(milling);
+    let banner = crate::digest::banner_index(milling);
     let stock = milling
         .lines()
         .position(|l| l.trim_start().starts_with("(MILLPATH-STOCK"));

@@ -1,6 +1,6 @@
 //! Reading `_Z.txt`: one measured value per probe, `(comment/T=<t>) #<n>=<value>`.
 
-use super::{line_origin, LIMIT, MAX_LINE};
+use super::bounds::{line_origin, LIMIT, MAX_LINE};
 use crate::args;
 use crate::diag::{Diags, Msg};
 use crate::params::{parse_number_checked, NumberError};

@@ -1,4 +1,5 @@
-//! The digest of a probing set: `_Probing.gcode`, `_Z.txt` and `_Clean.gcode` of one compile.
+//! The digest of a probing set (written by `emit/program.rs` and `stage.rs`, checked by
+//! adjust-z's `probe/adjustz/set_check.rs`): `_Probing.gcode`, `_Z.txt` and `_Clean.gcode` of one compile.
 //!
 //! `_Z.txt` itself cannot carry it (the reference's `_Z.txt` is compared whole, and the
 //! machinist fills it in), so the digest covers what adjust-z can recompute from the files it
@@ -9,9 +10,6 @@
 //! without. SipHash-2-4 with fixed keys: the digest guards against files of different
 //! compiles put together by accident, not against forgery.
 
-use super::line_origin;
-use crate::args;
-use crate::diag::{Diags, Msg};
 use siphasher::sip::SipHasher24;
 use std::hash::Hasher;
 
@@ -84,54 +82,6 @@ pub fn banner_with_digest(banner: &str, digest: &str) -> String {
     format!("{banner} {SET_WORD}{digest}")
 }
 
-/// One file of a set as adjust-z read it.
-#[derive(Clone, Copy)]
-pub struct SetFile<'a> {
-    pub name: &'a str,
-    pub text: &'a str,
-}
-
-impl SetFile<'_> {
-    /// The file without a leading byte-order mark: an editor on Windows (Notepad) may save
-    /// `_Clean.gcode` or `_Z.txt` with one, and the reference (.NET) reads past it too.
-    pub fn without_bom(self) -> Self {
-        SetFile {
-            text: self.text.strip_prefix('\u{feff}').unwrap_or(self.text),
-            ..self
-        }
-    }
-}
-
-/// Refuses a mix: `_Clean.gcode`'s digest must be that of `_Clean.gcode` with this `_Z.txt`,
-/// and a `_Probing.gcode` with a digest must carry the same. A `_Clean.gcode` without a
-/// digest (older files, hand-made ones) is accepted as before. False after an error.
-pub fn check_set(clean: SetFile, z: SetFile, probing: Option<SetFile>, diags: &mut Diags) -> bool {
-    let Some(stored) = stored_digest(clean.text) else {
-        return true;
-    };
-    let banner_line = banner_index(clean.text) + 1;
-    let mut ok = true;
-    if set_digest(z.text, clean.text) != stored {
-        diags.error(
-            Msg::ZSetMismatch,
-            line_origin(clean.name, banner_line),
-            args![clean.name, z.name],
-        );
-        ok = false;
-    }
-    if let Some(p) = probing {
-        if stored_digest(p.text).is_some_and(|d| d != stored) {
-            diags.error(
-                Msg::ZSetMismatch,
-                line_origin(p.name, banner_index(p.text) + 1),
-                args![p.name, clean.name],
-            );
-            ok = false;
-        }
-    }
-    ok
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -142,20 +92,6 @@ mod tests {
     fn stamped(clean: &str, z: &str) -> String {
         let d = set_digest(z, clean);
         clean.replace("(millpath V.1)", &format!("(millpath V.1 set={d})"))
-    }
-
-    fn msgs(clean: &str, z: &str, probing: Option<&str>) -> Vec<String> {
-        let mut d = Diags::default();
-        check_set(
-            SetFile {
-                name: "c",
-                text: clean,
-            },
-            SetFile { name: "z", text: z },
-            probing.map(|text| SetFile { name: "p", text }),
-            &mut d,
-        );
-        d.list.iter().map(|x| x.message(crate::Lang::En)).collect()
     }
 
     #[test]
@@ -188,28 +124,6 @@ mod tests {
             d
         );
         assert_ne!(set_digest(&format!("{Z}{Z}"), CLEAN), d);
-    }
-
-    #[test]
-    fn mixes_are_refused_naming_the_files() {
-        let clean = stamped(CLEAN, Z);
-        assert!(msgs(&clean, "([1.000 2.000]/T=2.000) #51=2.1\n", None).is_empty());
-        let moved = "([1.000 9.000]/T=2.000) #51=2.1\n";
-        let m = msgs(&clean, moved, None);
-        assert_eq!(m.len(), 1);
-        assert!(
-            m[0].starts_with("c and z are not from the same compile"),
-            "{m:?}"
-        );
-        // a probing program of another compile
-        let other = stamped(&CLEAN.replace("0.800", "0.700"), Z);
-        let m = msgs(&clean, Z, Some(&other));
-        assert_eq!(m.len(), 1);
-        assert!(m[0].starts_with("p and c are not"), "{m:?}");
-        assert!(msgs(&clean, Z, Some(&clean)).is_empty());
-        // files without a digest are accepted as before
-        assert!(msgs(CLEAN, moved, Some(&other)).is_empty());
-        assert!(msgs(&clean, Z, Some("%\n(PathDxf2GCode)\nM30\n%\n")).is_empty());
     }
 
     #[test]

@@ -1,0 +1,8 @@
+//! What the machine is, as settings: the controller's dialect and the machine's limits.
+//! Settings-level types, below `load/settings.rs` and the emitter that use them.
+
+pub mod dialect;
+pub mod limits;
+
+pub use dialect::{Dialect, DEFAULT_SPINDLE_DWELL};
+pub use limits::{Axes, Machine, DEFAULT_PATH_TOLERANCE};
