@@ -213,3 +213,71 @@ fn what_a_post_cannot_write_is_refused_and_a_bad_post_is_located() {
         "no post `mach9`",
     );
 }
+
+#[test]
+fn arcs_as_chords_or_radii_are_written_so_and_check_clean() {
+    let dir = tempfile::tempdir().unwrap();
+    example(dir.path());
+    // an arc, helixes with bars, a drill: every kind of arc the emitter writes
+    let drawing = "path 1000.1P {
+  start (0, 0)  O2 T3 I1,2 B-0,3 D1 P6 U30 S8
+  end (100, 0)
+  sweep (0, 0) -> (10, 0)  N1
+  bars helix (10, 0) d8
+  bars (10, 0) -> (60, 0)
+  mark (60, 0) -> (60, 10)
+  mill arc (60, 20) r10 from 270 to 360
+  sweep (70, 20) -> (90, 20)
+  helix (90, 20) d6
+  sweep (90, 20) -> (100, 0)
+}
+";
+    std::fs::write(dir.path().join("1000.mpath"), drawing).unwrap();
+    let linuxcnc =
+        String::from_utf8(millpath(dir.path(), &["post", "show", "linuxcnc"]).stdout).unwrap();
+    let chords = linuxcnc
+        .replace("name = \"linuxcnc\"", "name = \"chords\"")
+        .replace("arcs = \"ij\"", "arcs = \"lines\"\nchord_tolerance = 0.005");
+    let radius = linuxcnc
+        .replace("name = \"linuxcnc\"", "name = \"radius\"")
+        .replace("arcs = \"ij\"", "arcs = \"r\"")
+        .replace("I{i} J{j}", "R{r}");
+    std::fs::write(dir.path().join("chords.toml"), chords).unwrap();
+    std::fs::write(dir.path().join("radius.toml"), radius).unwrap();
+    let arcs = |post: &str| {
+        let out = millpath(dir.path(), &["compile", "--post", post, "1000.mpath"]);
+        assert!(
+            out.status.success(),
+            "{post}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let program = std::fs::read_to_string(dir.path().join("1000_Milling.gcode")).unwrap();
+        let verified = millpath(
+            dir.path(),
+            &["verify", "--dialect", "linuxcnc", "1000_Milling.gcode"],
+        );
+        assert!(
+            verified.status.success(),
+            "{post}: {}",
+            String::from_utf8_lossy(&verified.stdout)
+        );
+        let arcs: Vec<String> = program
+            .lines()
+            .filter(|l| l.starts_with("G02") || l.starts_with("G03"))
+            .map(str::to_string)
+            .collect();
+        (
+            arcs,
+            program.lines().filter(|l| l.starts_with("G01")).count(),
+        )
+    };
+    let (ij, ij_lines) = arcs("linuxcnc");
+    assert!(ij.len() > 4 && ij.iter().all(|l| l.contains(" I")));
+    let (none, chord_lines) = arcs("chords.toml");
+    assert!(
+        none.is_empty() && chord_lines > ij_lines + 50,
+        "{chord_lines}"
+    );
+    let (r, _) = arcs("radius.toml");
+    assert!(r.len() >= ij.len() && r.iter().all(|l| l.contains(" R") && !l.contains(" I")));
+}

@@ -35,11 +35,15 @@ impl Emitter<'_> {
             let b1 = (d - infeed / 2.0).max(bottom);
             // the semicircles' centre is straight above or below their start: `I0`
             let (south, north) = (P2::new(c.x, c.y - r1), P2::new(c.x, c.y + r1));
-            let ij = (Value::Int(0), r1);
-            self.arc_move(north, c, r1, false, ij, (b1, c), hx.f, half);
+            if !self.semicircle_in_pieces(c, r1, 270.0, z, b1, hx.f) {
+                let ij = (Value::Int(0), r1);
+                self.arc_move(north, c, r1, false, ij, (b1, c), hx.f, half);
+            }
             let b0 = (b1 - infeed / 2.0).max(bottom);
-            let ij = (Value::Int(0), -r1);
-            self.arc_move(south, c, r1, false, ij, (b0, c), hx.f, half);
+            if !self.semicircle_in_pieces(c, r1, 90.0, b1, b0, hx.f) {
+                let ij = (Value::Int(0), -r1);
+                self.arc_move(south, c, r1, false, ij, (b0, c), hx.f, half);
+            }
             z = b0;
             done = d;
             d -= infeed;
@@ -82,5 +86,34 @@ impl Emitter<'_> {
             self.pos = c.with_z(s);
         }
         Ok(())
+    }
+}
+
+impl Emitter<'_> {
+    /// A clockwise half circle of the helix from angle `from_deg` where the post writes such
+    /// an arc in pieces or as lines (`arc_form`): milled so, `true`; else `false` (the caller
+    /// writes it whole, as the reference does).
+    fn semicircle_in_pieces(
+        &mut self,
+        c: P2,
+        r: f64,
+        from_deg: f64,
+        z0: f64,
+        z1: f64,
+        feed: f64,
+    ) -> bool {
+        let semi = Geom::Arc {
+            c,
+            r,
+            a0: from_deg,
+            a1: from_deg + 180.0,
+            ccw: false,
+        };
+        let (n, as_lines) = self.arc_form(&semi);
+        if n > 1 || as_lines {
+            self.mill_piece(&semi, z0, z1, feed);
+            return true;
+        }
+        false
     }
 }

@@ -121,7 +121,7 @@ impl Emitter<'_> {
         }
         let n = self.split_count(g);
         if n <= 1 {
-            self.mill_piece(g, to_z, feed);
+            self.mill_piece(g, from_z, to_z, feed);
         } else {
             // Z along the move as the whole move ramps it, each piece corrected at its start
             for (k, piece) in probe_split::pieces(g, n).iter().enumerate() {
@@ -133,7 +133,12 @@ impl Emitter<'_> {
                 } else {
                     from_z + (to_z - from_z) * (k + 1) as f64 / n as f64
                 };
-                self.mill_piece(piece, z, feed);
+                let z0 = if k == 0 {
+                    from_z
+                } else {
+                    from_z + (to_z - from_z) * k as f64 / n as f64
+                };
+                self.mill_piece(piece, z0, z, feed);
             }
             self.split.0 += 1;
             self.split.1 += n;
@@ -141,8 +146,77 @@ impl Emitter<'_> {
         self.pos = b.with_z(to_z);
     }
 
-    /// One line or arc along `g` to `to_z`, its Z corrected at `g`'s start (§12.4).
-    fn mill_piece(&mut self, g: &Geom, to_z: f64, feed: f64) {
+    /// One line or arc along `g` from `from_z` to `to_z`, its Z corrected at `g`'s start
+    /// (§12.4). An arc the post writes otherwise ([`Emitter::arc_form`]) goes in pieces.
+    pub(crate) fn mill_piece(&mut self, g: &Geom, from_z: f64, to_z: f64, feed: f64) {
+        if let Geom::Arc { .. } = g {
+            let (n, as_lines) = self.arc_form(g);
+            if n > 1 || as_lines {
+                let pieces = probe_split::pieces(g, n);
+                for (k, piece) in pieces.iter().enumerate() {
+                    let z = if k + 1 == n {
+                        to_z
+                    } else {
+                        from_z + (to_z - from_z) * (k + 1) as f64 / n as f64
+                    };
+                    if as_lines {
+                        let line = Geom::Line {
+                            a: piece.start(),
+                            b: piece.end(),
+                        };
+                        self.mill_piece(&line, from_z, z, feed);
+                    } else {
+                        self.mill_piece_as_written(piece, z, feed);
+                    }
+                }
+                return;
+            }
+        }
+        self.mill_piece_as_written(g, to_z, feed);
+    }
+
+    /// How the post writes the arc `g`: in how many pieces, and as lines. `lines` (or a
+    /// radius beyond `max_arc_radius`): chords within `chord_tolerance`; `r`: at most half a
+    /// circle each (R cannot say more); `ij`: whole.
+    pub(crate) fn arc_form(&mut self, g: &Geom) -> (usize, bool) {
+        let Geom::Arc { r, .. } = *g else {
+            return (1, false);
+        };
+        let f = &self.ctl.post.format;
+        let sweep = g.sweep_deg().to_radians();
+        let as_lines =
+            f.arcs == millpath_post::ArcMode::Lines || f.max_arc_radius.is_some_and(|m| r > m);
+        if as_lines {
+            let tol = f.chord_tolerance.min(r);
+            let step = 2.0 * (1.0 - tol / r).clamp(-1.0, 1.0).acos();
+            let n = (sweep / step).ceil();
+            if !(n.is_finite() && n <= probe_split::MAX_PIECES as f64) {
+                let origin = self
+                    .source
+                    .and_then(|i| self.sources.get(i as usize).cloned())
+                    .unwrap_or(Origin::Options);
+                self.errors.push(Diagnostic::error(
+                    Msg::PostCannot,
+                    origin,
+                    args![
+                        self.ctl.post.name.clone(),
+                        format!("this arc (r={}) in lines", F3(r)),
+                        "chord_tolerance"
+                    ],
+                ));
+                self.lost = true;
+                return (1, false);
+            }
+            return ((n as usize).max(1), true);
+        }
+        if f.arcs == millpath_post::ArcMode::R && g.sweep_deg() > 180.0 - 1e-9 {
+            return (2, false);
+        }
+        (1, false)
+    }
+
+    /// One `linear` or arc event along `g` to `to_z`, its Z corrected at `g`'s start.
+    fn mill_piece_as_written(&mut self, g: &Geom, to_z: f64, feed: f64) {
         let (a, b) = (g.start(), g.end());
         match *g {
             Geom::Line { .. } => {
