@@ -5,7 +5,9 @@ set -euo pipefail
 cd "$(dirname "$0")"
 root=..
 # drawing (structure-aware) starts from nothing: any bytes make a drawing
-mkdir -p corpus/dxf_read corpus/text_parse corpus/format_idempotent corpus/compile corpus/drawing
+mkdir -p corpus/dxf_read corpus/text_parse corpus/format_idempotent corpus/compile corpus/drawing corpus/post_load
+# post_load: the built-in posts and the hostile ones of the tests
+cp "$root"/crates/post/posts/*.toml "$root"/crates/post/tests/hostile/*.toml corpus/post_load/
 for f in "$root"/examples/*/*.dxf; do
   cp "$f" "corpus/dxf_read/$(basename "$f")"
   # the compile target reads one leading byte: even = DXF

@@ -46,6 +46,10 @@ pub struct MachineArgs {
     /// Controller the programs are written for (or `dialect`; default reference)
     #[arg(long, value_parser = dialect_parser())]
     pub dialect: Option<millpath_core::Dialect>,
+    /// Post that writes the programs: a built-in name (`millpath post list`) or a post file
+    /// (or `post` in millpath.toml; over --dialect)
+    #[arg(long, value_name = "NAME|FILE")]
+    pub post: Option<String>,
     /// Plunge feed in linuxcnc/grbl, mm/min (or `plunge_feed`; default half the feed)
     #[arg(long)]
     pub plunge_feed: Option<f64>,
@@ -172,6 +176,10 @@ pub fn settings_for(
     if let Some(p) = cfg_path {
         let cfg = config::load_in(&p, lang)?;
         cfg.apply(&mut s, &mut have);
+        if let Some(name) = &cfg.post {
+            let at = format!("{}: post", p.display());
+            select_post(&mut s, name, &cfg.base_dir, lang).map_err(|e| format!("{at}: {e}"))?;
+        }
         s.settings_file = Some(p.clone());
         if cfg.heightmap.is_some() {
             s.heightmap_file = Some(p.clone());
@@ -237,6 +245,10 @@ pub fn settings_for(
     s.debug_pattern = m.debug_texts.clone();
     if let Some(d) = m.dialect {
         s.dialect = d;
+        s.post = None;
+    }
+    if let Some(name) = &m.post {
+        select_post(&mut s, name, Path::new(""), lang).map_err(|e| format!("--post: {e}"))?;
     }
     if m.plunge_feed.is_some() {
         s.plunge_feed = m.plunge_feed;
@@ -290,6 +302,15 @@ pub fn settings_for(
         }
     }
     Ok(s)
+}
+
+/// Sets the dialect and post `name` selects (a built-in's name, or a file relative to `base`).
+fn select_post(s: &mut Settings, name: &str, base: &Path, lang: Lang) -> Result<(), String> {
+    let read = |p: &Path| std::fs::read_to_string(p).map_err(|e| e.to_string());
+    let (dialect, post) = millpath_core::emit::dialect::select_post(name, base, &read, lang)?;
+    s.dialect = dialect;
+    s.post = post;
+    Ok(())
 }
 
 /// `--heightmap-step` and `--heightmap-margin` over the `[heightmap]` of the settings file; a

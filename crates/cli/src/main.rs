@@ -224,6 +224,14 @@ enum Command {
         #[arg(long, value_name = "MM")]
         cut_cell: Option<f64>,
     },
+    /// The post-processors: list the built-in ones, print one as a post file to adapt
+    Post {
+        #[command(subcommand)]
+        action: PostAction,
+        /// Message language
+        #[arg(long, value_enum, global = true)]
+        lang: Option<LangArg>,
+    },
     /// Language server over standard input and output (for editors)
     Lsp {
         /// Accepted for editor compatibility; stdio is the only transport
@@ -241,6 +249,18 @@ enum Command {
     Pathgcodeadjustz {
         #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
         args: Vec<String>,
+    },
+}
+
+#[derive(Subcommand)]
+enum PostAction {
+    /// List the built-in posts: name, family, description
+    List,
+    /// Print a built-in post as a post file (compiling with the file unchanged gives the
+    /// built-in's output)
+    Show {
+        /// The built-in post's name
+        name: String,
     },
 }
 
@@ -357,6 +377,13 @@ fn main() -> ExitCode {
             delete_missing_paths,
             &names.machine(),
         ),
+        Command::Post { action, lang } => {
+            let lang = lang_for(lang, None, None);
+            match action {
+                PostAction::List => commands::post::list(lang),
+                PostAction::Show { name } => commands::post::show(&name, lang),
+            }
+        }
         Command::Fmt { check, lang, paths } => {
             let lang = lang_for(lang, None, paths.first().map(PathBuf::as_path));
             commands::fmt::run(check, &paths, lang)

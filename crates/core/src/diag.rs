@@ -413,6 +413,8 @@ messages! {
     ZKeptAsideUnreadable = "{0} could not be read as a _Z.txt ({2}): kept as {1}; the new {0} has no values", "{0} ließ sich nicht als _Z.txt lesen ({2}): als {1} aufbewahrt; die neue {0} hat keine Werte";
     ZCannotKeepAside = "{0} may hold measured values and could not be kept as {1} ({2}): nothing of this drawing was written; move {0} away and compile again", "{0} kann Messwerte enthalten und ließ sich nicht als {1} aufbewahren ({2}): von dieser Zeichnung wurde nichts geschrieben; {0} beiseitelegen und neu übersetzen";
     IntoWouldDeletePaths = "{0} holds paths that {2} does not define: {1}. --into would delete them; nothing was written: add them to the text (dxf2text {0} writes them), or pass --delete-missing-paths to delete them", "{0} enthält Pfade, die {2} nicht definiert: {1}. --into würde sie löschen; es wurde nichts geschrieben: sie in den Text aufnehmen (dxf2text {0} schreibt sie), oder mit --delete-missing-paths löschen";
+    // posts (issue 32): what a post cannot write is refused, never dropped
+    PostCannot = "The post {0} cannot write {1}: it has no `{2}` (in [capabilities] or [templates]); choose a post that can, or leave {1} out", "Der Post {0} kann {1} nicht schreiben: ihm fehlt `{2}` (in [capabilities] oder [templates]); einen Post wählen, der es kann, oder {1} weglassen";
 }
 
 impl Msg {

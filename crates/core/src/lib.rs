@@ -268,7 +268,8 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
         ],
         (Output::Probing { probing, z_txt, .. }, Some(mut staged)) => {
             // the digest of a staged set: over the file, stamped into it and the probing program
-            match staged.stamp_set(banner, &z_txt) {
+            let post = emit::Controller::of(&session.settings).post;
+            match staged.stamp_set(banner, &z_txt, post) {
                 Ok(stamped) => vec![
                     output(
                         with("_Probing.gcode"),
@@ -387,7 +388,12 @@ fn generate_and_review_as(
     let lang = job.lang;
     let generated = if let Some(output) = stage_at {
         // compile: the program to a file beside its output, read by the checker meanwhile
-        stage::Staging::new(output, reviewer())
+        let line_end = emit::Controller::of(&session.settings)
+            .post
+            .format
+            .line_end
+            .text();
+        stage::Staging::new(output, reviewer(), line_end)
             .map_err(|d| vec![d])
             .and_then(|staging| {
                 let path = staging.path().to_path_buf();

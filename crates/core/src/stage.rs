@@ -10,11 +10,11 @@
 //! with the set. `sibling` names every temporary file beside an output, `file_head` reads a long
 //! program's banner.
 
+use crate::args;
 use crate::diag::{Diagnostic, Msg, Origin};
 use crate::digest::{banner_index_of_first, banner_with_digest, set_digest_lines};
 use crate::emit::LineSink;
 use crate::second_opinion::{replay_lines, Reviewer};
-use crate::{args, emit::as_comment};
 use std::fs::File;
 use std::io::{BufRead, BufReader, BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -25,6 +25,8 @@ pub(crate) struct Staging {
     out: Option<BufWriter<File>>,
     error: Option<std::io::Error>,
     reviewer: Reviewer,
+    /// The post's line end.
+    line_end: &'static str,
 }
 
 /// The complete program in its temporary file.
@@ -37,7 +39,7 @@ impl LineSink for Staging {
         if let Some(out) = &mut self.out {
             if let Err(e) = out
                 .write_all(text.as_bytes())
-                .and_then(|()| out.write_all(b"\n"))
+                .and_then(|()| out.write_all(self.line_end.as_bytes()))
             {
                 self.error = Some(e);
                 self.out = None;
@@ -82,7 +84,11 @@ fn cannot_write(path: &Path, e: std::io::Error) -> Diagnostic {
 
 impl Staging {
     /// A staging file for the program of `output`; `Err` when it cannot be created.
-    pub(crate) fn new(output: &Path, reviewer: Reviewer) -> Result<Staging, Diagnostic> {
+    pub(crate) fn new(
+        output: &Path,
+        reviewer: Reviewer,
+        line_end: &'static str,
+    ) -> Result<Staging, Diagnostic> {
         let path = sibling(output, "stage1");
         match File::create(&path) {
             Ok(f) => Ok(Staging {
@@ -90,6 +96,7 @@ impl Staging {
                 out: Some(BufWriter::with_capacity(1 << 16, f)),
                 error: None,
                 reviewer,
+                line_end,
             }),
             Err(e) => Err(cannot_write(output, e)),
         }
@@ -132,8 +139,14 @@ impl Staged {
     }
 
     /// The set's digest over `z_txt` and the staged program, stamped into its banner line
-    /// (a second file, then the first removed). Returns the stamped banner line.
-    pub(crate) fn stamp_set(&mut self, banner: &str, z_txt: &str) -> Result<String, Diagnostic> {
+    /// (a second file, then the first removed) as `post` writes a comment. Returns the
+    /// stamped banner comment.
+    pub(crate) fn stamp_set(
+        &mut self,
+        banner: &str,
+        z_txt: &str,
+        post: &millpath_post::Post,
+    ) -> Result<String, Diagnostic> {
         let read = || -> std::io::Result<_> {
             Ok(BufReader::new(File::open(&self.path)?)
                 .lines()
@@ -141,7 +154,9 @@ impl Staged {
         };
         let fail = |e: std::io::Error, path: &Path| cannot_write(path, e);
         let digest = set_digest_lines(z_txt, read().map_err(|e| fail(e, &self.path))?);
-        let stamped = as_comment(0, &banner_with_digest(banner, &digest));
+        let text = banner_with_digest(banner, &digest);
+        let stamped = post.comment(0, &text, &millpath_post::Globals::default());
+        let line_end = post.format.line_end.text();
         let first = read().map_err(|e| fail(e, &self.path))?;
         let stamped_path = sibling(&self.path, "stage2");
         let written = (|| -> std::io::Result<()> {
@@ -149,8 +164,13 @@ impl Staged {
             let mut lines = first.peekable();
             let at = banner_index_of_first(lines.peek().map(String::as_str));
             for (i, line) in lines.enumerate() {
-                out.write_all(if i == at { &stamped } else { &line }.as_bytes())?;
-                out.write_all(b"\n")?;
+                if i == at {
+                    let line = crate::emit::program::stamped_line(&line, &stamped);
+                    out.write_all(line.as_bytes())?;
+                } else {
+                    out.write_all(line.as_bytes())?;
+                }
+                out.write_all(line_end.as_bytes())?;
             }
             out.into_inner().map_err(|e| e.into_error())?.sync_all()
         })();

@@ -16,6 +16,7 @@ pub mod dxf2text;
 pub mod fmt;
 pub mod pathdxf2gcode;
 pub mod pathgcodeadjustz;
+pub mod post;
 pub mod render;
 pub mod text2dxf;
 pub mod verify;

@@ -1,7 +1,8 @@
-//! Text in G-code comments made safe for each controller's comment rules. File names, path
-//! names and `Q` texts come from the user; a character a controller reads as something else
-//! than comment text is replaced, and `comment_changes` names every user text that was
-//! changed so that `check` and `compile` can warn about it.
+//! Text in G-code comments made safe for each controller's comment rules (the rules are the
+//! post's `[comments]`, applied by `crates/post`). File names, path names and `Q` texts come
+//! from the user; a character a controller reads as something else than comment text is
+//! replaced, and `comment_changes` names every user text that was changed so that `check`
+//! and `compile` can warn about it. The built-in posts' rules:
 //!
 //! - every dialect: the reference's `)` → `]` and `\` → `/`, and `(` → `[` (LinuxCNC rejects
 //!   a `(` inside a comment: "nested comment"); control characters become blanks;
@@ -24,95 +25,17 @@ use crate::diag::{Diagnostic, Msg, Origin};
 use crate::machine::Dialect;
 use crate::model::{Element, Model};
 
-/// LinuxCNC's comment words that make a comment do something (checked case-insensitively).
-const LINUXCNC_ACTIVE: &[&str] = &[
-    "msg",
-    "debug",
-    "print",
-    "log",
-    "logopen",
-    "logappend",
-    "logclose",
-    "probeopen",
-    "probeclose",
-    "pyrun",
-    "py",
-    "abort",
-];
-
-/// Longest line a controller reads (without its line end).
-fn max_line(dialect: Dialect) -> Option<usize> {
-    match dialect {
-        Dialect::Reference => None,
-        Dialect::LinuxCnc => Some(255),
-        Dialect::Grbl => Some(127),
-    }
-}
-
-/// A comment line: `indent` blanks and the text, trimmed and made safe for `dialect`.
+/// A comment line: `indent` blanks and the text, trimmed and made safe for `dialect` by its
+/// post's `[comments]` rules (`crates/post/src/comment.rs`), cut to its longest line.
 pub fn comment_line(dialect: Dialect, indent: usize, text: &str) -> String {
-    let body = safe_text(dialect, text);
-    let mut line = format!("{}({})", " ".repeat(indent), body);
-    if let Some(max) = max_line(dialect) {
-        // rs274ngc and GRBL's buffer count bytes
-        if line.len() > max {
-            let keep = max.saturating_sub(indent + 2 + 3);
-            let mut cut: String = String::new();
-            for c in body.chars() {
-                if cut.len() + c.len_utf8() > keep {
-                    break;
-                }
-                cut.push(c);
-            }
-            line = format!("{}({}...)", " ".repeat(indent), cut.trim_end());
-        }
-    }
-    line
+    dialect
+        .post()
+        .comment(indent, text, &millpath_post::Globals::default())
 }
 
 /// The text of a comment (without the parentheses) as `dialect` gets it.
 pub fn safe_text(dialect: Dialect, text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for c in text.trim().chars() {
-        match c {
-            ')' => out.push(']'),
-            '(' => out.push('['),
-            '\\' => out.push('/'),
-            c if c.is_control() => out.push(' '),
-            c if dialect == Dialect::Grbl => grbl_char(c, &mut out),
-            c => out.push(c),
-        }
-    }
-    if dialect == Dialect::LinuxCnc && linuxcnc_active(&out) {
-        out.insert(0, '_');
-    }
-    out
-}
-
-fn grbl_char(c: char, out: &mut String) {
-    match c {
-        '!' | '~' | '?' => out.push('_'),
-        c if c.is_ascii() => out.push(c),
-        'ä' => out.push_str("ae"),
-        'ö' => out.push_str("oe"),
-        'ü' => out.push_str("ue"),
-        'Ä' => out.push_str("Ae"),
-        'Ö' => out.push_str("Oe"),
-        'Ü' => out.push_str("Ue"),
-        'ß' => out.push_str("ss"),
-        _ => out.push('_'),
-    }
-}
-
-/// Does LinuxCNC read this comment text as a command (`(MSG,…)`, `(LOGOPEN,…)`, …)?
-fn linuxcnc_active(text: &str) -> bool {
-    let t = text.trim_start();
-    let word_end = t
-        .find(|c: char| !c.is_ascii_alphabetic())
-        .unwrap_or(t.len());
-    let word = t[..word_end].to_ascii_lowercase();
-    let next = t[word_end..].chars().next();
-    LINUXCNC_ACTIVE.contains(&word.as_str()) && matches!(next, None | Some(',' | ' ' | '\t'))
+    millpath_post::comment::safe_text(&dialect.post().comments, text)
 }
 
 /// What the reference itself writes for a text: its own replacements only.

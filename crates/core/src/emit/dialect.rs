@@ -1,27 +1,90 @@
-//! Controller dialects. `reference` writes what PathDxf2GCode writes, byte for byte
-//! (reference-output.md §4). `linuxcnc` and `grbl` write programs those controllers run as
-//! drawn: the feed after the modal line (LinuxCNC's G94 resets the feed, so the reference's
-//! `F150` before it leaves the first plunge without a feed), a feed on every plunge, the
-//! optional spindle start and stop, a stock comment for verifiers, and — for GRBL, which has
-//! no `%` program delimiters — no `%` lines.
-//!
-//! Controller dialects (`reference`, `linuxcnc`, `grbl`): header and end of a program, plunge
-//! feeds, spindle, the `MILLPATH-STOCK` comment; `Controller::for_model`: the drawing's `K` over
-//! `[heightmap]`, the options over both.
+//! Controller dialects and the post that writes for one. The text of every line is the
+//! post's (`crates/post`, `posts/*.toml`): `reference` writes what PathDxf2GCode writes, byte
+//! for byte (reference-output.md §4); `linuxcnc` and `grbl` write programs those controllers
+//! run as drawn (the feed after the modal line, a feed on every plunge, the optional spindle
+//! start and stop, a stock comment for verifiers, no `%` lines for GRBL). What stays code
+//! here is what the dialect *decides*: plunge feeds, which events a program has.
 
-use crate::emit::comment::comment_line;
-use crate::geom::{f3, P3};
 use crate::load::settings::Settings;
 use crate::machine::{Dialect, Machine, DEFAULT_SPINDLE_DWELL};
 use crate::model::Model;
-use crate::params::fmt_num;
 use crate::probe::heightmap::Heightmap;
 use crate::stock::stock_of;
+use millpath_post::{Event, Globals, Post, Value, Var};
+
+impl Dialect {
+    /// The built-in post that writes this dialect's programs.
+    pub fn post(self) -> &'static Post {
+        millpath_post::builtin::get(self.name()).expect("every dialect has its built-in post")
+    }
+}
+
+/// The dialect and post a `post =` setting or `--post` option names: a built-in post's name
+/// (the dialect of that name), or a post file relative to `base`, read by `read`. A post
+/// file named like a built-in (`post show` prints them so) keeps that dialect's rules (the
+/// reference's plunge feeds and refusals); any other writes as a controller of its family.
+/// The checker reads `rs274` and `grbl` programs; a post of another family is refused (the
+/// second opinion may not be skipped). The error is the message in `lang`.
+pub fn select_post(
+    name_or_path: &str,
+    base: &std::path::Path,
+    read: &dyn Fn(&std::path::Path) -> Result<String, String>,
+    lang: crate::diag::Lang,
+) -> Result<(Dialect, Option<&'static Post>), String> {
+    let post_lang = match lang {
+        crate::diag::Lang::De => millpath_post::Lang::De,
+        _ => millpath_post::Lang::En,
+    };
+    let post = millpath_post::resolve(name_or_path, base, read).map_err(|e| e.render(post_lang))?;
+    if post.origin.starts_with("builtin:") {
+        let d = Dialect::from_name(&post.name).expect("every built-in post is a dialect");
+        return Ok((d, None));
+    }
+    let dialect = match (Dialect::from_name(&post.name), post.family) {
+        (Some(d), _) => d,
+        (None, millpath_post::Family::Rs274) => Dialect::LinuxCnc,
+        (None, millpath_post::Family::Grbl) => Dialect::Grbl,
+        (None, family) => {
+            return Err(match lang {
+                crate::diag::Lang::De => format!(
+                    "{}: Programme der Familie {} kann die Zweitprüfung (verify) noch nicht lesen; ungeprüft wird nichts geschrieben",
+                    post.origin,
+                    family.name()
+                ),
+                _ => format!(
+                    "{}: the second opinion (verify) cannot read programs of the {} family yet; nothing is written unchecked",
+                    post.origin,
+                    family.name()
+                ),
+            })
+        }
+    };
+    Ok((dialect, Some(intern(post))))
+}
+
+/// A loaded post kept for the rest of the process (a `Controller` is `Copy`): each distinct
+/// post file once, so an editor that reloads the same file does not keep copies.
+fn intern(post: Post) -> &'static Post {
+    use std::sync::Mutex;
+    static KEPT: Mutex<Vec<&'static Post>> = Mutex::new(Vec::new());
+    let mut kept = KEPT.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(p) = kept
+        .iter()
+        .find(|p| p.source == post.source && p.origin == post.origin)
+    {
+        return p;
+    }
+    let p: &'static Post = Box::leak(Box::new(post));
+    kept.push(p);
+    p
+}
 
 /// What the program writer needs to know about the controller.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Controller {
     pub dialect: Dialect,
+    /// The post that writes the text (the dialect's built-in, or a post file).
+    pub post: &'static Post,
     /// Feed of plunges (mm/min); `None`: half the element's feed.
     pub plunge_feed: Option<f64>,
     /// Spindle speed; `None`: the program does not switch the spindle.
@@ -50,6 +113,7 @@ impl Controller {
     pub fn reference() -> Controller {
         Controller {
             dialect: Dialect::Reference,
+            post: Dialect::Reference.post(),
             plunge_feed: None,
             spindle_rpm: None,
             spindle_dwell: DEFAULT_SPINDLE_DWELL,
@@ -63,6 +127,7 @@ impl Controller {
     pub fn of(s: &Settings) -> Controller {
         Controller {
             dialect: s.dialect,
+            post: s.post.unwrap_or_else(|| s.dialect.post()),
             plunge_feed: s.plunge_feed,
             spindle_rpm: s.spindle_rpm,
             spindle_dwell: s.spindle_dwell,
@@ -115,9 +180,40 @@ impl Controller {
         })
     }
 
-    /// `%` lines around the program (LinuxCNC and the reference; GRBL 1.1 rejects them).
-    fn percent(&self) -> bool {
-        self.dialect != Dialect::Grbl
+    /// The text of one event as lines (a template may hold several; an empty one none).
+    pub(crate) fn lines(
+        &self,
+        event: Event,
+        vars: &[(Var, Value)],
+        g: &Globals,
+        out: &mut Vec<String>,
+    ) {
+        if !self.post.has(event) {
+            return;
+        }
+        let text = self.post.text(event, vars, g);
+        out.extend(text.split('\n').map(str::to_string));
+    }
+
+    /// The program's values every template may use.
+    pub(crate) fn globals<'m>(model: &'m Model, file_name: &'m str) -> Globals<'m> {
+        // the same figures the compiler's own second opinion uses
+        let (top, tool, bottom) = stock_of(model);
+        Globals {
+            file_name,
+            program_name: model.name(),
+            tool_diameter: tool,
+            clearance: model.params.s,
+            stock_top: top,
+            stock_bottom: bottom.unwrap_or(top),
+            program_feed: model.params.f,
+        }
+    }
+
+    /// Does the program switch the spindle? (A dialect without a spindle ignores the speed,
+    /// as the reference does.)
+    fn spindle_rpm(&self) -> Option<f64> {
+        self.spindle_rpm.filter(|_| self.post.capabilities.spindle)
     }
 
     /// The lines before the body: `start` is the first sweep height; `spindle` is false for
@@ -130,64 +226,60 @@ impl Controller {
         start: f64,
         spindle: bool,
     ) -> Vec<String> {
+        let g = Controller::globals(model, file_name);
         let mut v = Vec::new();
-        if self.percent() {
+        if self.post.format.percent {
             v.push("%".into());
         }
-        v.push(comment_line(self.dialect, 0, banner));
-        v.push(comment_line(self.dialect, 0, file_name));
-        if self.dialect == Dialect::Reference {
-            v.push("F150".into());
-            v.push("G17 G21 G40 G49 G54 G80 G90 G94".into());
-            v.push("T1".into());
-        } else {
-            v.push(stock_comment(model));
-            v.push("G17 G21 G40 G49 G54 G80 G90 G94".into());
-            v.push(format!("F{}", f3(model.params.f)));
-            v.push("T1".into());
-            if let (true, Some(rpm)) = (spindle, self.spindle_rpm) {
-                v.push(format!("M3 S{}", fmt_num(rpm)));
-                if self.spindle_dwell > 0.0 {
-                    v.push(format!("G4 P{}", fmt_num(self.spindle_dwell)));
-                }
+        v.push(self.post.comment(0, banner, &g));
+        v.push(self.post.comment(0, file_name, &g));
+        self.lines(Event::Stock, &[], &g, &mut v);
+        self.lines(Event::ProgramStart, &[], &g, &mut v);
+        self.lines(Event::Tool, &[(Var::ToolNumber, Value::Int(1))], &g, &mut v);
+        if let (true, Some(rpm)) = (spindle, self.spindle_rpm()) {
+            self.lines(Event::SpindleOn, &[(Var::Rpm, Value::Num(rpm))], &g, &mut v);
+            if self.spindle_dwell > 0.0 && self.post.capabilities.dwell {
+                let secs = [(Var::Seconds, Value::Num(self.spindle_dwell))];
+                self.lines(Event::Dwell, &secs, &g, &mut v);
             }
         }
-        let p = P3 {
+        let p = crate::geom::P3 {
             x: 0.0,
             y: 0.0,
             z: start,
         };
-        v.push(comment_line(self.dialect, 0, &format!("SweepSafelyTo {p}")));
-        v.push(format!("G00 Z{}", f3(start)));
-        v.push("G00 X0.000 Y0.000".into());
+        v.push(self.post.comment(0, &format!("SweepSafelyTo {p}"), &g));
+        let z = [(Var::Z, Value::Num(start)), (Var::ZProbe, Value::Text(""))];
+        self.lines(Event::RapidZ, &z, &g, &mut v);
+        let xy = [(Var::X, Value::Num(0.0)), (Var::Y, Value::Num(0.0))];
+        self.lines(Event::RapidXy, &xy, &g, &mut v);
         v
     }
 
+    /// A rapid to `at` (the probing programs').
+    pub(crate) fn rapid_xy(&self, g: &Globals, at: crate::geom::P2, out: &mut Vec<String>) {
+        let xy = [(Var::X, Value::Num(at.x)), (Var::Y, Value::Num(at.y))];
+        self.lines(Event::RapidXy, &xy, g, out);
+    }
+
+    /// A vertical rapid to `z` (the probing programs': no probes correct it).
+    pub(crate) fn rapid_z(&self, g: &Globals, event: Event, z: f64, out: &mut Vec<String>) {
+        let vars = [(Var::Z, Value::Num(z)), (Var::ZProbe, Value::Text(""))];
+        self.lines(event, &vars, g, out);
+    }
+
     /// The lines after the body (and the statistics).
-    pub(crate) fn epilogue(&self, spindle: bool) -> Vec<String> {
+    pub(crate) fn epilogue(&self, spindle: bool, g: &Globals) -> Vec<String> {
         let mut v = Vec::new();
-        if spindle && self.dialect != Dialect::Reference && self.spindle_rpm.is_some() {
-            v.push("M5".into());
+        if spindle && self.spindle_rpm().is_some() {
+            self.lines(Event::SpindleOff, &[], g, &mut v);
         }
-        v.push("M30".into());
-        if self.percent() {
+        self.lines(Event::ProgramEnd, &[], g, &mut v);
+        if self.post.format.percent {
             v.push("%".into());
         }
         v
     }
-}
-
-/// `(MILLPATH-STOCK T=<top> O=<tool diameter> BOTTOM=<lowest drawn depth>)`: what an
-/// independent verifier needs to know about the stock and the tool.
-pub fn stock_comment(model: &Model) -> String {
-    // the same figures the compiler's own second opinion uses
-    let (top, tool, bottom) = stock_of(model);
-    format!(
-        "(MILLPATH-STOCK T={} O={} BOTTOM={})",
-        f3(top),
-        f3(tool),
-        f3(bottom.unwrap_or(top))
-    )
 }
 
 #[cfg(test)]

@@ -9,7 +9,6 @@
 //! (`probe_open`/`probe_close`, drawn probes' program too), `_Z.txt` lines `#1000` ….
 
 use crate::diag::{Diagnostic, Msg};
-use crate::emit::comment::comment_line;
 use crate::emit::dialect::Controller;
 use crate::emit::extent::cut_extent;
 use crate::emit::{as_comment, Item, NamedProbe};
@@ -17,6 +16,7 @@ use crate::geom::{f3, F3, P2};
 use crate::machine::Dialect;
 use crate::model::Model;
 use crate::probe::heightmap::{var_name, Grid, Heightmap};
+use millpath_post::{Event, Globals, Value, Var};
 
 /// The probing program's lines (without the set's digest) and the `_Z.txt` lines.
 pub(crate) struct GridSet {
@@ -60,21 +60,27 @@ pub(crate) fn grid_of(
     Grid::of_program(hm, extent, model.name(), &origin)
 }
 
-/// `(PROBEOPEN log_name)` in linuxcnc, where LinuxCNC writes each probe contact to the
-/// file itself (nothing elsewhere: GRBL and the reference have no such command). Drawn
-/// probes and height maps both open their log this way.
-pub(crate) fn probe_open(ctl: &Controller, log_name: &str) -> Option<String> {
-    (ctl.dialect == Dialect::LinuxCnc).then(|| {
-        // the name made safe as comment text, then the active word LinuxCNC acts on
-        let safe = comment_line(ctl.dialect, 0, log_name);
-        let safe = safe.trim_start_matches('(').trim_end_matches(')');
-        format!("(PROBEOPEN {safe})")
-    })
+/// The post's probe log opening (LinuxCNC's `(PROBEOPEN log_name)`, where the controller
+/// writes each probe contact to the file itself; posts without `probe_log` write nothing).
+/// Drawn probes and height maps both open their log this way.
+pub(crate) fn probe_open(ctl: &Controller, log_name: &str, g: &Globals, out: &mut Vec<String>) {
+    if ctl.post.capabilities.probe_log {
+        // the name made safe as comment text (the log command is a comment)
+        let safe = millpath_post::comment::safe_text(&ctl.post.comments, log_name);
+        ctl.lines(
+            Event::ProbeLogOpen,
+            &[(Var::LogFile, Value::Text(&safe))],
+            g,
+            out,
+        );
+    }
 }
 
-/// `(PROBECLOSE)` where [`probe_open`] opened a log.
-pub(crate) fn probe_close(ctl: &Controller) -> Option<String> {
-    (ctl.dialect == Dialect::LinuxCnc).then(|| "(PROBECLOSE)".to_string())
+/// The log's closing where [`probe_open`] opened one.
+pub(crate) fn probe_close(ctl: &Controller, g: &Globals, out: &mut Vec<String>) {
+    if ctl.post.capabilities.probe_log {
+        ctl.lines(Event::ProbeLogClose, &[], g, out);
+    }
 }
 
 /// The probing set of a height map's `grid`. `log_name` is the file LinuxCNC writes the
@@ -91,6 +97,7 @@ pub(crate) fn grid_set(
     let points = grid.serpentine();
     let (s, t, o) = (model.params.s, model.params.t, model.params.o);
     let feed = hm.probe_feed.unwrap_or(model.params.f);
+    let g = Controller::globals(model, file_name);
     let mut pl = ctl.prologue(banner, file_name, model, s, false);
     let (lo, hi) = (
         P2 {
@@ -102,8 +109,9 @@ pub(crate) fn grid_set(
             y: grid.ys[grid.ys.len() - 1],
         },
     );
-    pl.push(format!(
-        "(MILLPATH-HEIGHTMAP X0={} Y0={} X1={} Y1={} NX={} NY={} STEP={})",
+    // the grid for adjust-z and the checker: millpath's own record, a comment in any post
+    let record = format!(
+        "MILLPATH-HEIGHTMAP X0={} Y0={} X1={} Y1={} NX={} NY={} STEP={}",
         f3(lo.x),
         f3(lo.y),
         f3(hi.x),
@@ -111,24 +119,31 @@ pub(crate) fn grid_set(
         grid.xs.len(),
         grid.ys.len(),
         f3(hm.step)
-    ));
-    pl.extend(probe_open(ctl, log_name));
+    );
+    pl.push(ctl.post.comment(0, &record, &g));
+    probe_open(ctl, log_name, &g, &mut pl);
     let mut cur = P2::default();
     for p in &points {
         if p.dist(cur) > 0.0 {
-            pl.push(format!("G00 X{} Y{}", F3(p.x), F3(p.y)));
+            ctl.rapid_xy(&g, *p, &mut pl);
         }
         cur = *p;
-        pl.push(format!("G00 Z{}", F3(t + o)));
-        pl.push(format!("G38.2 Z{} F{}", F3(t - hm.probe_depth), F3(feed)));
-        pl.push(format!("G00 Z{}", F3(s)));
+        ctl.rapid_z(&g, Event::RapidZ, t + o, &mut pl);
+        let probe = [
+            (Var::X, Value::Num(p.x)),
+            (Var::Y, Value::Num(p.y)),
+            (Var::Z, Value::Num(t - hm.probe_depth)),
+            (Var::Feed, Value::Num(feed)),
+        ];
+        ctl.lines(Event::GridProbe, &probe, &g, &mut pl);
+        ctl.rapid_z(&g, Event::Retract, s, &mut pl);
     }
-    pl.extend(probe_close(ctl));
+    probe_close(ctl, &g, &mut pl);
     if cur.dist(P2::default()) > 0.0 {
-        pl.push("G00 X0.000 Y0.000".into());
+        ctl.rapid_xy(&g, P2::default(), &mut pl);
     }
-    pl.push(format!("G00 Z{}", F3(s)));
-    pl.extend(ctl.epilogue(false));
+    ctl.rapid_z(&g, Event::Retract, s, &mut pl);
+    pl.extend(ctl.epilogue(false, &g));
     let z_lines = points
         .iter()
         .enumerate()

@@ -1,9 +1,10 @@
 //! Helixes: semicircles down to the bottom, bars, pull-up and return to the centre (reference-output.md §9.2).
 
-use crate::emit::{bounded_passes, missing, Emitter, Frame, Kind, Skip, Target};
+use crate::emit::{bounded_passes, missing, Emitter, Frame, Skip};
 use crate::front::drawing::Style;
 use crate::geom::{gt, le, Geom, Transform, F3, P2, P3};
 use crate::model::*;
+use millpath_post::Value;
 
 impl Emitter<'_> {
     pub(crate) fn helix(&mut self, fr: Frame, hx: &Helix) -> Result<(), Skip> {
@@ -32,31 +33,17 @@ impl Emitter<'_> {
         while gt(done, bottom) && !self.full {
             self.comment(4, || format!("MillSemiCircle l={}", F3(d)));
             let b1 = (d - infeed / 2.0).max(bottom);
-            let t = |e: &Emitter| {
-                format!(
-                    "G02 F{} I0 J{} X{} Y{} Z{}",
-                    F3(hx.f),
-                    F3(r1),
-                    F3(c.x),
-                    F3(c.y + r1),
-                    e.zexpr(b1, c)
-                )
-            };
-            self.push(Kind::Mill, t, half, hx.f);
-            self.to(Target::arc(P2::new(c.x, c.y + r1), b1, c, false));
+            // the semicircles' centre is straight above or below their start: `I0`
+            let (south, north) = (P2::new(c.x, c.y - r1), P2::new(c.x, c.y + r1));
+            if !self.semicircle_in_pieces(c, r1, 270.0, z, b1, hx.f) {
+                let ij = (Value::Int(0), r1);
+                self.arc_move(north, c, r1, false, ij, (b1, c), hx.f, half);
+            }
             let b0 = (b1 - infeed / 2.0).max(bottom);
-            let t = |e: &Emitter| {
-                format!(
-                    "G02 F{} I0 J{} X{} Y{} Z{}",
-                    F3(hx.f),
-                    F3(-r1),
-                    F3(c.x),
-                    F3(c.y - r1),
-                    e.zexpr(b0, c)
-                )
-            };
-            self.push(Kind::Mill, t, half, hx.f);
-            self.to(Target::arc(P2::new(c.x, c.y - r1), b0, c, false));
+            if !self.semicircle_in_pieces(c, r1, 90.0, b1, b0, hx.f) {
+                let ij = (Value::Int(0), -r1);
+                self.arc_move(south, c, r1, false, ij, (b0, c), hx.f, half);
+            }
             z = b0;
             done = d;
             d -= infeed;
@@ -94,12 +81,39 @@ impl Emitter<'_> {
         } else {
             // deliberate difference: the pull-up height is raised by h as well
             let s = h + p.s;
-            let t = |e: &Emitter| format!("G00 Z{}", e.zexpr(s, c));
-            self.push(Kind::VSweep, t, s - done, 0.0);
-            self.to(Target::z(s));
+            self.rapid_z_len(done, s, c, s - done);
             self.move_xy(c.x, c.y, r1);
             self.pos = c.with_z(s);
         }
         Ok(())
+    }
+}
+
+impl Emitter<'_> {
+    /// A clockwise half circle of the helix from angle `from_deg` where the post writes such
+    /// an arc in pieces or as lines (`arc_form`): milled so, `true`; else `false` (the caller
+    /// writes it whole, as the reference does).
+    fn semicircle_in_pieces(
+        &mut self,
+        c: P2,
+        r: f64,
+        from_deg: f64,
+        z0: f64,
+        z1: f64,
+        feed: f64,
+    ) -> bool {
+        let semi = Geom::Arc {
+            c,
+            r,
+            a0: from_deg,
+            a1: from_deg + 180.0,
+            ccw: false,
+        };
+        let (n, as_lines) = self.arc_form(&semi);
+        if n > 1 || as_lines {
+            self.mill_piece(&semi, z0, z1, feed);
+            return true;
+        }
+        false
     }
 }

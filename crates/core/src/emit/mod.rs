@@ -11,16 +11,18 @@ use crate::diag::{Diagnostic, Msg, Origin};
 use crate::emit::record::Record;
 pub use crate::emit::record::{LineSink, NO_SOURCE};
 use crate::front::drawing::Style;
-use crate::geom::{Transform, F3, P3};
+use crate::geom::{Transform, F3, P2, P3};
 use crate::machine::Dialect;
 use crate::model::*;
 use crate::params::MAX_MAGNITUDE;
 use crate::probe::tour::{collect_probes, probe_tour, PlacedProbe};
+use millpath_post::{Event, Value, Var};
 
 pub mod bars;
 pub mod chain;
 pub mod chain_order;
 pub mod comment;
+mod contour;
 pub mod dialect;
 pub mod elements;
 pub mod extent;
@@ -115,8 +117,10 @@ pub(crate) struct Emitter<'a> {
     pub(crate) source: Option<u32>,
     /// What the moves pushed now make.
     pub(crate) shape: Shape,
-    /// The controller the texts are written for (plunge feeds).
+    /// The controller the texts are written for (plunge feeds) and its post (the texts).
     pub(crate) ctl: Controller,
+    /// The program's values for the post's templates.
+    pub(crate) globals: millpath_post::Globals<'a>,
     /// Asked every [`STOP_EVERY`] elements or passes: `true` stops the emitter (the result
     /// is not wanted any more).
     pub(crate) stop: Option<&'a dyn Fn() -> bool>,
@@ -158,7 +162,7 @@ impl<'a> Emitter<'a> {
         let text = if self.dry {
             String::new()
         } else {
-            comment::comment_line(self.ctl.dialect, indent, &text())
+            self.ctl.post.comment(indent, &text(), &self.globals)
         };
         let source = self.source.unwrap_or(NO_SOURCE);
         self.rec.comment(text, source);
@@ -205,15 +209,42 @@ impl<'a> Emitter<'a> {
         }
         self.full
     }
-    /// A horizontal rapid `G00 X Y` with its recorded length.
+    /// A horizontal rapid with its recorded length.
     pub(crate) fn move_xy(&mut self, x: f64, y: f64, len: f64) {
+        let vars = [(Var::X, Value::Num(x)), (Var::Y, Value::Num(y))];
         self.push(
             Kind::HSweep,
-            |_: &Emitter| format!("G00 X{} Y{}", F3(x), F3(y)),
+            |e: &Emitter| e.text(Event::RapidXy, &vars),
             len,
             0.0,
         );
         self.to(Target::xy(x, y));
+    }
+    /// The post's text of an event.
+    pub(crate) fn text(&self, event: Event, vars: &[(Var, Value)]) -> String {
+        self.ctl.post.text(event, vars, &self.globals)
+    }
+    /// A vertical rapid from `from` to `z` (a retract when it goes up), its Z corrected for
+    /// the probes at `xy`.
+    pub(crate) fn rapid_z(&mut self, from: f64, z: f64, xy: P2) {
+        self.rapid_z_len(from, z, xy, (from - z).abs());
+    }
+    /// [`Emitter::rapid_z`] recorded with the length `len`.
+    pub(crate) fn rapid_z_len(&mut self, from: f64, z: f64, xy: P2, len: f64) {
+        let event = if z > from {
+            Event::Retract
+        } else {
+            Event::RapidZ
+        };
+        let t = |e: &Emitter| {
+            let expr = e.zexpr(z, xy).probe_text();
+            e.text(
+                event,
+                &[(Var::Z, Value::Num(z)), (Var::ZProbe, Value::Text(&expr))],
+            )
+        };
+        self.push(Kind::VSweep, t, len, 0.0);
+        self.to(Target::z(z));
     }
     /// Records an element's origin; its index for [`Item::source`].
     pub(crate) fn add_source(&mut self, o: &Origin) -> u32 {
@@ -248,6 +279,7 @@ impl<'a> Emitter<'a> {
                 Element::Helix(_) => Shape::Helix,
                 _ => Shape::Mill,
             };
+            self.contour_start(fr, e);
             let r = match e {
                 Element::Chain(c) => self.chain(fr, c),
                 Element::Drill(d) => self.drill(fr, d),
@@ -262,6 +294,7 @@ impl<'a> Emitter<'a> {
                 self.errors.push(d);
                 self.lost = true;
             }
+            self.contour_end(fr, e);
         }
     }
 }
@@ -438,7 +471,7 @@ fn emit_with<S: AsRef<str>>(
         })
         .collect();
     let sx = start_height(model);
-    let mut rec = Record::new(dry, prefix, expected_moves(model), sink);
+    let mut rec = Record::new(dry, prefix, expected_moves(model), sink, ctl.post);
     if let Some(sweep_speed) = fold {
         rec.fold_moves(sweep_speed);
     }
@@ -459,6 +492,7 @@ fn emit_with<S: AsRef<str>>(
         source: None,
         shape: Shape::Mill,
         ctl: *ctl,
+        globals: Controller::globals(model, &model.raw.file.name),
         stop,
         stopped: false,
         until_stop_check: 1,
@@ -473,9 +507,15 @@ fn emit_with<S: AsRef<str>>(
         h: 0.0,
     });
     let last_z = em.pos.z;
+    let vars = [(Var::Z, Value::Num(sx)), (Var::ZProbe, Value::Text(""))];
+    let event = if sx > last_z {
+        Event::Retract
+    } else {
+        Event::RapidZ
+    };
     em.push(
         Kind::VSweep,
-        |_: &Emitter| format!("G00 Z{}", F3(sx)),
+        |e: &Emitter| e.text(event, &vars),
         (last_z - sx).abs(),
         0.0,
     );

@@ -9,6 +9,7 @@ use crate::emit::{bt, probe_split, Emitter, Kind, NamedProbe, Target};
 use crate::geom::{near, Geom, F3, P2, P3};
 use crate::machine::Dialect;
 use crate::params::fmt_num;
+use millpath_post::{Event, Value, Var};
 use std::fmt;
 
 impl Emitter<'_> {
@@ -27,24 +28,25 @@ impl Emitter<'_> {
         }
         self.comment(4, || format!("DrillOrPullZFromTo {} {}", F3(from), F3(to)));
         if to > th || to > from {
-            let t = |e: &Emitter| format!("G00 Z{}", e.zexpr(to, xy));
-            self.push(Kind::VSweep, t, (from - to).abs(), 0.0);
-            self.to(Target::z(to));
+            self.rapid_z(from, to, xy);
         } else {
             if from > th {
-                let t = |e: &Emitter| format!("G00 Z{}", e.zexpr(th, xy));
-                self.push(Kind::VSweep, t, (from - th).abs(), 0.0);
-                self.to(Target::z(th));
+                self.rapid_z(from, th, xy);
             }
             if !near(to, th) {
                 // the reference writes no F (the modal feed applies); the other dialects the
                 // plunge feed, which the statistics then use as well
-                let plunge = self.ctl.plunge(feed);
-                let t = |e: &Emitter| match plunge {
-                    None => format!("G01 Z{}", e.zexpr(to, xy)),
-                    Some(f) => format!("G01 F{} Z{}", F3(f), e.zexpr(to, xy)),
+                let plunge = self.ctl.plunge(feed).unwrap_or(feed);
+                let t = |e: &Emitter| {
+                    let expr = e.zexpr(to, xy).probe_text();
+                    let vars = [
+                        (Var::Z, Value::Num(to)),
+                        (Var::ZProbe, Value::Text(&expr)),
+                        (Var::Feed, Value::Num(plunge)),
+                    ];
+                    e.text(Event::Plunge, &vars)
                 };
-                self.push(Kind::Drill, t, (th - to).abs(), plunge.unwrap_or(feed));
+                self.push(Kind::Drill, t, (th - to).abs(), plunge);
                 self.to(Target::z(to));
             }
         }
@@ -122,7 +124,7 @@ impl Emitter<'_> {
         }
         let n = self.split_count(g);
         if n <= 1 {
-            self.mill_piece(g, to_z, feed);
+            self.mill_piece(g, from_z, to_z, feed);
         } else {
             // Z along the move as the whole move ramps it, each piece corrected at its start
             for (k, piece) in probe_split::pieces(g, n).iter().enumerate() {
@@ -134,7 +136,12 @@ impl Emitter<'_> {
                 } else {
                     from_z + (to_z - from_z) * (k + 1) as f64 / n as f64
                 };
-                self.mill_piece(piece, z, feed);
+                let z0 = if k == 0 {
+                    from_z
+                } else {
+                    from_z + (to_z - from_z) * k as f64 / n as f64
+                };
+                self.mill_piece(piece, z0, z, feed);
             }
             self.split.0 += 1;
             self.split.1 += n;
@@ -142,40 +149,135 @@ impl Emitter<'_> {
         self.pos = b.with_z(to_z);
     }
 
-    /// One `G01`/`G02`/`G03` along `g` to `to_z`, its Z corrected at `g`'s start (§12.4).
-    fn mill_piece(&mut self, g: &Geom, to_z: f64, feed: f64) {
+    /// One line or arc along `g` from `from_z` to `to_z`, its Z corrected at `g`'s start
+    /// (§12.4). An arc the post writes otherwise ([`Emitter::arc_form`]) goes in pieces.
+    pub(crate) fn mill_piece(&mut self, g: &Geom, from_z: f64, to_z: f64, feed: f64) {
+        if let Geom::Arc { .. } = g {
+            let (n, as_lines) = self.arc_form(g);
+            if n > 1 || as_lines {
+                let pieces = probe_split::pieces(g, n);
+                for (k, piece) in pieces.iter().enumerate() {
+                    let z = if k + 1 == n {
+                        to_z
+                    } else {
+                        from_z + (to_z - from_z) * (k + 1) as f64 / n as f64
+                    };
+                    if as_lines {
+                        let line = Geom::Line {
+                            a: piece.start(),
+                            b: piece.end(),
+                        };
+                        self.mill_piece(&line, from_z, z, feed);
+                    } else {
+                        self.mill_piece_as_written(piece, z, feed);
+                    }
+                }
+                return;
+            }
+        }
+        self.mill_piece_as_written(g, to_z, feed);
+    }
+
+    /// How the post writes the arc `g`: in how many pieces, and as lines. `lines` (or a
+    /// radius beyond `max_arc_radius`): chords within `chord_tolerance`; `r`: at most half a
+    /// circle each (R cannot say more); `ij`: whole.
+    pub(crate) fn arc_form(&mut self, g: &Geom) -> (usize, bool) {
+        let Geom::Arc { r, .. } = *g else {
+            return (1, false);
+        };
+        let f = &self.ctl.post.format;
+        let sweep = g.sweep_deg().to_radians();
+        let as_lines =
+            f.arcs == millpath_post::ArcMode::Lines || f.max_arc_radius.is_some_and(|m| r > m);
+        if as_lines {
+            let tol = f.chord_tolerance.min(r);
+            let step = 2.0 * (1.0 - tol / r).clamp(-1.0, 1.0).acos();
+            let n = (sweep / step).ceil();
+            if !(n.is_finite() && n <= probe_split::MAX_PIECES as f64) {
+                let origin = self
+                    .source
+                    .and_then(|i| self.sources.get(i as usize).cloned())
+                    .unwrap_or(Origin::Options);
+                self.errors.push(Diagnostic::error(
+                    Msg::PostCannot,
+                    origin,
+                    args![
+                        self.ctl.post.name.clone(),
+                        format!("this arc (r={}) in lines", F3(r)),
+                        "chord_tolerance"
+                    ],
+                ));
+                self.lost = true;
+                return (1, false);
+            }
+            return ((n as usize).max(1), true);
+        }
+        if f.arcs == millpath_post::ArcMode::R && g.sweep_deg() > 180.0 - 1e-9 {
+            return (2, false);
+        }
+        (1, false)
+    }
+
+    /// One `linear` or arc event along `g` to `to_z`, its Z corrected at `g`'s start.
+    fn mill_piece_as_written(&mut self, g: &Geom, to_z: f64, feed: f64) {
         let (a, b) = (g.start(), g.end());
         match *g {
             Geom::Line { .. } => {
                 let t = |e: &Emitter| {
-                    format!(
-                        "G01 F{} X{} Y{} Z{}",
-                        F3(feed),
-                        F3(b.x),
-                        F3(b.y),
-                        e.zexpr(to_z, a)
-                    )
+                    let expr = e.zexpr(to_z, a).probe_text();
+                    let vars = [
+                        (Var::X, Value::Num(b.x)),
+                        (Var::Y, Value::Num(b.y)),
+                        (Var::Z, Value::Num(to_z)),
+                        (Var::ZProbe, Value::Text(&expr)),
+                        (Var::Feed, Value::Num(feed)),
+                    ];
+                    e.text(Event::Linear, &vars)
                 };
                 self.push(Kind::Mill, t, a.dist(b), feed);
                 self.to(Target::xyz(b, to_z));
             }
-            Geom::Arc { c, ccw, .. } => {
-                let t = |e: &Emitter| {
-                    format!(
-                        "{} F{} I{} J{} X{} Y{} Z{}",
-                        if ccw { "G03" } else { "G02" },
-                        F3(feed),
-                        F3(c.x - a.x),
-                        F3(c.y - a.y),
-                        F3(b.x),
-                        F3(b.y),
-                        e.zexpr(to_z, a)
-                    )
-                };
-                self.push(Kind::Mill, t, g.length(), feed);
-                self.to(Target::arc(b, to_z, c, ccw));
+            Geom::Arc { c, r, ccw, .. } => {
+                let ij = (Value::Num(c.x - a.x), c.y - a.y);
+                self.arc_move(b, c, r, ccw, ij, (to_z, a), feed, g.length());
             }
         }
+    }
+
+    /// An arc to `b` around `c` of radius `r`: `ij`, the centre's offsets as
+    /// written (I a number, or the helix's whole `0`); `z`: its end height and the point
+    /// whose probes correct it.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn arc_move(
+        &mut self,
+        b: P2,
+        c: P2,
+        r: f64,
+        ccw: bool,
+        (i, j): (Value<'static>, f64),
+        (to_z, zxy): (f64, P2),
+        feed: f64,
+        len: f64,
+    ) {
+        let t = |e: &Emitter| {
+            let expr = e.zexpr(to_z, zxy).probe_text();
+            // R: negative beyond a half circle (the arc's length against the half's)
+            let half = r * std::f64::consts::PI;
+            let r_word = if len > half * (1.0 + 1e-9) { -r } else { r };
+            let vars = [
+                (Var::X, Value::Num(b.x)),
+                (Var::Y, Value::Num(b.y)),
+                (Var::Z, Value::Num(to_z)),
+                (Var::ZProbe, Value::Text(&expr)),
+                (Var::Feed, Value::Num(feed)),
+                (Var::I, i.clone()),
+                (Var::J, Value::Num(j)),
+                (Var::R, Value::Num(r_word)),
+            ];
+            e.text(if ccw { Event::ArcCcw } else { Event::ArcCw }, &vars)
+        };
+        self.push(Kind::Mill, t, len, feed);
+        self.to(Target::arc(b, to_z, c, ccw));
     }
 
     /// Pieces `g` is milled in: more than one only with drawn probes and `probe_split`
@@ -217,6 +319,19 @@ pub(crate) struct ZExpr<'p> {
     z: f64,
     xy: P2,
     probes: &'p [NamedProbe],
+}
+
+impl ZExpr<'_> {
+    /// The expression comment after the Z value (`(=1.000+0.500*[#51-0.000]…)`), empty
+    /// without probes: the post's `{z_probe}`.
+    pub(crate) fn probe_text(&self) -> String {
+        if self.probes.is_empty() {
+            return String::new();
+        }
+        let whole = self.to_string();
+        let z = F3(self.z).to_string();
+        whole[z.len()..].to_string()
+    }
 }
 
 impl fmt::Display for ZExpr<'_> {

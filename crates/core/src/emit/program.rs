@@ -13,6 +13,7 @@ use crate::emit::stats::Stats;
 use crate::emit::{emit_into, emit_quick, emit_until, start_height, Emitted, LineSink};
 use crate::geom::{near, F3, P2, P3};
 use crate::model::*;
+use millpath_post::{Event, Globals, LineWriter, Post, Value, Var};
 
 /// The files of one compiled path.
 #[derive(Debug, Clone, PartialEq)]
@@ -72,6 +73,7 @@ pub fn check_until(
 ) -> Result<Stats, Vec<Diagnostic>> {
     let e = emit_until(model, true, ctl, stop)?;
     refuse_bad_grid(model, ctl, &e)?;
+    refuse_unwritable_probes(ctl, &e)?;
     let mut stats = Stats::timed(&e.rec.items, sweep_speed, start(e.sx), ctl.machine.as_ref());
     stats.split = e.split;
     Ok(stats)
@@ -85,7 +87,23 @@ pub fn quick_check_until(
     stop: Option<&dyn Fn() -> bool>,
 ) -> Result<(), Vec<Diagnostic>> {
     let e = emit_quick(model, ctl, stop)?;
-    refuse_bad_grid(model, ctl, &e)
+    refuse_bad_grid(model, ctl, &e)?;
+    refuse_unwritable_probes(ctl, &e)
+}
+
+/// Drawn probes on a post that cannot write them are refused at the first probe.
+fn refuse_unwritable_probes(ctl: &Controller, e: &Emitted) -> Result<(), Vec<Diagnostic>> {
+    let Some(first) = e.probes.first() else {
+        return Ok(());
+    };
+    match ctl.post.missing_for(true, false, false, false) {
+        Some(missing) => Err(vec![Diagnostic::error(
+            crate::diag::Msg::PostCannot,
+            first.placed.probe.origin.clone(),
+            crate::args![ctl.post.name.clone(), "Z probes", missing.key()],
+        )]),
+        None => Ok(()),
+    }
 }
 
 /// A check refuses a height map's grid as compile does.
@@ -199,6 +217,15 @@ fn generate_job(
         split,
         ..
     } = emit_into(model, ctl, stop, &prologue, sink, fold)?;
+    if let Some(first) = probes.first() {
+        if let Some(missing) = ctl.post.missing_for(true, false, false, false) {
+            return Err(vec![Diagnostic::error(
+                crate::diag::Msg::PostCannot,
+                first.placed.probe.origin.clone(),
+                crate::args![ctl.post.name.clone(), "Z probes", missing.key()],
+            )]);
+        }
+    }
     let s = model.params.s;
     let items = &rec.items;
 
@@ -218,14 +245,21 @@ fn generate_job(
         }
         None => None,
     };
-    let mut tail: Vec<String> = stats
-        .lines(lang)
-        .iter()
-        .map(|l| format!("  ({l})"))
-        .collect();
-    tail.extend(stats.model_line(lang).map(|l| format!("  ({l})")));
-    tail.extend(stats.split_line(lang).map(|l| format!("  ({l})")));
-    tail.extend(ctl.epilogue(true));
+    let g = Controller::globals(model, file_name);
+    let mut tail: Vec<String> = Vec::new();
+    let stat_lines = stats.lines(lang).into_iter();
+    for l in stat_lines
+        .chain(stats.model_line(lang))
+        .chain(stats.split_line(lang))
+    {
+        ctl.lines(
+            Event::Statistics,
+            &[(Var::Text, Value::Text(&l))],
+            &g,
+            &mut tail,
+        );
+    }
+    tail.extend(ctl.epilogue(true, &g));
     // the program is the emitter's text (written line by line as it went), then the tail
     if rec.sink.is_none() {
         rec.text.reserve_exact(text_size(&tail));
@@ -242,10 +276,11 @@ fn generate_job(
     let streamed = sink.is_some();
     let set = |z_lines: &[String], probing: &[String], clean: String| {
         let z_txt = join(z_lines);
+        let probing = join_program(ctl.post, probing);
         let (probing, clean) = if streamed {
-            (join(probing), clean)
+            (probing, clean)
         } else {
-            stamp_set(banner, &z_txt, join(probing), clean)
+            stamp_set(ctl.post, banner, &z_txt, probing, clean)
         };
         Output::Probing {
             probing,
@@ -276,28 +311,31 @@ fn generate_job(
     }
     // probing program and Z file
     let mut pl = ctl.prologue(banner, file_name, model, s, false);
-    pl.extend(probe_open(ctl, &log));
+    probe_open(ctl, &log, &g, &mut pl);
     let mut cur = P2::default();
     for p in &probes {
-        if !near(p.placed.pos.dist(cur), 0.0) {
-            pl.push(format!(
-                "G00 X{} Y{}",
-                F3(p.placed.pos.x),
-                F3(p.placed.pos.y)
-            ));
+        let at = p.placed.pos;
+        if !near(at.dist(cur), 0.0) {
+            ctl.rapid_xy(&g, at, &mut pl);
         }
-        cur = p.placed.pos;
-        pl.push(format!("G00 Z{}", F3(p.placed.height() + model.params.o)));
-        pl.push(format!("G38.3 Z0 F{}", F3(p.placed.probe.z)));
-        pl.push("G04 P4".into());
-        pl.push(format!("G00 Z{}", F3(s)));
+        cur = at;
+        let above = p.placed.height() + model.params.o;
+        ctl.rapid_z(&g, Event::RapidZ, above, &mut pl);
+        let probe = [
+            (Var::X, Value::Num(at.x)),
+            (Var::Y, Value::Num(at.y)),
+            (Var::Z, Value::Num(0.0)),
+            (Var::Feed, Value::Num(p.placed.probe.z)),
+        ];
+        ctl.lines(Event::Probe, &probe, &g, &mut pl);
+        ctl.rapid_z(&g, Event::Retract, s, &mut pl);
     }
-    pl.extend(probe_close(ctl));
+    probe_close(ctl, &g, &mut pl);
     if !near(cur.dist(P2::default()), 0.0) {
-        pl.push("G00 X0.000 Y0.000".into());
+        ctl.rapid_xy(&g, P2::default(), &mut pl);
     }
-    pl.push(format!("G00 Z{}", F3(s)));
-    pl.extend(ctl.epilogue(false));
+    ctl.rapid_z(&g, Event::Retract, s, &mut pl);
+    pl.extend(ctl.epilogue(false, &g));
     let z_lines: Vec<String> = probes
         .iter()
         .map(|p| {
@@ -330,8 +368,15 @@ fn generate_job(
 /// The set's digest in the banner line of both programs (the line the reference's outputs
 /// are compared without): adjust-z refuses files of different compiles. Returns the stamped
 /// probing and clean programs.
-fn stamp_set(banner: &str, z_txt: &str, probing: String, clean: String) -> (String, String) {
-    let stamped = as_comment(0, &banner_with_digest(banner, &set_digest(z_txt, &clean)));
+fn stamp_set(
+    post: &Post,
+    banner: &str,
+    z_txt: &str,
+    probing: String,
+    clean: String,
+) -> (String, String) {
+    let text = banner_with_digest(banner, &set_digest(z_txt, &clean));
+    let stamped = post.comment(0, &text, &Globals::default());
     (
         stamp_banner(probing, &stamped),
         stamp_banner(clean, &stamped),
@@ -354,8 +399,16 @@ pub(crate) fn stamp_banner(mut text: String, stamped: &str) -> String {
     } else {
         end
     };
-    text.replace_range(start..end, stamped);
+    let line = stamped_line(&text[start..end], stamped);
+    text.replace_range(start..end, &line);
     text
+}
+
+/// The banner line `old` with its comment replaced by `stamped`: what the post wrote before
+/// the comment (a line number) stays.
+pub(crate) fn stamped_line(old: &str, stamped: &str) -> String {
+    let at = old.find(['(', ';']).unwrap_or(0);
+    format!("{}{stamped}", &old[..at])
 }
 
 /// Where the body's moves start: above the origin at the start height.
@@ -365,6 +418,20 @@ fn start(sx: f64) -> P3 {
         y: 0.0,
         z: sx,
     }
+}
+
+/// A program's lines as the post writes them (numbers, modal words, line ends).
+fn join_program(post: &Post, lines: &[String]) -> String {
+    let mut w = LineWriter::new(post);
+    if w.is_plain() {
+        return join(lines);
+    }
+    let mut s = String::new();
+    for l in lines {
+        s.push_str(&w.line(l));
+        s.push_str(w.end());
+    }
+    s
 }
 
 fn join<S: AsRef<str>>(lines: &[S]) -> String {

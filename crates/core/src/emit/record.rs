@@ -17,6 +17,7 @@
 
 use crate::emit::stats::Stats;
 use crate::emit::{Item, Kind};
+use millpath_post::{Event, Globals, LineWriter, Post, Value, Var};
 use std::any::Any;
 
 /// Where a program's lines go instead of a text: a consumer that reads each line as it is
@@ -51,6 +52,10 @@ pub(crate) struct Record {
     /// which a following sweep may still comment out): a long program's statistics without
     /// its moves. Set by [`Record::fold_moves`].
     fold: Option<Fold>,
+    /// The post: its `disabled` template, and its line writer (numbers, modal words, line
+    /// ends) where it changes lines.
+    post: Option<&'static Post>,
+    writer: Option<LineWriter<'static>>,
 }
 
 struct Fold {
@@ -73,7 +78,9 @@ impl Record {
         prefix: &[S],
         moves: usize,
         sink: Option<Box<dyn LineSink>>,
+        post: &'static Post,
     ) -> Record {
+        let writer = Some(LineWriter::new(post)).filter(|w| !w.is_plain());
         let text_too = !dry && sink.is_none();
         let mut r = Record {
             items: Vec::with_capacity(moves),
@@ -88,6 +95,8 @@ impl Record {
             }),
             sink,
             dry,
+            post: Some(post),
+            writer,
             ..Record::default()
         };
         for l in prefix {
@@ -201,27 +210,51 @@ impl Record {
         if self.dry {
             return;
         }
+        // a template of several lines: each its own, from the same element
+        if line.contains('\n') {
+            for l in line.split('\n') {
+                self.write(l, source);
+            }
+            return;
+        }
+        let written;
+        let (line, end) = match &mut self.writer {
+            Some(w) => {
+                written = w.line(line);
+                (written.as_str(), w.end())
+            }
+            None => (line, "\n"),
+        };
         match &mut self.sink {
             Some(sink) => sink.line(line, source),
             None => {
                 self.text.push_str(line);
-                self.text.push('\n');
+                self.text.push_str(end);
             }
         }
         self.line_sources.push(source);
     }
 
+    /// A sweep the optimizer took out, as the post's `disabled` template writes it.
     fn write_commented(&mut self, line: &str, source: u32) {
-        match &mut self.sink {
-            Some(_) if !self.dry => self.write(&format!("; {line}"), source),
-            _ => {
-                if !self.dry {
-                    self.text.push_str("; ");
-                }
-                self.write(line, source)
-            }
+        if self.dry {
+            return;
         }
+        let disabled = match self.post {
+            Some(post) => post.text(
+                Event::Disabled,
+                &[(Var::Line, Value::Text(line))],
+                &Globals::default(),
+            ),
+            None => format!("; {line}"),
+        };
+        self.write(&disabled, source)
     }
+}
+
+#[cfg(test)]
+fn post() -> &'static Post {
+    crate::emit::Dialect::LinuxCnc.post()
 }
 
 #[cfg(test)]
@@ -242,7 +275,7 @@ mod tests {
 
     #[test]
     fn only_the_last_sweep_of_a_run_stays() {
-        let mut r = Record::new(false, &["%"], 4, None);
+        let mut r = Record::new(false, &["%"], 4, None, post());
         r.moved(item(Kind::HSweep), "G00 X1 Y1".into(), 0);
         r.comment("(c)".into(), 1);
         r.moved(item(Kind::HSweep), "G00 X2 Y2".into(), 2);
@@ -280,9 +313,9 @@ mod tests {
             r.finish();
             r.write_tail(&["M30"]);
         };
-        let mut text = Record::new(false, &["%"], 4, None);
+        let mut text = Record::new(false, &["%"], 4, None, post());
         run(&mut text);
-        let mut sunk = Record::new(false, &["%"], 4, Some(Box::new(Lines::default())));
+        let mut sunk = Record::new(false, &["%"], 4, Some(Box::new(Lines::default())), post());
         run(&mut sunk);
         assert!(sunk.text.is_empty(), "no text is kept beside a sink");
         let any: Box<dyn Any> = sunk.sink.take().unwrap();
@@ -297,7 +330,7 @@ mod tests {
 
     #[test]
     fn a_dry_record_counts_lines_and_keeps_moves_only() {
-        let mut r = Record::new(true, &["%"], 4, None);
+        let mut r = Record::new(true, &["%"], 4, None, post());
         r.moved(item(Kind::HSweep), "G00 X1 Y1".into(), 0);
         r.moved(item(Kind::HSweep), "G00 X2 Y2".into(), 0);
         r.comment("(c)".into(), 0);
@@ -342,9 +375,9 @@ mod fold_tests {
     #[test]
     fn folded_moves_give_the_statistics_of_kept_ones_bit_for_bit() {
         let sweep_speed = 1234.5;
-        let mut kept = Record::new(false, &["%"], 16, None);
+        let mut kept = Record::new(false, &["%"], 16, None, post());
         program(&mut kept);
-        let mut folded = Record::new(false, &["%"], 16, None);
+        let mut folded = Record::new(false, &["%"], 16, None, post());
         folded.fold_moves(sweep_speed);
         program(&mut folded);
         let (a, b) = (kept.stats(sweep_speed), folded.stats(sweep_speed));

@@ -31,6 +31,12 @@ pub struct FileConfig {
     pub lang: Option<String>,
     /// `reference` (default), `linuxcnc` or `grbl`.
     pub dialect: Option<Dialect>,
+    /// A built-in post's name or a post file (relative to this file's folder); over
+    /// `dialect`. Read by the caller ([`crate::emit::dialect::select_post`]).
+    pub post: Option<String>,
+    /// The folder a relative `post` file is found in.
+    #[serde(skip)]
+    pub base_dir: PathBuf,
     pub plunge_feed: Option<f64>,
     pub spindle_rpm: Option<f64>,
     pub spindle_dwell: Option<f64>,
@@ -107,6 +113,7 @@ impl AxesValue {
 /// The error text names the line.
 pub fn parse(text: &str, base_dir: &Path) -> Result<FileConfig, String> {
     let mut cfg: FileConfig = toml::from_str(text).map_err(|e| e.to_string())?;
+    cfg.base_dir = base_dir.to_path_buf();
     cfg.search_dirs = cfg.search_dirs.iter().map(|d| base_dir.join(d)).collect();
     Ok(cfg)
 }

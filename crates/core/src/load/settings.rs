@@ -57,6 +57,9 @@ pub struct Settings {
     /// The controller the programs are written for (`reference`: byte-identical to
     /// PathDxf2GCode).
     pub dialect: Dialect,
+    /// A post file (`post = "posts/mymachine.toml"`, `--post FILE`) that writes the text
+    /// instead of the dialect's built-in post; the dialect is then the post's family's.
+    pub post: Option<&'static millpath_post::Post>,
     /// Feed of plunges in the `linuxcnc` and `grbl` dialects; `None`: half the feed of the
     /// element (a set value is never faster than the element's feed either).
     pub plunge_feed: Option<f64>,
@@ -118,6 +121,7 @@ impl Default for Settings {
             debug_pattern: None,
             lang: Lang::En,
             dialect: Dialect::Reference,
+            post: None,
             plunge_feed: None,
             spindle_rpm: None,
             spindle_dwell: DEFAULT_SPINDLE_DWELL,
@@ -217,6 +221,7 @@ impl Settings {
         }
         errors.extend(self.heightmap_errors());
         errors.extend(self.probe_split_errors());
+        errors.extend(self.post_errors());
         errors.extend(crate::load::clamps::errors(
             &self.clamps,
             self.clamps_file.as_ref(),
@@ -310,6 +315,47 @@ impl Settings {
             ));
         }
         errors
+    }
+
+    /// What a post file cannot write of these settings: a height map, a spindle speed, a
+    /// dwell (the built-in posts write what their dialect allows).
+    fn post_errors(&self) -> Vec<Diagnostic> {
+        let Some(post) = self.post else {
+            return Vec::new();
+        };
+        let asks = [
+            (
+                self.heightmap.is_some(),
+                "[heightmap]",
+                (false, true, false, false),
+            ),
+            (
+                self.spindle_rpm.is_some(),
+                "spindle_rpm",
+                (false, false, true, false),
+            ),
+            (
+                self.spindle_rpm.is_some() && self.spindle_dwell > 0.0,
+                "spindle_dwell",
+                (false, false, false, true),
+            ),
+        ];
+        asks.into_iter()
+            .filter(|(asked, _, _)| *asked)
+            .filter_map(|(_, what, (p, g, s, d))| {
+                let missing = post.missing_for(p, g, s, d)?;
+                let origin = match (what, &self.heightmap_file) {
+                    ("[heightmap]", Some(f)) => Origin::File(crate::diag::FileRef::new(f.clone())),
+                    ("[heightmap]", None) => Origin::Options,
+                    (key, _) => self.origin_of(key),
+                };
+                Some(Diagnostic::error(
+                    Msg::PostCannot,
+                    origin,
+                    args![post.name.clone(), what, missing.key()],
+                ))
+            })
+            .collect()
     }
 
     /// The machine limits as named values (`max_velocity.x` …, `path_tolerance`).

@@ -64,7 +64,8 @@ pub(super) fn has_expression_mark(text: &str) -> bool {
 /// Checks that `clean` is a complete program: first line `%`, a line `M30`, last line `%`;
 /// or, in the grbl dialect (no `%`), a last line `M30`.
 fn check_complete(clean: &str, file: &str, diags: &mut Diags) {
-    let lines: Vec<&str> = clean.lines().collect();
+    // a post's line numbers (`N10 M30`) are not part of what is checked
+    let lines: Vec<&str> = clean.lines().map(without_line_number).collect();
     let last = lines.iter().rposition(|l| !l.trim().is_empty());
     let percent = lines.first().is_some_and(|l| l.trim() == "%");
     let bad_line = match last {
@@ -81,6 +82,18 @@ fn check_complete(clean: &str, file: &str, diags: &mut Diags) {
             line_origin(file, line),
             args![file],
         );
+    }
+}
+
+/// A line without its line number word (`N10 M30` → `M30`).
+fn without_line_number(line: &str) -> &str {
+    let t = line.trim_start();
+    let digits = t
+        .strip_prefix('N')
+        .map(|r| r.len() - r.trim_start_matches(|c: char| c.is_ascii_digit()).len());
+    match digits {
+        Some(n) if n > 0 && t[1 + n..].starts_with([' ', '\t']) => &t[1 + n..],
+        _ => line,
     }
 }
 
