@@ -27,6 +27,7 @@ mod adjusted;
 mod checks;
 mod clamps;
 mod finding;
+mod grbl;
 mod machine;
 mod parse;
 mod reread;
