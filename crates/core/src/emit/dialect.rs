@@ -6,7 +6,7 @@
 //! no `%` program delimiters — no `%` lines.
 
 use crate::emit::comment::comment_line;
-use crate::emit::timing::Machine;
+use crate::emit::timing::TimeModel;
 use crate::front::drawing::Style;
 use crate::geom::{f3, P3};
 use crate::load::settings::Settings;
@@ -63,8 +63,8 @@ pub struct Controller {
     pub spindle_rpm: Option<f64>,
     /// Seconds to wait after the spindle start.
     pub spindle_dwell: f64,
-    /// Machine limits for the time estimates; `None`: the reference's time model.
-    pub machine: Option<Machine>,
+    /// The time model and machine of the estimates; `None`: the reference's time model.
+    pub machine: Option<TimeModel>,
     /// `[heightmap]`: the probing set is a grid over the cuts (its probe feed resolved).
     pub heightmap: Option<Heightmap>,
     /// `probe_split` (mm): with drawn probes, cutting moves are written in pieces of at most
@@ -101,7 +101,7 @@ impl Controller {
             plunge_feed: s.plunge_feed,
             spindle_rpm: s.spindle_rpm,
             spindle_dwell: s.spindle_dwell,
-            machine: s.machine(),
+            machine: s.time_model(),
             heightmap: s.heightmap.map(|h| Heightmap {
                 probe_feed: Some(h.probe_feed.unwrap_or(s.probe_feed())),
                 ..h
