@@ -63,10 +63,10 @@ fn a_corner_runs_at_the_junction_deviation_speed() {
         ..Grbl::default()
     };
     // a right angle: cos θ (GRBL's, of the reversed first direction) = 0, sin(θ/2) = √½;
-    // the change of direction (−1, 1)/√2 lets each axis use 100/(1/√2) = 141.4, so a = 100·…
-    // no: limited by min(100/0.7071) = 141.42 mm/s²;
+    // along the change of direction (−1, 1)/√2 each axis allows 100/(1/√2) = 141.42 mm/s²;
     // v² = 141.42 · 0.05 · 0.70711 / (1 − 0.70711) = 17.071 → v = 4.1317 mm/s
-    let v: f64 = (141.421_356 * 0.05 * 0.707_107 / (1.0 - 0.707_107_f64)).sqrt();
+    let half = std::f64::consts::FRAC_1_SQRT_2;
+    let v: f64 = (141.421_356 * 0.05 * half / (1.0 - half)).sqrt();
     // two 50 mm lines at F1200 (20 mm/s), a = 100 along each axis:
     // up 0 → 20: 0.2 s, 2 mm; down 20 → v: (20 − v)/100 s, (400 − v²)/200 mm; the second
     // line mirrored
@@ -126,7 +126,7 @@ fn arcs_become_chords_by_the_arc_tolerance() {
         source: None,
         shape: Default::default(),
     };
-    let t = seconds(&grbl(Grbl::default()), &[arc.clone()]);
+    let t = seconds(&grbl(Grbl::default()), std::slice::from_ref(&arc));
     let chords = 111.0 * 2.0 * 5.0 * (std::f64::consts::PI / 111.0).sin();
     // steps of 0.004 mm move each chord end by up to 0.002 mm
     assert!(
