@@ -15,7 +15,7 @@ use millpath_core::diag::{Lang, Msg};
 use millpath_core::emit::stats::Stats;
 use millpath_core::emit::{Item, Kind, Target};
 use millpath_core::geom::{P2, P3};
-use millpath_core::machine::{Axes, Machine};
+use millpath_core::machine::{Axes, Machine, TimeModel};
 use millpath_core::Settings;
 use support::*;
 
@@ -68,7 +68,7 @@ fn xy(x: f64, y: f64) -> Target {
 }
 
 fn stats(items: &[Item], m: &Machine) -> Stats {
-    Stats::timed(items, 500.0, ORIGIN, Some(m))
+    Stats::timed(items, 500.0, ORIGIN, Some(&TimeModel::from(*m)))
 }
 
 /// Seconds of milling.
@@ -183,7 +183,7 @@ fn an_arc_is_limited_by_its_centripetal_acceleration() {
             arc: Some((P2 { x: 0.0, y: 0.0 }, true)),
         },
     );
-    let s = Stats::timed(&[arc], 500.0, start, Some(&machine()));
+    let s = Stats::timed(&[arc], 500.0, start, Some(&machine().into()));
     close(s.mill_min * 60.0, 0.4483992973);
 }
 
@@ -229,7 +229,7 @@ fn sweeps_and_plunges_use_the_axis_limits() {
     // a 1000 mm sweep along X at V_x = 100 mm/s: 1000/100 + 100/250 = 10.4 s
     let along_x = item(Kind::HSweep, 1000.0, 0.0, xy(1000.0, 0.0));
     close(
-        Stats::timed(&[along_x], 500.0, ORIGIN, Some(&m)).sweep_min * 60.0,
+        Stats::timed(&[along_x], 500.0, ORIGIN, Some(&m.into())).sweep_min * 60.0,
         10.4,
     );
     // a 45° sweep of 100 mm: X may go 100/0.7071 = 141.4 mm/s, Y only 50/0.7071
@@ -240,7 +240,7 @@ fn sweeps_and_plunges_use_the_axis_limits() {
     let d = 100.0 * std::f64::consts::FRAC_1_SQRT_2;
     let diagonal = item(Kind::HSweep, 100.0, 0.0, xy(d, d));
     close(
-        Stats::timed(&[diagonal], 500.0, ORIGIN, Some(&m)).sweep_min * 60.0,
+        Stats::timed(&[diagonal], 500.0, ORIGIN, Some(&m.into())).sweep_min * 60.0,
         1.6142135624,
     );
     // a 5 mm plunge at F600 (10 mm/s) but V_z = 5 mm/s, A_z = 100 mm/s²: v²/A = 0.25 ≤ 5:
@@ -255,7 +255,7 @@ fn sweeps_and_plunges_use_the_axis_limits() {
         },
     );
     close(
-        Stats::timed(&[plunge], 500.0, ORIGIN, Some(&m)).drill_min * 60.0,
+        Stats::timed(&[plunge], 500.0, ORIGIN, Some(&m.into())).drill_min * 60.0,
         1.05,
     );
 }

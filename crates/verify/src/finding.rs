@@ -77,6 +77,14 @@ pub enum SyntaxError {
     BadDwell,
     /// A G or M code no controller knows, e.g. `G07.5`, `M1234`.
     UnknownCode(String),
+    /// A code or word GRBL 1.1 does not have (it refuses the line: `error:20`), e.g. `M6`,
+    /// `G64`, the word `E`.
+    NotInGrbl(String),
+    /// A value word no command of the line uses (GRBL refuses the line: `error:36`), e.g. `R`
+    /// on a straight move, `P` outside G4/G10.
+    UnusedWord(char),
+    /// A motion code given without axis words that needs them (GRBL: `error:26`), e.g. `G02`.
+    NoAxisWords(String),
 }
 
 /// Why a number is not acceptable.
@@ -532,6 +540,18 @@ impl SyntaxError {
             SyntaxError::UnknownCode(c) => {
                 pick(format!("unknown code {c}"), format!("unbekannter Code {c}"))
             }
+            SyntaxError::NotInGrbl(what) => pick(
+                format!("GRBL does not know {what}: it refuses the line"),
+                format!("GRBL kennt {what} nicht: es weist die Zeile ab"),
+            ),
+            SyntaxError::UnusedWord(l) => pick(
+                format!("the word {l} is used by no command of the line: GRBL refuses it"),
+                format!("das Wort {l} wird von keinem Befehl der Zeile verwendet: GRBL weist sie ab"),
+            ),
+            SyntaxError::NoAxisWords(code) => pick(
+                format!("{code} without axis words: GRBL refuses the line"),
+                format!("{code} ohne Achsenwörter: GRBL weist die Zeile ab"),
+            ),
         }
     }
 }

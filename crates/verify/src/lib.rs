@@ -33,6 +33,7 @@ mod clamps;
 mod dialect;
 mod execute;
 mod finding;
+mod grbl;
 mod machine;
 mod magnitude;
 mod options;

@@ -312,6 +312,16 @@ impl Machine {
         }
         let has_g = |c: u32| gs.iter().any(|(g, _)| *g == c);
         let g_of = |group: Group| gs.iter().find(|(_, g)| *g == group).map(|(c, _)| *c);
+        // GRBL refuses more than the others, and drops a refused line whole
+        if self.dialect == Dialect::Grbl {
+            let codes: Vec<u32> = gs.iter().map(|(c, _)| *c).collect();
+            let arc = matches!(self.motion, Some(Motion::Arc { .. }));
+            let plane = g_of(Group::Plane).unwrap_or(self.plane);
+            if let Some(why) = crate::grbl::refusal(b, &codes, &ms, arc, plane) {
+                self.report(line, FindingKind::Syntax(why), Severity::Error);
+                return;
+            }
+        }
 
         // other letters
         for w in &b.words {

@@ -5,8 +5,9 @@
 //! start and stop, a stock comment for verifiers, no `%` lines for GRBL). What stays code
 //! here is what the dialect *decides*: plunge feeds, which events a program has.
 
+use crate::emit::timing::TimeModel;
 use crate::load::settings::Settings;
-use crate::machine::{Dialect, Machine, DEFAULT_SPINDLE_DWELL};
+use crate::machine::{Dialect, DEFAULT_SPINDLE_DWELL};
 use crate::model::Model;
 use crate::probe::heightmap::Heightmap;
 use crate::stock::stock_of;
@@ -91,8 +92,8 @@ pub struct Controller {
     pub spindle_rpm: Option<f64>,
     /// Seconds to wait after the spindle start.
     pub spindle_dwell: f64,
-    /// Machine limits for the time estimates; `None`: the reference's time model.
-    pub machine: Option<Machine>,
+    /// The time model and machine of the estimates; `None`: the reference's time model.
+    pub machine: Option<TimeModel>,
     /// `[heightmap]`: the probing set is a grid over the cuts (its probe feed resolved).
     pub heightmap: Option<Heightmap>,
     /// `probe_split` (mm): with drawn probes, cutting moves are written in pieces of at most
@@ -131,7 +132,7 @@ impl Controller {
             plunge_feed: s.plunge_feed,
             spindle_rpm: s.spindle_rpm,
             spindle_dwell: s.spindle_dwell,
-            machine: s.machine(),
+            machine: s.time_model(),
             heightmap: s.heightmap.map(|h| Heightmap {
                 probe_feed: Some(h.probe_feed.unwrap_or(s.probe_feed())),
                 ..h

@@ -8,11 +8,9 @@
 //! statistics.
 
 use crate::diag::Lang;
-use crate::emit::timing::plan;
+use crate::emit::timing::TimeModel;
 use crate::emit::{Item, Kind};
 use crate::geom::P3;
-use crate::machine::Machine;
-use crate::params::fmt_num;
 
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Stats {
@@ -23,8 +21,12 @@ pub struct Stats {
     pub sweep: f64,
     pub sweep_min: f64,
     pub count: usize,
-    /// The machine limits the times were estimated with; `None`: the reference's model.
-    pub machine: Option<Machine>,
+    /// The time model and machine the times were estimated with; `None`: the reference's
+    /// model.
+    pub machine: Option<TimeModel>,
+    /// Seconds the program waits beside its moves (the spindle's start dwell in the GRBL
+    /// model), part of [`Stats::seconds`].
+    pub dwell: f64,
     /// `probe_split`: cutting moves split for the probes, and the pieces they became (each
     /// piece is one command of `count`).
     pub split: (usize, usize),
@@ -70,12 +72,18 @@ impl Stats {
         self
     }
 
-    /// [`Stats::of`], with the times of the LinuxCNC planner model when `machine` is set (the tool
+    /// [`Stats::of`], with the times of a planner model when `machine` is set (the tool
     /// starting at rest at `start`).
-    pub fn timed(items: &[Item], sweep_speed: f64, start: P3, machine: Option<&Machine>) -> Stats {
+    pub fn timed(
+        items: &[Item],
+        sweep_speed: f64,
+        start: P3,
+        machine: Option<&TimeModel>,
+    ) -> Stats {
         let mut s = Stats::of(items, sweep_speed);
         if let Some(m) = machine {
-            let t = plan(items, start, m);
+            let t = m.plan(items, start);
+            s.dwell = m.dwell();
             s.mill_min = t.mill / 60.0;
             s.drill_min = t.drill / 60.0;
             s.sweep_min = t.sweep / 60.0;
@@ -87,7 +95,7 @@ impl Stats {
     /// The estimated time of the whole program in seconds (the sum of the three lines'
     /// times, unrounded).
     pub fn seconds(&self) -> f64 {
-        (self.mill_min + self.drill_min + self.sweep_min) * 60.0
+        (self.mill_min + self.drill_min + self.sweep_min) * 60.0 + self.dwell
     }
 
     /// The exact estimate for the summaries beside the reference's statistics, e.g.
@@ -104,20 +112,7 @@ impl Stats {
     /// v=X5000/Y5000/Z1000 mm/min, a=X500/Y500/Z200 mm/s^2, G64 P0.05`; `None` for the
     /// reference's model (whose output has five lines).
     pub fn model_line(&self, lang: Lang) -> Option<String> {
-        let m = self.machine?;
-        let axes = |a: &crate::machine::Axes| {
-            format!("X{}/Y{}/Z{}", fmt_num(a.x), fmt_num(a.y), fmt_num(a.z))
-        };
-        let label = match lang {
-            Lang::En => "Time model: LinuxCNC planner",
-            Lang::De => "Zeitmodell: LinuxCNC-Planer",
-        };
-        Some(format!(
-            "{label}, v={} mm/min, a={} mm/s^2, G64 P{}",
-            axes(&m.max_velocity),
-            axes(&m.max_acceleration),
-            fmt_num(m.path_tolerance)
-        ))
+        Some(self.machine?.line(lang))
     }
 
     /// The line after the others when `probe_split` split moves, e.g. `Split for probes: 4
@@ -216,6 +211,7 @@ mod tests {
             sweep_min: 65.99 / 500.0 * 1.4,
             count: 8,
             machine: None,
+            dwell: 0.0,
             split: (0, 0),
         };
         assert_eq!(s.split_line(Lang::En), None, "the reference's five lines");

@@ -9,7 +9,6 @@
 
 use crate::diag::{Diagnostic, Origin};
 use crate::emit::stats::Stats;
-use crate::emit::timing::item_times;
 use crate::emit::Kind;
 use crate::emit::{emit_until, Controller};
 use crate::geom::{P2, P3};
@@ -86,7 +85,7 @@ pub fn toolpath_until(
     let planned = ctl
         .machine
         .as_ref()
-        .map(|m| item_times(&e.rec.items, start, m));
+        .map(|m| m.item_times(&e.rec.items, start));
     // the body follows the prologue (as `generate` writes it)
     let first_line = ctl.prologue("", "", model, e.sx, true).len() + 1;
     let mut pos = start;

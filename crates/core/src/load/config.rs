@@ -4,8 +4,7 @@
 //! `millpath.toml` parsing (`[machine]`: `max_velocity`, `max_acceleration`, `path_tolerance`;
 //! `[heightmap]`: `step`, `margin`, `area`, `probe_feed`, `probe_depth`; `probe_split`).
 
-use crate::machine::Axes;
-use crate::machine::Dialect;
+use crate::machine::{Axes, Dialect, GrblValues};
 use crate::probe::heightmap::Heightmap;
 use crate::Settings;
 use serde::Deserialize;
@@ -83,13 +82,59 @@ impl HeightmapConfig {
 }
 
 /// `[machine]`: `max_velocity` (mm/min) and `max_acceleration` (mm/s²), each one number for
-/// every axis or `{ x = …, y = …, z = … }`, and `path_tolerance` (G64 P, mm).
+/// every axis or `{ x = …, y = …, z = … }`, and `path_tolerance` (G64 P, mm); `controller`
+/// (`linuxcnc` or `grbl`: whose planner times the programs) and GRBL's settings by their
+/// names or `$` numbers (`x_max_rate` or `"$110"`, …).
 #[derive(Debug, Default, Deserialize, Clone, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct MachineConfig {
     pub max_velocity: Option<AxesValue>,
     pub max_acceleration: Option<AxesValue>,
     pub path_tolerance: Option<f64>,
+    pub controller: Option<crate::emit::timing::Planner>,
+    #[serde(alias = "$11")]
+    pub junction_deviation: Option<f64>,
+    #[serde(alias = "$12")]
+    pub arc_tolerance: Option<f64>,
+    #[serde(alias = "$100")]
+    pub x_steps_per_mm: Option<f64>,
+    #[serde(alias = "$101")]
+    pub y_steps_per_mm: Option<f64>,
+    #[serde(alias = "$102")]
+    pub z_steps_per_mm: Option<f64>,
+    #[serde(alias = "$110")]
+    pub x_max_rate: Option<f64>,
+    #[serde(alias = "$111")]
+    pub y_max_rate: Option<f64>,
+    #[serde(alias = "$112")]
+    pub z_max_rate: Option<f64>,
+    #[serde(alias = "$120")]
+    pub x_acceleration: Option<f64>,
+    #[serde(alias = "$121")]
+    pub y_acceleration: Option<f64>,
+    #[serde(alias = "$122")]
+    pub z_acceleration: Option<f64>,
+}
+
+impl MachineConfig {
+    /// The GRBL settings given.
+    fn grbl(&self) -> GrblValues {
+        GrblValues {
+            max_rate: [self.x_max_rate, self.y_max_rate, self.z_max_rate],
+            acceleration: [
+                self.x_acceleration,
+                self.y_acceleration,
+                self.z_acceleration,
+            ],
+            junction_deviation: self.junction_deviation,
+            arc_tolerance: self.arc_tolerance,
+            steps_per_mm: [
+                self.x_steps_per_mm,
+                self.y_steps_per_mm,
+                self.z_steps_per_mm,
+            ],
+        }
+    }
 }
 
 /// One number for every axis, or one per axis.
@@ -188,6 +233,10 @@ impl FileConfig {
             if let Some(p) = m.path_tolerance {
                 s.path_tolerance = p;
             }
+            if m.controller.is_some() {
+                s.planner = m.controller;
+            }
+            s.grbl = m.grbl();
         }
     }
 }

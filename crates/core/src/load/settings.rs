@@ -7,7 +7,10 @@
 use crate::args;
 use crate::diag::Lang;
 use crate::diag::{Diagnostic, Msg, Origin};
-use crate::machine::{Axes, Dialect, Machine, DEFAULT_PATH_TOLERANCE, DEFAULT_SPINDLE_DWELL};
+use crate::machine::{
+    Axes, Dialect, GrblValues, Machine, Planner, TimeModel, DEFAULT_PATH_TOLERANCE,
+    DEFAULT_SPINDLE_DWELL,
+};
 use crate::params::MAX_MAGNITUDE;
 use crate::probe::heightmap::Heightmap;
 use std::path::PathBuf;
@@ -74,6 +77,10 @@ pub struct Settings {
     pub max_acceleration: Option<Axes>,
     /// G64 P (mm): how far a blended corner may leave the path, for the time estimates.
     pub path_tolerance: f64,
+    /// `controller` of `[machine]`: whose planner times the programs; `None`: the dialect's.
+    pub planner: Option<Planner>,
+    /// GRBL's settings given in `[machine]` (`$110` …) for its planner.
+    pub grbl: GrblValues,
     /// How DXF geometry is read: as the reference, or also polylines, blocks, line-type
     /// aliases and units (`--extended`, `input = "extended"`).
     pub input: crate::InputMode,
@@ -128,6 +135,8 @@ impl Default for Settings {
             max_velocity: None,
             max_acceleration: None,
             path_tolerance: DEFAULT_PATH_TOLERANCE,
+            planner: None,
+            grbl: GrblValues::default(),
             input: crate::InputMode::Reference,
             heightmap: None,
             heightmap_file: None,
@@ -226,7 +235,10 @@ impl Settings {
             &self.clamps,
             self.clamps_file.as_ref(),
         ));
-        if self.max_velocity.is_some() && self.max_acceleration.is_none() {
+        if self.max_velocity.is_some()
+            && self.max_acceleration.is_none()
+            && self.planner() == Planner::LinuxCnc
+        {
             errors.push(Diagnostic::error(
                 Msg::MachineNeedsAcceleration,
                 Origin::Options,
@@ -380,7 +392,42 @@ impl Settings {
             );
         }
         v.push(("path_tolerance", self.path_tolerance));
+        v.extend(self.grbl.named());
         v
+    }
+
+    /// Whose planner times the programs: `controller`, else GRBL's for the `grbl` dialect,
+    /// else LinuxCNC's.
+    pub fn planner(&self) -> Planner {
+        self.planner.unwrap_or(match self.dialect {
+            Dialect::Grbl => Planner::Grbl,
+            _ => Planner::LinuxCnc,
+        })
+    }
+
+    /// The time model of the estimates: LinuxCNC's when `max_acceleration` is set; GRBL's
+    /// when any machine value is (GRBL's defaults for the others) or `controller = "grbl"`;
+    /// `None`: the reference's model.
+    pub fn time_model(&self) -> Option<TimeModel> {
+        match self.planner() {
+            Planner::LinuxCnc => self.machine().map(TimeModel::LinuxCnc),
+            Planner::Grbl => {
+                let given = self.planner.is_some()
+                    || self.grbl.any()
+                    || self.max_velocity.is_some()
+                    || self.max_acceleration.is_some();
+                // the program waits after starting the spindle (dialect.rs's prologue)
+                let dwell = self.spindle_rpm.is_some() && self.dialect != Dialect::Reference;
+                given.then(|| TimeModel::Grbl {
+                    settings: self.grbl.machine(self.max_velocity, self.max_acceleration),
+                    start_dwell: if dwell {
+                        self.spindle_dwell.max(0.0)
+                    } else {
+                        0.0
+                    },
+                })
+            }
+        }
     }
 
     /// The machine limits of the time estimates: set when `max_acceleration` is (the maximum

@@ -7,6 +7,7 @@ use millpath_core::{compile_file, MemFileSystem, OutputFile, Session, Settings};
 use millpath_dxf::writer::DxfWriter;
 use std::path::{Path, PathBuf};
 
+pub mod gcode;
 pub mod grbl;
 
 pub type Pt = (f64, f64);

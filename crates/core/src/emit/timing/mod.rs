@@ -1,6 +1,7 @@
-//! Time estimates that know the machine: the velocity profile LinuxCNC 2.9's trajectory
-//! planner (src/emc/tp: tp.c, tc.c, blendmath.c; the limits from emccanon.cc) gives a
-//! program, held within 2 % of the real planner by `tests/planner_oracle.sh` and the test
+//! Time estimates that know the machine. GRBL's planner has its own module (`grbl/`), and
+//! `model.rs` chooses between the two (`TimeModel`); the rest of this module is the velocity
+//! profile LinuxCNC 2.9's trajectory planner (src/emc/tp: tp.c, tc.c, blendmath.c; the limits
+//! from emccanon.cc) gives a program, held within 2 % of the real planner by `tests/planner_oracle.sh` and the test
 //! `planner_oracle`. Used by the statistics when machine limits are set (`[machine]` in
 //! `millpath.toml`); without them the statistics keep the reference's model (length / F ·
 //! 1.4, reference-output.md §14). In mm, seconds, and the servo period of 1 ms.
@@ -31,10 +32,13 @@
 //! Moves without length take no time and do not break a blend (nor do comments).
 
 mod corners;
+pub mod grbl;
+mod model;
 mod plan;
 mod profile;
 mod segments;
 
+pub use model::{Planner, TimeModel};
 pub use plan::{item_times, plan, Times};
 
 /// LinuxCNC's servo period (s): the planner's time step.

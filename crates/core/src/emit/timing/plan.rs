@@ -38,6 +38,6 @@ pub fn item_times(items: &[Item], start: P3, m: &Machine) -> Vec<f64> {
 }
 
 /// The time of each planned move with its item and statistics line, in program order.
-fn planned(items: &[Item], start: P3, m: &Machine) -> Vec<(usize, Bucket, f64)> {
+pub(super) fn planned(items: &[Item], start: P3, m: &Machine) -> Vec<(usize, Bucket, f64)> {
     profile::times(&segments::segments(items, start, m), m)
 }

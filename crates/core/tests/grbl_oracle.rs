@@ -1,0 +1,206 @@
+//! The GRBL time model against GRBL 1.1h's own firmware on its simulator: every program of
+//! the GRBL oracle (`tests/grbl_oracle.sh`) under each of its machines (`tests/grbl/machines`:
+//! a slow stiff router, a fast light machine, GRBL's defaults) is estimated here and held
+//! within 2 % of the motion time recorded in `fixtures/grbl_times.tsv` — every run the
+//! recording marks clean. The simulator runs GRBL's main loop and its clock in two threads;
+//! on a busy computer the main loop can fall behind and leave the steppers without steps, so
+//! they stop dead from speed, which no real controller does: the sender counts those stalls
+//! (the fourth column), and a run with any is shown in the table but not held to 2 %. The synthetic
+//! programs are read from `tests/planner/programs`; the examples and shared drawings are
+//! compiled as the script compiles them (the shared ones are skipped, with a note, when
+//! `../shared` is absent).
+
+mod support;
+
+use millpath_core::load::config::{parse, Have};
+use millpath_core::load::fs::MemFileSystem;
+use millpath_core::{compile_file, Session, Settings};
+use std::path::Path;
+use support::gcode::{items_of, start_of};
+use support::root;
+
+/// The allowed distance from GRBL's time.
+const TOLERANCE: f64 = 0.02;
+
+/// The settings of `tests/grbl/machines/NAME.toml`.
+fn settings(machine: &str) -> Settings {
+    let file = root().join(format!("tests/grbl/machines/{machine}.toml"));
+    let text = std::fs::read_to_string(file).unwrap();
+    let mut s = Settings::default();
+    parse(&text, Path::new("."))
+        .unwrap()
+        .apply(&mut s, &mut Have::default());
+    s
+}
+
+/// The estimated motion time (s) of a program's text (what the oracle measures).
+fn of_text(text: &str, s: &Settings) -> f64 {
+    let start = start_of(text, s.sweep_height);
+    let model = s.time_model().expect("a GRBL machine");
+    let t = model.plan(&items_of(text, [start.x, start.y, start.z]), start);
+    t.mill + t.drill + t.sweep
+}
+
+/// A program's estimate: a synthetic one read, a drawing compiled as the oracle script
+/// compiles it (its program read back as GRBL gets it); `None` without the drawing.
+fn estimate(name: &str, s: &Settings) -> Option<f64> {
+    if let Some(file) = name.strip_prefix("synthetic/") {
+        let text =
+            std::fs::read_to_string(root().join("tests/planner/programs").join(file)).unwrap();
+        return Some(of_text(&text, s));
+    }
+    let (folder, file, pattern) = match name {
+        "examples/plate/1234.1P.gcode" => ("examples/plate", "1234.1P.dxf", None),
+        "examples/text/2001.gcode" => ("examples/text", "2001.mpath", None),
+        "examples/text/2010.gcode" => ("examples/text", "2010.mpath", None),
+        "shared/samples/2916.1P.gcode" => ("../shared/samples", "2916.1P.dxf", Some("2916\\.1P")),
+        _ => {
+            let stem = name
+                .strip_prefix("shared/conformance/")?
+                .strip_suffix(".gcode")?;
+            (
+                "../shared/conformance/fixtures",
+                Box::leak(format!("{stem}.dxf").into_boxed_str()) as &str,
+                None,
+            )
+        }
+    };
+    let dir = root().join(folder);
+    if !dir.join(file).exists() {
+        return None;
+    }
+    let mut fs = MemFileSystem::default();
+    for f in support::files_in(&dir, &["dxf", "mpath"]) {
+        let n = f.file_name().unwrap().to_string_lossy().to_string();
+        fs.add(n.as_str(), std::fs::read(&f).unwrap());
+    }
+    let mut settings = s.clone();
+    if let Some(p) = pattern {
+        settings.path_pattern = p.to_string();
+    }
+    let mut session = Session::new(settings, &fs).expect("settings");
+    let outcome = compile_file(&mut session, Path::new(file), "grbl oracle");
+    assert!(
+        !outcome.stats.is_empty(),
+        "{file}: {:?}",
+        session.diags.list
+    );
+    // the compiler's own estimate, moves only (the oracle counts dwells apart)
+    Some(
+        outcome
+            .stats
+            .iter()
+            .map(|(_, st)| st.seconds() - st.dwell)
+            .sum(),
+    )
+}
+
+#[test]
+fn the_model_keeps_within_two_percent_of_grbls_planner() {
+    let recorded =
+        std::fs::read_to_string(root().join("crates/core/tests/fixtures/grbl_times.tsv")).unwrap();
+    let mut rows = Vec::new();
+    let mut skipped = 0;
+    for line in recorded
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.is_empty())
+    {
+        let f: Vec<&str> = line.split('\t').collect();
+        let (machine, name, grbl): (&str, &str, f64) = (f[0], f[1], f[2].parse().unwrap());
+        // stalls of the simulator's steppers in that run (none recorded: not known clean)
+        let stalls: usize = f.get(3).map_or(usize::MAX, |v| v.parse().unwrap());
+        // and the time they took (shown beside: GRBL's time without them)
+        let stalled: f64 = f.get(4).map_or(0.0, |v| v.parse().unwrap());
+        match estimate(name, &settings(machine)) {
+            Some(e) => rows.push((
+                machine.to_string(),
+                name.to_string(),
+                e,
+                grbl,
+                stalls,
+                stalled,
+            )),
+            None => skipped += 1,
+        }
+    }
+    let mut table = String::from(
+        "machine\tprogram\tGRBL s\tmillpath s\tratio\tstalls\tGRBL s without them\tratio\n",
+    );
+    for (m, name, e, g, stalls, stalled) in &rows {
+        let stalls = match *stalls {
+            usize::MAX => "?".to_string(),
+            n => n.to_string(),
+        };
+        let without = g - stalled;
+        table += &format!(
+            "{m}\t{name}\t{g:.3}\t{e:.3}\t{:.4}\t{stalls}\t{without:.3}\t{:.4}\n",
+            e / g,
+            e / without
+        );
+    }
+    println!("{table}");
+    if skipped > 0 {
+        println!("note: {skipped} shared drawings skipped (../shared is absent)");
+    }
+    let clean = rows.iter().filter(|r| r.4 == 0).count();
+    assert!(clean >= 3, "too few clean runs recorded: {clean}\n{table}");
+    let off: Vec<_> = rows
+        .iter()
+        .filter(|(_, _, e, g, stalls, _)| *stalls == 0 && ((e / g) - 1.0).abs() > TOLERANCE)
+        .collect();
+    assert!(off.is_empty(), "beyond 2 %: {off:?}\n{table}");
+}
+
+/// `GRBL_ORACLE_LIST=1 cargo test -p millpath-core --test grbl_oracle -- --ignored
+/// --nocapture`: the model's estimate of every candidate program under every machine (to
+/// choose programs the simulator can time in reasonable wall time).
+#[test]
+#[ignore]
+fn print_the_estimates() {
+    let mut names: Vec<String> = std::fs::read_dir(root().join("tests/planner/programs"))
+        .unwrap()
+        .map(|e| format!("synthetic/{}", e.unwrap().file_name().to_string_lossy()))
+        .collect();
+    names.sort();
+    names.extend(
+        [
+            "examples/plate/1234.1P.gcode",
+            "examples/text/2001.gcode",
+            "examples/text/2010.gcode",
+            "shared/samples/2916.1P.gcode",
+            "shared/conformance/8999.02P.gcode",
+            "shared/conformance/8999.08P.gcode",
+            "shared/conformance/8999.14P.gcode",
+            "shared/conformance/8999.15P.gcode",
+        ]
+        .map(String::from),
+    );
+    for m in ["router", "light", "defaults"] {
+        let s = settings(m);
+        for n in &names {
+            println!("{m}\t{n}\t{:?}", estimate(n, &s));
+        }
+    }
+}
+
+/// `GRBL_PROGRAM=FILE GRBL_MACHINE=router cargo test -p millpath-core --test grbl_oracle --
+/// --ignored --nocapture print_the_time_of_each_line`: the model's time of each line of a
+/// program (to set beside the blocks of the simulator's step file).
+#[test]
+#[ignore]
+fn print_the_time_of_each_line() {
+    let Some(file) = std::env::var_os("GRBL_PROGRAM") else {
+        return;
+    };
+    let machine = std::env::var("GRBL_MACHINE").unwrap_or_else(|_| "defaults".into());
+    let s = settings(&machine);
+    let text = std::fs::read_to_string(file).unwrap();
+    let start = start_of(&text, s.sweep_height);
+    let items = items_of(&text, [start.x, start.y, start.z]);
+    let times = s.time_model().unwrap().item_times(&items, start);
+    let lines: Vec<&str> = text.lines().collect();
+    for (it, t) in items.iter().zip(times) {
+        let no = it.source.unwrap() as usize;
+        println!("{no}\t{t:.4}\t{}", lines[no - 1].trim());
+    }
+}
