@@ -9,9 +9,11 @@ mod compat;
 mod config;
 mod help_de;
 mod inputs;
+mod interrupt;
 mod output;
 mod png;
 mod report;
+mod stale;
 mod surface_file;
 mod verify_clamps;
 mod workers;
@@ -268,6 +270,22 @@ fn main() -> ExitCode {
         short_lived();
     }
     let raw: Vec<String> = std::env::args().collect();
+    // the commands that write files remove their temporaries when interrupted
+    if raw.get(1).is_some_and(|c| {
+        [
+            "compile",
+            "adjust-z",
+            "fmt",
+            "text2dxf",
+            "dxf2text",
+            "render",
+            "pathdxf2gcode",
+            "pathgcodeadjustz",
+        ]
+        .contains(&c.as_str())
+    }) {
+        interrupt::install();
+    }
     // The compatibility commands take the reference's command line unchanged.
     match raw.get(1).map(String::as_str) {
         Some("pathdxf2gcode") => return leave(commands::pathdxf2gcode::run(&raw[2..])),
@@ -383,6 +401,8 @@ fn main() -> ExitCode {
 /// all they do is mimalloc handing its pages back (a dozen `madvise` calls) right before the
 /// kernel frees the whole address space anyway.
 fn leave(code: u8) -> ExitCode {
+    // none of the temporaries is left (an early return that forgot one)
+    drop(millpath_core::temporaries::remove_all_and_hold());
     #[cfg(target_os = "linux")]
     {
         use std::io::Write;

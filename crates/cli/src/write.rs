@@ -1,6 +1,8 @@
-//! Atomic output: a G-code file is either complete or not there at all.
+//! Atomic output: a G-code file is either complete or not there at all. Temporaries are
+//! registered (core's `temporaries.rs`), so an interrupted run leaves none.
 
 use millpath_core::stage::sibling;
+use millpath_core::temporaries;
 use std::io::Write;
 use std::path::Path;
 use std::time::Duration;
@@ -71,15 +73,18 @@ pub fn write_atomic(path: &Path, content: &str) -> std::io::Result<()> {
 pub fn write_atomic_bytes(path: &Path, content: &[u8]) -> std::io::Result<()> {
     let tmp = sibling(path, "tmp");
     let result = (|| {
-        let mut f = std::fs::File::create(&tmp)?;
+        let mut f = temporaries::create(&tmp)?;
         f.write_all(content)?;
-        f.sync_all()?;
-        rename(&tmp, path, path)
+        f.sync_all()
     })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
+    temporaries::commit(|live| {
+        let result = result.and_then(|()| rename(&tmp, path, path));
+        match result {
+            Ok(()) => live.forget(&tmp),
+            Err(_) => live.remove(&tmp),
+        }
+        result
+    })
 }
 
 /// What one file of a set holds: a text, or a temporary file it was written to already
@@ -98,7 +103,7 @@ pub fn write_set(files: &[(&Path, Content)]) -> Result<(), (std::path::PathBuf, 
     let mut temps = Vec::new();
     let cleanup = |temps: &[std::path::PathBuf]| {
         for t in temps {
-            let _ = std::fs::remove_file(t);
+            temporaries::remove(t);
         }
     };
     for (path, content) in files {
@@ -106,7 +111,7 @@ pub fn write_set(files: &[(&Path, Content)]) -> Result<(), (std::path::PathBuf, 
             Content::Text(text) => {
                 let tmp = sibling(path, "tmp");
                 let result = (|| {
-                    let mut f = std::fs::File::create(&tmp)?;
+                    let mut f = temporaries::create(&tmp)?;
                     f.write_all(text.as_bytes())?;
                     f.sync_all()
                 })();
@@ -121,10 +126,22 @@ pub fn write_set(files: &[(&Path, Content)]) -> Result<(), (std::path::PathBuf, 
             return Err((path.to_path_buf(), e));
         }
     }
+    // the renames with the temporaries held: an interrupt waits until the folder holds
+    // the old set or the new one
+    temporaries::commit(|live| put_in_place(files, &temps, live))
+}
+
+/// The second half of [`write_set`]: the old files moved aside, the new ones renamed into
+/// place (or every step undone).
+fn put_in_place(
+    files: &[(&Path, Content)],
+    temps: &[std::path::PathBuf],
+    live: &mut temporaries::Live,
+) -> Result<(), (std::path::PathBuf, std::io::Error)> {
     // (target, its old file moved aside, new file in place)
     let mut done: Vec<(&Path, Option<std::path::PathBuf>, bool)> = Vec::new();
     let mut failure = None;
-    for ((path, _), tmp) in files.iter().zip(&temps) {
+    for ((path, _), tmp) in files.iter().zip(temps) {
         let old = sibling(path, "old");
         let kept = if let Ok(meta) = std::fs::symlink_metadata(path) {
             // a folder in the way is never moved: the set is not written
@@ -160,6 +177,9 @@ pub fn write_set(files: &[(&Path, Content)]) -> Result<(), (std::path::PathBuf, 
                     let _ = std::fs::remove_file(old);
                 }
             }
+            for t in temps {
+                live.forget(t);
+            }
             Ok(())
         }
         Some(err) => {
@@ -172,7 +192,9 @@ pub fn write_set(files: &[(&Path, Content)]) -> Result<(), (std::path::PathBuf, 
                     let _ = rename(old, path, path);
                 }
             }
-            cleanup(&temps);
+            for t in temps {
+                live.remove(t);
+            }
             Err(err)
         }
     }

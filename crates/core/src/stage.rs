@@ -2,13 +2,15 @@
 //! goes to a temporary file beside the output and to the second opinion, so a program many
 //! times the size of its drawing is never held. The caller renames the file into place with
 //! the rest of the set (all or none) or removes it; the set's digest is stamped into the
-//! staged file once the program is complete.
+//! staged file once the program is complete. The files are registered in `temporaries.rs`
+//! (removed when the run is interrupted); `sibling` names them, and the command line's sweep
+//! of an interrupted run's files reads those names.
 
 use crate::diag::{Diagnostic, Msg, Origin};
 use crate::emit::LineSink;
 use crate::probe::adjustz::{banner_index_of_first, banner_with_digest, set_digest_lines};
 use crate::second_opinion::{replay_lines, Reviewer};
-use crate::{args, emit::as_comment};
+use crate::{args, emit::as_comment, temporaries};
 use std::fs::File;
 use std::io::{BufRead, BufReader, BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -78,7 +80,7 @@ impl Staging {
     /// A staging file for the program of `output`; `Err` when it cannot be created.
     pub(crate) fn new(output: &Path, reviewer: Reviewer) -> Result<Staging, Diagnostic> {
         let path = sibling(output, "stage1");
-        match File::create(&path) {
+        match temporaries::create(&path) {
             Ok(f) => Ok(Staging {
                 path,
                 out: Some(BufWriter::with_capacity(1 << 16, f)),
@@ -108,7 +110,7 @@ impl Staging {
         match result {
             Ok(()) => Ok((Staged { path: self.path }, self.reviewer)),
             Err(e) => {
-                let _ = std::fs::remove_file(&self.path);
+                temporaries::remove(&self.path);
                 Err(cannot_write(&self.path, e))
             }
         }
@@ -139,7 +141,8 @@ impl Staged {
         let first = read().map_err(|e| fail(e, &self.path))?;
         let stamped_path = sibling(&self.path, "stage2");
         let written = (|| -> std::io::Result<()> {
-            let mut out = BufWriter::with_capacity(1 << 16, File::create(&stamped_path)?);
+            let file = temporaries::create(&stamped_path)?;
+            let mut out = BufWriter::with_capacity(1 << 16, file);
             let mut lines = first.peekable();
             let at = banner_index_of_first(lines.peek().map(String::as_str));
             for (i, line) in lines.enumerate() {
@@ -148,14 +151,14 @@ impl Staged {
             }
             out.into_inner().map_err(|e| e.into_error())?.sync_all()
         })();
-        let _ = std::fs::remove_file(&self.path);
+        temporaries::remove(&self.path);
         match written {
             Ok(()) => {
                 self.path = stamped_path;
                 Ok(stamped)
             }
             Err(e) => {
-                let _ = std::fs::remove_file(&stamped_path);
+                temporaries::remove(&stamped_path);
                 Err(fail(e, &stamped_path))
             }
         }
@@ -163,6 +166,6 @@ impl Staged {
 
     /// Removes the staged file (the compile failed after all).
     pub(crate) fn discard(&self) {
-        let _ = std::fs::remove_file(&self.path);
+        temporaries::remove(&self.path);
     }
 }
