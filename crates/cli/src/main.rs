@@ -115,7 +115,8 @@ enum Command {
     },
     /// Turn NAME_Clean.gcode and the measured NAME_Z.txt into NAME_Milling.gcode
     AdjustZ {
-        /// Largest allowed difference between measured and nominal height, mm
+        /// Largest allowed difference between measured and nominal height, mm (no default, also
+        /// with --probe-log: a probe that triggered on a chip or on nothing is refused, not milled)
         #[arg(long, short = 'm')]
         max: f64,
         /// Message language (default: English)
