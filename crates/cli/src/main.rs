@@ -10,6 +10,7 @@ mod config;
 mod help_de;
 mod inputs;
 mod interrupt;
+mod numbers;
 mod output;
 mod png;
 mod report;
@@ -65,6 +66,10 @@ enum Command {
         /// Print only the report: no progress lines, no progress bar
         #[arg(long, short = 'q')]
         quiet: bool,
+        /// Exit 1 when there are more than N warnings, also without errors (as ESLint's;
+        /// default: max_warnings of millpath.toml, else no limit)
+        #[arg(long, value_name = "N", value_parser = numbers::warning_count, allow_hyphen_values = true)]
+        max_warnings: Option<u32>,
         /// Drawings (.dxf or .mpath) or folders
         #[arg(required = true)]
         paths: Vec<PathBuf>,
@@ -76,13 +81,13 @@ enum Command {
         #[arg(long, value_enum, default_value = "reference")]
         dialect: DialectArg,
         /// Material top T, mm (default: the program's (MILLPATH-STOCK …) comment)
-        #[arg(long, allow_hyphen_values = true)]
+        #[arg(long, allow_hyphen_values = true, value_parser = numbers::decimal)]
         top: Option<f64>,
         /// Tool diameter O, mm
-        #[arg(long)]
+        #[arg(long, value_parser = numbers::decimal)]
         tool: Option<f64>,
         /// Deepest drawn depth, mm: cuts below it are errors
-        #[arg(long, allow_hyphen_values = true)]
+        #[arg(long, allow_hyphen_values = true, value_parser = numbers::decimal)]
         bottom: Option<f64>,
         /// Message language (default: English)
         #[arg(long, value_enum)]
@@ -96,7 +101,7 @@ enum Command {
         #[arg(long, value_name = "FILE")]
         surface: Option<String>,
         /// With --surface: largest XY distance, mm, between measurements of one grid line
-        #[arg(long, value_name = "MM", default_value_t = millpath_core::probe::adjustz::DEFAULT_TOLERANCE, requires = "surface")]
+        #[arg(long, value_name = "MM", default_value_t = millpath_core::probe::adjustz::DEFAULT_TOLERANCE, requires = "surface", value_parser = numbers::decimal)]
         tolerance: f64,
         /// A keep-out box the tool must never touch, mm (repeatable); without --clamp and
         /// --config: the [[clamp]] boxes of the millpath.toml nearest each program
@@ -117,7 +122,7 @@ enum Command {
     AdjustZ {
         /// Largest allowed difference between measured and nominal height, mm (no default, also
         /// with --probe-log: a probe that triggered on a chip or on nothing is refused, not milled)
-        #[arg(long, short = 'm')]
+        #[arg(long, short = 'm', value_parser = numbers::decimal)]
         max: f64,
         /// Message language (default: English)
         #[arg(long, value_enum)]
@@ -128,7 +133,7 @@ enum Command {
         #[arg(long, value_name = "FILE")]
         probe_log: Option<String>,
         /// With --probe-log: largest XY distance, mm, between a measurement and its probe point
-        #[arg(long, value_name = "MM", default_value_t = millpath_core::probe::adjustz::DEFAULT_TOLERANCE, requires = "probe_log")]
+        #[arg(long, value_name = "MM", default_value_t = millpath_core::probe::adjustz::DEFAULT_TOLERANCE, requires = "probe_log", value_parser = numbers::decimal)]
         tolerance: f64,
         /// The probed programs: NAME_Clean.gcode (or NAME; NAME_Z.txt is read beside it)
         #[arg(required = true)]
@@ -216,7 +221,7 @@ enum Command {
         cut: bool,
         /// Cell edge of the cut part, mm (default: cut_cell of millpath.toml, else the
         /// checker's, O/8 where the area allows)
-        #[arg(long, value_name = "MM")]
+        #[arg(long, value_name = "MM", value_parser = numbers::decimal)]
         cut_cell: Option<f64>,
     },
     /// Language server over standard input and output (for editors)
@@ -301,8 +306,9 @@ fn main() -> ExitCode {
             machine,
             format,
             quiet,
+            max_warnings,
             paths,
-        } => commands::check::run(&machine, format, quiet, &paths),
+        } => commands::check::run(&machine, format, (quiet, max_warnings), &paths),
         Command::Verify {
             dialect,
             top,

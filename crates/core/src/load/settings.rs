@@ -89,6 +89,8 @@ pub struct Settings {
     /// The toolpath view's cut part: cell edge in mm (`cut_cell`, `render --cut-cell`);
     /// `None`: the checker's.
     pub cut_cell: Option<f64>,
+    /// `check` fails with more warnings than this (`max_warnings`, `--max-warnings`).
+    pub max_warnings: Option<u32>,
     /// The millpath.toml these settings were read from; `None`: none (options, an editor).
     pub settings_file: Option<PathBuf>,
     /// Settings the command line gave (`feed`, `probe_feed`, …): their errors are located at
@@ -130,6 +132,7 @@ impl Default for Settings {
             clamps: Vec::new(),
             clamps_file: None,
             cut_cell: None,
+            max_warnings: None,
             settings_file: None,
             option_keys: Vec::new(),
         }
