@@ -13,6 +13,7 @@ mod interrupt;
 mod numbers;
 mod output;
 mod png;
+mod read;
 mod report;
 mod stale;
 mod surface_file;

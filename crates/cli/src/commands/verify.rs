@@ -67,8 +67,7 @@ fn read(path: &PathBuf, lang: Lang) -> Result<String, String> {
             format!("larger than {} MiB", MAX_FILE_BYTES >> 20)
         });
     }
-    let bytes = std::fs::read(path).map_err(os)?;
-    Ok(String::from_utf8_lossy(&bytes).into_owned())
+    crate::read::text(path).map_err(os)
 }
 
 fn summary(report: &Report, lang: Lang) -> String {
