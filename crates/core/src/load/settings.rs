@@ -222,7 +222,8 @@ impl Settings {
         if self.max_velocity.is_some() && self.max_acceleration.is_none() {
             errors.push(Diagnostic::error(
                 Msg::MachineNeedsAcceleration,
-                Origin::Options,
+                // `[machine]` of millpath.toml (an editor's settings: the options)
+                self.origin_of("max_velocity"),
                 vec![],
             ));
         }
