@@ -13,7 +13,7 @@ if [ -z "$gen" ]; then
   (cd "$ROOT" && cargo build --release --quiet -p millpath-core --example gen_drawings)
   gen=$ROOT/target/release/examples/gen_drawings
 fi
-"$gen" chains "${SEGMENTS:-50000}" 100 1000.1P.dxf
+"$gen" chains "${SEGMENTS:-100000}" 100 1000.1P.dxf
 printf 'feed = 300\nsweep_speed = 1000\nsweep_height = 10\n' >millpath.toml
 
 # only the drawing and the outputs named: any other file is a leftover
@@ -30,12 +30,13 @@ md5sum <1000.1P_Milling.gcode >new.md5
 echo "a compile takes $took_ms ms"
 expect_status 0 "$MILLPATH" compile --feed 250 1000.1P.dxf
 
-# waits until the compile writes its staged program (at most 60 s)
+# waits until the compile writes its staged program (at most a minute)
 wait_for_stage() {
-  for _ in $(seq 600); do
-    ls -A | grep -q '\.stage1$' && return 0
+  local i
+  for ((i = 0; i < 6000; i++)); do
+    compgen -G '.*.stage1' >/dev/null && return 0
     kill -0 "$1" 2>/dev/null || return 1
-    sleep 0.1
+    sleep 0.01
   done
   return 1
 }
