@@ -199,5 +199,19 @@ wait "$holder"
 in_dir "$work/held" "$W" compile -f 333 2010.mpath
 check "held-open output: written once closed" grep -q "F333" "$work/held/2010_Milling.gcode"
 
+# --- a read-only output (Wine shows a file without write bits with the read-only
+# attribute): refused naming it, the file kept as it was and still read-only
+fresh "$work/ro" "$ex"/text/*.mpath "$ex/text/millpath.toml"
+(cd "$work/ro" && "$W" compile 2010.mpath) >/dev/null 2>&1
+chmod a-w "$work/ro/2010_Milling.gcode"
+md5sum "$work/ro/2010_Milling.gcode" >"$work/ro.md5"
+in_dir "$work/ro" "$W" compile -f 333 2010.mpath
+ro_refused() {
+  [ "$(cat "$work/ro.rc")" = 1 ] || { echo "status $(cat "$work/ro.rc")"; cat "$work/ro.err"; return 1; }
+  grep -q "Cannot write 2010_Milling.gcode: read-only: not replaced" "$work/ro.err" || { cat "$work/ro.err"; return 1; }
+  md5sum -c --quiet "$work/ro.md5" && [ -z "$(find "$work/ro/2010_Milling.gcode" -perm -u=w)" ]
+}
+check "read-only output: refused naming it, kept read-only" ro_refused
+
 echo "windows cli: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

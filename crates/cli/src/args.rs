@@ -11,16 +11,16 @@ use std::path::{Path, PathBuf};
 #[derive(clap::Args, Clone, Default)]
 pub struct MachineArgs {
     /// Feed for milling moves, mm/min (or `feed` in millpath.toml)
-    #[arg(long, short = 'f')]
+    #[arg(long, short = 'f', value_parser = crate::numbers::decimal)]
     pub feed: Option<f64>,
     /// Sweep speed for time estimates, mm/min (or `sweep_speed`)
-    #[arg(long, short = 'v')]
+    #[arg(long, short = 'v', value_parser = crate::numbers::decimal)]
     pub sweep_speed: Option<f64>,
     /// Sweep height of the top-level path, mm (or `sweep_height`)
-    #[arg(long, short = 's')]
+    #[arg(long, short = 's', value_parser = crate::numbers::decimal)]
     pub sweep_height: Option<f64>,
     /// Probe feed, mm/min (default: the feed)
-    #[arg(long, short = 'z')]
+    #[arg(long, short = 'z', value_parser = crate::numbers::decimal)]
     pub probe_feed: Option<f64>,
     /// Further directory to search for subpaths (repeatable)
     #[arg(long = "search-dir", short = 'd')]
@@ -51,13 +51,13 @@ pub struct MachineArgs {
     #[arg(long, value_name = "NAME|FILE")]
     pub post: Option<String>,
     /// Plunge feed in linuxcnc/grbl, mm/min (or `plunge_feed`; default half the feed)
-    #[arg(long)]
+    #[arg(long, value_parser = crate::numbers::decimal)]
     pub plunge_feed: Option<f64>,
     /// Spindle speed in linuxcnc/grbl: M3 S… at the start, M5 at the end (or `spindle_rpm`)
-    #[arg(long)]
+    #[arg(long, value_parser = crate::numbers::decimal)]
     pub spindle_rpm: Option<f64>,
     /// Seconds to wait after the spindle start (or `spindle_dwell`; default 2)
-    #[arg(long)]
+    #[arg(long, value_parser = crate::numbers::decimal)]
     pub spindle_dwell: Option<f64>,
     /// Read polylines, blocks, line-type names of other CAD programs and $INSUNITS (or
     /// `input = "extended"`; default: as PathDxf2GCode, with a warning for what it ignores)
@@ -65,15 +65,15 @@ pub struct MachineArgs {
     pub extended: bool,
     /// Probe a grid over the cuts with points every STEP mm (or `step` in `[heightmap]`;
     /// linuxcnc and grbl)
-    #[arg(long, value_name = "STEP")]
+    #[arg(long, value_name = "STEP", value_parser = crate::numbers::decimal)]
     pub heightmap_step: Option<f64>,
     /// Margin added around the cuts for the height map, mm (or `margin` in `[heightmap]`;
     /// default 0)
-    #[arg(long, value_name = "MM")]
+    #[arg(long, value_name = "MM", value_parser = crate::numbers::decimal)]
     pub heightmap_margin: Option<f64>,
     /// With drawn probes, mill moves longer than L mm in pieces, each corrected at its own
     /// start (or `probe_split`; linuxcnc and grbl)
-    #[arg(long, value_name = "L")]
+    #[arg(long, value_name = "L", value_parser = crate::numbers::decimal)]
     pub probe_split: Option<f64>,
 }
 

@@ -31,7 +31,7 @@ pub fn find_for(input: &Path) -> Option<PathBuf> {
 /// `lang` of a settings file, read on its own: the language of the messages must be known
 /// before the first one, also the messages about the file's other keys.
 pub fn lang_in(path: &Path) -> Option<millpath_core::Lang> {
-    let text = std::fs::read_to_string(path).ok()?;
+    let text = crate::read::text(path).ok()?;
     let lang = |t: &toml::Table| {
         t.get("lang")
             .and_then(toml::Value::as_str)
@@ -51,7 +51,7 @@ pub fn lang_in(path: &Path) -> Option<millpath_core::Lang> {
 
 /// Reads and parses a settings file; the error text names the file and the line.
 pub fn load(path: &Path) -> Result<FileConfig, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let text = crate::read::text(path).map_err(|e| format!("{}: {e}", path.display()))?;
     millpath_core::load::config::parse(&text, path.parent().unwrap_or(Path::new(".")))
         .map_err(|e| format!("{}: {e}", path.display()))
 }

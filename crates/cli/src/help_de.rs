@@ -32,6 +32,7 @@ fn arg(cmd: &str, id: &str) -> Option<&'static str> {
         ("compile", "files") => Some("Zeichnungen (.dxf oder .mpath; ein Name ohne Endung bekommt .dxf) oder Ordner"),
         ("check", "paths") => Some("Zeichnungen (.dxf oder .mpath) oder Ordner"),
         ("show", "name") => Some("Der Name des eingebauten Posts"),
+        ("check", "max_warnings") => Some("Exit-Status 1 bei mehr als N Warnungen, auch ohne Fehler (wie bei ESLint; Standard: max_warnings aus millpath.toml, sonst keine Grenze)"),
         ("check", "format") => Some("Form des Berichts: human (Text), json, github (Anmerkungen im Workflow, Pfade relativ zum Repository) oder sarif (Code-Scanning)"),
         ("verify", "files") => Some("Die zu prüfenden G-Code-Programme"),
         ("verify", "dialect") => Some("Wessen Vorschub-Regeln gelten"),

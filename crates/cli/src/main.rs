@@ -9,10 +9,14 @@ mod compat;
 mod config;
 mod help_de;
 mod inputs;
+mod interrupt;
 mod measured;
+mod numbers;
 mod output;
 mod png;
+mod read;
 mod report;
+mod stale;
 mod surface_file;
 mod verify_clamps;
 mod workers;
@@ -64,6 +68,10 @@ enum Command {
         /// Print only the report: no progress lines, no progress bar
         #[arg(long, short = 'q')]
         quiet: bool,
+        /// Exit 1 when there are more than N warnings, also without errors (as ESLint's;
+        /// default: max_warnings of millpath.toml, else no limit)
+        #[arg(long, value_name = "N", value_parser = numbers::warning_count, allow_hyphen_values = true)]
+        max_warnings: Option<u32>,
         /// Drawings (.dxf or .mpath) or folders
         #[arg(required = true)]
         paths: Vec<PathBuf>,
@@ -75,13 +83,13 @@ enum Command {
         #[arg(long, value_enum, default_value = "reference")]
         dialect: DialectArg,
         /// Material top T, mm (default: the program's (MILLPATH-STOCK …) comment)
-        #[arg(long, allow_hyphen_values = true)]
+        #[arg(long, allow_hyphen_values = true, value_parser = numbers::decimal)]
         top: Option<f64>,
         /// Tool diameter O, mm
-        #[arg(long)]
+        #[arg(long, value_parser = numbers::decimal)]
         tool: Option<f64>,
         /// Deepest drawn depth, mm: cuts below it are errors
-        #[arg(long, allow_hyphen_values = true)]
+        #[arg(long, allow_hyphen_values = true, value_parser = numbers::decimal)]
         bottom: Option<f64>,
         /// Message language (default: English)
         #[arg(long, value_enum)]
@@ -95,7 +103,7 @@ enum Command {
         #[arg(long, value_name = "FILE")]
         surface: Option<String>,
         /// With --surface: largest XY distance, mm, between measurements of one grid line
-        #[arg(long, value_name = "MM", default_value_t = millpath_core::probe::adjustz::DEFAULT_TOLERANCE, requires = "surface")]
+        #[arg(long, value_name = "MM", default_value_t = millpath_core::probe::adjustz::DEFAULT_TOLERANCE, requires = "surface", value_parser = numbers::decimal)]
         tolerance: f64,
         /// A keep-out box the tool must never touch, mm (repeatable); without --clamp and
         /// --config: the [[clamp]] boxes of the millpath.toml nearest each program
@@ -114,8 +122,9 @@ enum Command {
     },
     /// Turn NAME_Clean.gcode and the measured NAME_Z.txt into NAME_Milling.gcode
     AdjustZ {
-        /// Largest allowed difference between measured and nominal height, mm
-        #[arg(long, short = 'm')]
+        /// Largest allowed difference between measured and nominal height, mm (no default, also
+        /// with --probe-log: a probe that triggered on a chip or on nothing is refused, not milled)
+        #[arg(long, short = 'm', value_parser = numbers::decimal)]
         max: f64,
         /// Message language (default: English)
         #[arg(long, value_enum)]
@@ -126,7 +135,7 @@ enum Command {
         #[arg(long, value_name = "FILE")]
         probe_log: Option<String>,
         /// With --probe-log: largest XY distance, mm, between a measurement and its probe point
-        #[arg(long, value_name = "MM", default_value_t = millpath_core::probe::adjustz::DEFAULT_TOLERANCE, requires = "probe_log")]
+        #[arg(long, value_name = "MM", default_value_t = millpath_core::probe::adjustz::DEFAULT_TOLERANCE, requires = "probe_log", value_parser = numbers::decimal)]
         tolerance: f64,
         /// The probed programs: NAME_Clean.gcode (or NAME; NAME_Z.txt is read beside it)
         #[arg(required = true)]
@@ -221,7 +230,7 @@ enum Command {
         cut: bool,
         /// Cell edge of the cut part, mm (default: cut_cell of millpath.toml, else the
         /// checker's, O/8 where the area allows)
-        #[arg(long, value_name = "MM")]
+        #[arg(long, value_name = "MM", value_parser = numbers::decimal)]
         cut_cell: Option<f64>,
     },
     /// The post-processors: list the built-in ones, print one as a post file to adapt
@@ -296,6 +305,22 @@ fn main() -> ExitCode {
         short_lived();
     }
     let raw: Vec<String> = std::env::args().collect();
+    // the commands that write files remove their temporaries when interrupted
+    if raw.get(1).is_some_and(|c| {
+        [
+            "compile",
+            "adjust-z",
+            "fmt",
+            "text2dxf",
+            "dxf2text",
+            "render",
+            "pathdxf2gcode",
+            "pathgcodeadjustz",
+        ]
+        .contains(&c.as_str())
+    }) {
+        interrupt::install();
+    }
     // The compatibility commands take the reference's command line unchanged.
     match raw.get(1).map(String::as_str) {
         Some("pathdxf2gcode") => return leave(commands::pathdxf2gcode::run(&raw[2..])),
@@ -310,8 +335,9 @@ fn main() -> ExitCode {
             machine,
             format,
             quiet,
+            max_warnings,
             paths,
-        } => commands::check::run(&machine, format, quiet, &paths),
+        } => commands::check::run(&machine, format, (quiet, max_warnings), &paths),
         Command::Verify {
             dialect,
             top,
@@ -420,6 +446,8 @@ fn main() -> ExitCode {
 /// all they do is mimalloc handing its pages back (a dozen `madvise` calls) right before the
 /// kernel frees the whole address space anyway.
 fn leave(code: u8) -> ExitCode {
+    // none of the temporaries is left (an early return that forgot one)
+    drop(millpath_core::temporaries::remove_all_and_hold());
     #[cfg(target_os = "linux")]
     {
         use std::io::Write;

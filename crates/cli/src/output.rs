@@ -191,7 +191,7 @@ pub fn remove_with(path: &Path, said: Diagnostic, diags: &mut Diags) {
     if !std::fs::symlink_metadata(path).is_ok_and(|m| m.is_file()) {
         return;
     }
-    match std::fs::remove_file(path) {
+    match write::remove_output(path) {
         Ok(()) => diags.push(said),
         Err(e) => diags.error(
             Msg::CannotRemove,

@@ -9,7 +9,7 @@
 //! its drive (`C:/…`), SARIF URIs `file:///C:/…` (UNC shares as the host), canonical paths without
 //! `\\?\` (`dunce`).
 
-use millpath_core::diag::{Diagnostic, Origin, Severity};
+use millpath_core::diag::{Diagnostic, Msg, Origin, Severity};
 use millpath_core::Lang;
 use serde_json::json;
 use std::path::{Path, PathBuf};
@@ -42,7 +42,7 @@ fn head(d: &Diagnostic, lang: Lang) -> String {
         "{}[{}]: {}\n  --> {}",
         severity_word(d.severity, lang),
         d.msg.code(),
-        d.message(lang),
+        message(d, lang),
         location(&shown_origin(d), lang)
     )
 }
@@ -124,7 +124,7 @@ fn snippet(
     Report::build(kind, name, a)
         .with_config(Config::default().with_color(color))
         .with_code(d.msg.code())
-        .with_message(d.message(lang))
+        .with_message(message(d, lang))
         .with_label(label)
         .finish()
         .write((name, Source::from(src)), &mut buf)
@@ -302,7 +302,7 @@ pub fn json_value(d: &Diagnostic, lang: Lang) -> serde_json::Value {
         "severity": severity_word(d.severity, Lang::En),
         "code": d.msg.code(),
         "name": d.msg.name(),
-        "message": d.message(lang),
+        "message": message(d, lang),
         "context": d.origin.context(),
         "location": location_fields(&shown_origin(d)),
         "related": d.related.iter().map(|r| json!({ "note": r.note, "location": location_fields(&r.origin) })).collect::<Vec<_>>(),
@@ -432,7 +432,7 @@ pub fn sarif(diags: &[Diagnostic], lang: Lang) -> serde_json::Value {
             json!({
                 "ruleId": d.msg.code(),
                 "level": if d.severity == Severity::Error { "error" } else { "warning" },
-                "message": { "text": d.message(lang) },
+                "message": { "text": message(d, lang) },
                 "locations": sarif_location(&shown_origin(d)).into_iter().collect::<Vec<_>>(),
                 "relatedLocations": d.related.iter().filter_map(|r| {
                     let mut l = sarif_location(&r.origin)?;
@@ -574,7 +574,7 @@ pub fn github(d: &Diagnostic, lang: Lang) -> String {
         "title={}",
         escape_prop(&format!("millpath {}", d.msg.code()))
     ));
-    let mut msg = d.message(lang);
+    let mut msg = message(d, lang);
     match &d.origin {
         Origin::Entity(e) if lang == Lang::De => {
             msg = format!(
@@ -593,7 +593,40 @@ pub fn github(d: &Diagnostic, lang: Lang) -> String {
         }
         _ => {}
     }
+    // the hints ("did you mean B?") and related places, as the human format gives them
+    for r in &d.related {
+        msg.push_str(&format!("\n= {}: {}", r.note, location(&r.origin, lang)));
+    }
     format!("::{kind} {}::{}", props.join(","), escape_data(&msg))
+}
+
+/// A diagnostic's message for the reports. The reference's texts that end in the place of
+/// the parameter text (`Unsupported b value; 1004.mpath:4:17`, kept in its `****` lines)
+/// lose that second location here: the report locates the message itself.
+pub fn message(d: &Diagnostic, lang: Lang) -> String {
+    let text = d.message(lang);
+    let place = match (d.msg, d.args.get(1)) {
+        (Msg::Unsupported, Some(place)) if is_text_place(place) => place,
+        _ => return text,
+    };
+    match text
+        .strip_suffix(place.as_str())
+        .and_then(|t| t.strip_suffix("; "))
+    {
+        Some(t) => t.to_string(),
+        None => text,
+    }
+}
+
+/// `FILE:LINE:COL`, the place of a text file's parameter text.
+fn is_text_place(s: &str) -> bool {
+    let mut parts = s.rsplitn(3, ':');
+    let numbers = (parts.next(), parts.next());
+    matches!(numbers, (Some(col), Some(line))
+        if !col.is_empty() && !line.is_empty()
+            && col.bytes().all(|b| b.is_ascii_digit())
+            && line.bytes().all(|b| b.is_ascii_digit()))
+        && parts.next().is_some_and(|f| !f.is_empty())
 }
 
 fn escape_data(s: &str) -> String {

@@ -4,8 +4,10 @@
 //! program as it is, old files moved aside, put back on a failure part-way); a rename refused
 //! because another program holds the file open (Windows: a G-code sender) is tried again for a
 //! second, then reported as `HELD_OPEN` naming the file.
+//! Temporaries are registered (core's `temporaries.rs`), so an interrupted run leaves none.
 
 use millpath_core::stage::sibling;
+use millpath_core::temporaries;
 use std::io::Write;
 use std::path::Path;
 use std::time::Duration;
@@ -16,6 +18,38 @@ use std::time::Duration;
 /// `diag::os_error_text`).
 pub const HELD_OPEN: &str =
     "another program has the file open (a G-code sender or an editor?): close it there and run again";
+
+/// Why a read-only file is not replaced (German in `diag::os_error_text`): the user made
+/// it so on purpose (a proven program, a measured `_Z.txt`), and a replacement would be
+/// writable again.
+pub const READ_ONLY: &str = "read-only: not replaced (make it writable to replace it)";
+
+/// `Err` naming [`READ_ONLY`] when `path` is a read-only file (Unix: no write bit; Windows:
+/// the read-only attribute); root, who could write it, is refused alike.
+fn refuse_read_only(path: &Path) -> std::io::Result<()> {
+    match std::fs::symlink_metadata(path) {
+        Ok(m) if m.is_file() && m.permissions().readonly() => Err(std::io::Error::new(
+            std::io::ErrorKind::PermissionDenied,
+            READ_ONLY,
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// Why a read-only output of an earlier run is not removed (German in `diag::os_error_text`).
+pub const READ_ONLY_KEPT: &str = "read-only: not removed (make it writable to remove it)";
+
+/// Removes a user's file that an earlier run wrote (an output a new one no longer stands
+/// behind), unless it is read-only ([`READ_ONLY_KEPT`]).
+pub fn remove_output(path: &Path) -> std::io::Result<()> {
+    match std::fs::symlink_metadata(path) {
+        Ok(m) if m.is_file() && m.permissions().readonly() => Err(std::io::Error::new(
+            std::io::ErrorKind::PermissionDenied,
+            READ_ONLY_KEPT,
+        )),
+        _ => std::fs::remove_file(path),
+    }
+}
 
 /// Whether `e` says that another program holds the file open (Windows: sharing or lock
 /// violation; access denied on an existing plain file that is not read-only).
@@ -74,17 +108,21 @@ pub fn write_atomic(path: &Path, content: &str) -> std::io::Result<()> {
 
 /// [`write_atomic`] for bytes (pictures).
 pub fn write_atomic_bytes(path: &Path, content: &[u8]) -> std::io::Result<()> {
+    refuse_read_only(path)?;
     let tmp = sibling(path, "tmp");
     let result = (|| {
-        let mut f = std::fs::File::create(&tmp)?;
+        let mut f = temporaries::create(&tmp)?;
         f.write_all(content)?;
-        f.sync_all()?;
-        rename(&tmp, path, path)
+        f.sync_all()
     })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
+    temporaries::commit(|live| {
+        let result = result.and_then(|()| rename(&tmp, path, path));
+        match result {
+            Ok(()) => live.forget(&tmp),
+            Err(_) => live.remove(&tmp),
+        }
+        result
+    })
 }
 
 /// What one file of a set holds: a text, or a temporary file it was written to already
@@ -98,12 +136,24 @@ pub enum Content<'a> {
 /// Writes the files of one drawing all or none: every content into a temporary file first,
 /// then the old files moved aside and the new ones renamed into place. When any step fails,
 /// the new files are taken away and the old ones put back, so the folder holds the old set
-/// or the new one, never a mix. `Err` names the file that failed.
+/// or the new one, never a mix; a read-only file among the old ones keeps them all. `Err`
+/// names the file that failed.
 pub fn write_set(files: &[(&Path, Content)]) -> Result<(), (std::path::PathBuf, std::io::Error)> {
+    if let Some((path, e)) = files
+        .iter()
+        .find_map(|(path, _)| refuse_read_only(path).err().map(|e| (path, e)))
+    {
+        for (_, content) in files {
+            if let Content::Staged(staged) = content {
+                temporaries::remove(staged);
+            }
+        }
+        return Err((path.to_path_buf(), e));
+    }
     let mut temps = Vec::new();
     let cleanup = |temps: &[std::path::PathBuf]| {
         for t in temps {
-            let _ = std::fs::remove_file(t);
+            temporaries::remove(t);
         }
     };
     for (path, content) in files {
@@ -111,7 +161,7 @@ pub fn write_set(files: &[(&Path, Content)]) -> Result<(), (std::path::PathBuf, 
             Content::Text(text) => {
                 let tmp = sibling(path, "tmp");
                 let result = (|| {
-                    let mut f = std::fs::File::create(&tmp)?;
+                    let mut f = temporaries::create(&tmp)?;
                     f.write_all(text.as_bytes())?;
                     f.sync_all()
                 })();
@@ -126,10 +176,22 @@ pub fn write_set(files: &[(&Path, Content)]) -> Result<(), (std::path::PathBuf, 
             return Err((path.to_path_buf(), e));
         }
     }
+    // the renames with the temporaries held: an interrupt waits until the folder holds
+    // the old set or the new one
+    temporaries::commit(|live| put_in_place(files, &temps, live))
+}
+
+/// The second half of [`write_set`]: the old files moved aside, the new ones renamed into
+/// place (or every step undone).
+fn put_in_place(
+    files: &[(&Path, Content)],
+    temps: &[std::path::PathBuf],
+    live: &mut temporaries::Live,
+) -> Result<(), (std::path::PathBuf, std::io::Error)> {
     // (target, its old file moved aside, new file in place)
     let mut done: Vec<(&Path, Option<std::path::PathBuf>, bool)> = Vec::new();
     let mut failure = None;
-    for ((path, _), tmp) in files.iter().zip(&temps) {
+    for ((path, _), tmp) in files.iter().zip(temps) {
         let old = sibling(path, "old");
         let kept = if let Ok(meta) = std::fs::symlink_metadata(path) {
             // a folder in the way is never moved: the set is not written
@@ -165,6 +227,9 @@ pub fn write_set(files: &[(&Path, Content)]) -> Result<(), (std::path::PathBuf, 
                     let _ = std::fs::remove_file(old);
                 }
             }
+            for t in temps {
+                live.forget(t);
+            }
             Ok(())
         }
         Some(err) => {
@@ -177,7 +242,9 @@ pub fn write_set(files: &[(&Path, Content)]) -> Result<(), (std::path::PathBuf, 
                     let _ = rename(old, path, path);
                 }
             }
-            cleanup(&temps);
+            for t in temps {
+                live.remove(t);
+            }
             Err(err)
         }
     }
@@ -236,6 +303,41 @@ mod tests {
         assert_eq!(std::fs::read_to_string(&a).unwrap(), "new z");
         assert_eq!(std::fs::read_to_string(&b).unwrap(), "new clean");
         assert_eq!(names(dir.path()), ["x_Clean.gcode", "x_Z.txt"]);
+    }
+
+    #[test]
+    fn a_read_only_file_keeps_the_whole_set_and_its_staged_program_goes() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = |n: &str| dir.path().join(n);
+        let (a, b, c) = (p("x_Probing.gcode"), p("x_Z.txt"), p("x_Clean.gcode"));
+        for f in [&a, &b, &c] {
+            std::fs::write(f, "old").unwrap();
+        }
+        let mut ro = std::fs::metadata(&b).unwrap().permissions();
+        ro.set_readonly(true);
+        std::fs::set_permissions(&b, ro).unwrap();
+        let staged = sibling(&c, "stage1");
+        temporaries::create(&staged).unwrap();
+        let (failed, e) = write_set(&[
+            (&a, Content::Text("new")),
+            (&b, Content::Text("new")),
+            (&c, Content::Staged(&staged)),
+        ])
+        .unwrap_err();
+        assert_eq!((failed, e.to_string()), (b.clone(), READ_ONLY.to_string()));
+        for f in [&a, &b, &c] {
+            assert_eq!(std::fs::read_to_string(f).unwrap(), "old");
+        }
+        assert!(std::fs::metadata(&b).unwrap().permissions().readonly());
+        assert_eq!(
+            names(dir.path()),
+            ["x_Clean.gcode", "x_Probing.gcode", "x_Z.txt"]
+        );
+        assert!(!temporaries::is_live(&staged));
+        // alone too, and not removed as outdated
+        assert_eq!(write_atomic(&b, "new").unwrap_err().to_string(), READ_ONLY);
+        assert_eq!(remove_output(&b).unwrap_err().to_string(), READ_ONLY_KEPT);
+        assert!(b.exists());
     }
 
     #[test]

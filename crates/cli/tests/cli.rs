@@ -587,3 +587,46 @@ fn check_range_stops_before_the_trailing_comment() {
     );
     assert_eq!(&src[start..end], "mill (0, 0) -> (10, 0)  B9");
 }
+
+/// Numbers on the command line take a decimal comma, as the drawings do (`--feed 300,5`,
+/// `--max 0,5`); a number that is none is refused at its option.
+#[test]
+fn options_take_a_decimal_comma() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/text");
+    for f in ["2020.mpath", "millpath.toml"] {
+        std::fs::copy(text.join(f), dir.path().join(f)).unwrap();
+    }
+    let o = millpath(dir.path(), &["compile", "--feed", "300,5", "2020.mpath"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let clean = std::fs::read_to_string(dir.path().join("2020_Clean.gcode")).unwrap();
+    assert!(clean.contains("F300.500"), "{clean}");
+    let z = dir.path().join("2020_Z.txt");
+    let filled = std::fs::read_to_string(&z)
+        .unwrap()
+        .replace("#51=\n", "#51=3,1\n")
+        .replace("#52=\n", "#52=2,9\n");
+    std::fs::write(&z, filled).unwrap();
+    // 0,05 is a limit of 0.05 mm: the probes 0.1 mm off are refused, 0,5 takes them
+    let o = millpath(dir.path(), &["adjust-z", "--max", "0,05", "2020"]);
+    assert_eq!(o.status.code(), Some(1));
+    let o = millpath(dir.path(), &["adjust-z", "--max", "0,5", "2020"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = millpath(
+        dir.path(),
+        &[
+            "verify",
+            "--top",
+            "3",
+            "--tool",
+            "2,0",
+            "--bottom",
+            "-0,5",
+            "2020_Milling.gcode",
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = millpath(dir.path(), &["compile", "--feed", "1,000.5", "2020.mpath"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--feed"));
+}

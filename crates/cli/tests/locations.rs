@@ -237,3 +237,103 @@ fn order_advice_on_a_polyline_piece_says_to_explode_it_first() {
     assert!(out.status.success(), "{out:?}");
     assert!(!stderr(&out).contains(&Msg::OrderDecides.code()), "{out:?}");
 }
+
+/// `[machine]` with `max_velocity` alone is an error of millpath.toml, located there (it
+/// said "Options", where no such option exists).
+#[test]
+fn a_machine_table_without_acceleration_is_located_at_millpath_toml() {
+    let dir = tempfile::tempdir().unwrap();
+    write(
+        dir.path(),
+        "3002.mpath",
+        &NO_END.replace("  mill", "  end (20, 0)\n  mill"),
+    );
+    write(
+        dir.path(),
+        "millpath.toml",
+        "feed = 300\nsweep_speed = 1000\nsweep_height = 10\n[machine]\nmax_velocity = 3000\n",
+    );
+    let out = millpath(dir.path(), &["check", "3002.mpath"]);
+    let report = format!("{}{}", stdout(&out), stderr(&out));
+    let at = location_line(&report, &Msg::MachineNeedsAcceleration.code());
+    assert!(at.contains("millpath.toml"), "{report}");
+    let out = millpath(dir.path(), &["check", "--format", "github", "3002.mpath"]);
+    assert!(
+        stdout(&out).contains("::error file=millpath.toml,title=millpath MP098"),
+        "{}",
+        stdout(&out)
+    );
+}
+
+/// The report formats give a message once located: no second place in its text (the
+/// reference's `; FILE:LINE:COL`, kept in the `****` lines), and `github` keeps the hint.
+#[test]
+fn reports_keep_hints_and_locate_a_message_once() {
+    let dir = tempfile::tempdir().unwrap();
+    write(
+        dir.path(),
+        "1004.mpath",
+        "path 1004.1P {\n  start (0, 0)  M10x3 O2 T3 I1,5 B-0,2\n  end (20, 0)\n  mill (0, 0) -> (20, 0)  b1\n}\n",
+    );
+    let out = millpath(dir.path(), &["check", "--format", "github", "1004.mpath"]);
+    let github = stdout(&out);
+    assert!(
+        github.contains("::Unsupported b value%0A= did you mean B? (keys are capital letters)"),
+        "{github}"
+    );
+    let out = millpath(dir.path(), &["check", "1004.mpath"]);
+    let human = stdout(&out);
+    assert!(
+        human.contains("error[MP019]: Unsupported b value\n"),
+        "{human}"
+    );
+    let out = millpath(dir.path(), &["check", "--format", "json", "1004.mpath"]);
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(json["diagnostics"][0]["message"], "Unsupported b value");
+    let out = millpath(dir.path(), &["check", "--format", "sarif", "1004.mpath"]);
+    assert!(
+        !stdout(&out).contains("value; 1004.mpath"),
+        "{}",
+        stdout(&out)
+    );
+    // the reference's line keeps its text
+    let out = millpath(
+        dir.path(),
+        &["pathdxf2gcode", "/c", "/f1", "/v1", "/s1", "1004.mpath"],
+    );
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains("Unsupported b value; 1004.mpath:4:"),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// A CAD program's name of a known line type (`Continuous`) says how it would be read.
+#[test]
+fn an_unknown_line_type_points_to_the_extended_mode() {
+    let dir = tempfile::tempdir().unwrap();
+    write(
+        dir.path(),
+        "3002.mpath",
+        &NO_END.replace("  mill", "  end (20, 0)\n  mill"),
+    );
+    let out = millpath(dir.path(), &["text2dxf", "3002.mpath"]);
+    assert!(out.status.success(), "{out:?}");
+    let dxf = std::fs::read_to_string(dir.path().join("3002.dxf")).unwrap();
+    let dxf = dxf.replace("\nCONTINUOUS\n", "\nContinuous\n");
+    write(dir.path(), "3002.dxf", &dxf);
+    let out = millpath(dir.path(), &["check", "3002.dxf"]);
+    let report = stdout(&out);
+    assert!(
+        report.contains("Line type Continuous not supported"),
+        "{report}"
+    );
+    assert!(
+        report.contains("= the extended mode reads it as CONTINUOUS: --extended, or input = \"extended\" in millpath.toml"),
+        "{report}"
+    );
+    let out = millpath(dir.path(), &["check", "--lang", "de", "3002.dxf"]);
+    assert!(stdout(&out).contains("der erweiterte Modus liest sie als CONTINUOUS"));
+    let out = millpath(dir.path(), &["check", "--extended", "3002.dxf"]);
+    assert!(out.status.success(), "{}", stdout(&out));
+}

@@ -487,6 +487,20 @@ pub fn os_error_text(text: &str, lang: Lang) -> String {
             "another program has the file open (a G-code sender or an editor?): close it there and run again",
             "ein anderes Programm hat die Datei geöffnet (ein G-Code-Sender oder ein Editor?): dort schließen und noch einmal ausführen",
         ),
+        // load/text_file.rs: a file that is no text
+        (
+            "holds NUL bytes and no byte-order mark (UTF-16 without a mark?): save it as UTF-8",
+            "enthält NUL-Bytes und keine Byte-Order-Mark (UTF-16 ohne Markierung?): als UTF-8 speichern",
+        ),
+        // cli/src/write.rs: a read-only output is kept
+        (
+            "read-only: not replaced (make it writable to replace it)",
+            "schreibgeschützt: nicht ersetzt (den Schreibschutz aufheben, um sie zu ersetzen)",
+        ),
+        (
+            "read-only: not removed (make it writable to remove it)",
+            "schreibgeschützt: nicht entfernt (den Schreibschutz aufheben, um sie zu entfernen)",
+        ),
         ("os error", "OS-Fehler"),
     ];
     let mut out = text.to_string();

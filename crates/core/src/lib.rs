@@ -22,6 +22,7 @@ pub mod probe;
 pub mod second_opinion;
 pub mod stage;
 pub mod stock;
+pub mod temporaries;
 
 pub use diag::{Diagnostic, Diags, Lang, Msg, Origin, Severity};
 pub use front::options::InputMode;
@@ -397,9 +398,9 @@ fn generate_and_review_as(
             .map_err(|d| vec![d])
             .and_then(|staging| {
                 let path = staging.path().to_path_buf();
-                let (generated, staging) = job.run(staging).inspect_err(|_| {
-                    let _ = std::fs::remove_file(&path);
-                })?;
+                let (generated, staging) = job
+                    .run(staging)
+                    .inspect_err(|_| temporaries::remove(&path))?;
                 let (staged, reviewer) = staging.close().map_err(|d| vec![d])?;
                 // the second reading (clamps, depths, stock model) from the file
                 let review = reviewer.finish(model, &generated.line_sources, lang, |feed| {

@@ -9,12 +9,15 @@
 //! checker's second reading; the set's digest stamped into it after; the command line renames it
 //! with the set. `sibling` names every temporary file beside an output, `file_head` reads a long
 //! program's banner.
+//! The files are registered in `temporaries.rs` (removed when the run is interrupted);
+//! the command line's sweep of an interrupted run's files reads `sibling`'s names.
 
 use crate::args;
 use crate::diag::{Diagnostic, Msg, Origin};
 use crate::digest::{banner_index_of_first, banner_with_digest, set_digest_lines};
 use crate::emit::LineSink;
 use crate::second_opinion::{replay_lines, Reviewer};
+use crate::temporaries;
 use std::fs::File;
 use std::io::{BufRead, BufReader, BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -90,7 +93,7 @@ impl Staging {
         line_end: &'static str,
     ) -> Result<Staging, Diagnostic> {
         let path = sibling(output, "stage1");
-        match File::create(&path) {
+        match temporaries::create(&path) {
             Ok(f) => Ok(Staging {
                 path,
                 out: Some(BufWriter::with_capacity(1 << 16, f)),
@@ -121,7 +124,7 @@ impl Staging {
         match result {
             Ok(()) => Ok((Staged { path: self.path }, self.reviewer)),
             Err(e) => {
-                let _ = std::fs::remove_file(&self.path);
+                temporaries::remove(&self.path);
                 Err(cannot_write(&self.path, e))
             }
         }
@@ -160,7 +163,8 @@ impl Staged {
         let first = read().map_err(|e| fail(e, &self.path))?;
         let stamped_path = sibling(&self.path, "stage2");
         let written = (|| -> std::io::Result<()> {
-            let mut out = BufWriter::with_capacity(1 << 16, File::create(&stamped_path)?);
+            let file = temporaries::create(&stamped_path)?;
+            let mut out = BufWriter::with_capacity(1 << 16, file);
             let mut lines = first.peekable();
             let at = banner_index_of_first(lines.peek().map(String::as_str));
             for (i, line) in lines.enumerate() {
@@ -174,14 +178,14 @@ impl Staged {
             }
             out.into_inner().map_err(|e| e.into_error())?.sync_all()
         })();
-        let _ = std::fs::remove_file(&self.path);
+        temporaries::remove(&self.path);
         match written {
             Ok(()) => {
                 self.path = stamped_path;
                 Ok(stamped)
             }
             Err(e) => {
-                let _ = std::fs::remove_file(&stamped_path);
+                temporaries::remove(&stamped_path);
                 Err(fail(e, &stamped_path))
             }
         }
@@ -189,6 +193,6 @@ impl Staged {
 
     /// Removes the staged file (the compile failed after all).
     pub(crate) fn discard(&self) {
-        let _ = std::fs::remove_file(&self.path);
+        temporaries::remove(&self.path);
     }
 }

@@ -249,7 +249,12 @@ impl Workspace {
         while let Some(d) = dir {
             let candidate = d.join(config::FILE_NAME);
             if let Ok(bytes) = fs.read(&candidate) {
-                match config::parse(&String::from_utf8_lossy(&bytes), d) {
+                // as the command line reads it: a mark dropped, UTF-16 decoded
+                let text = match millpath_core::load::text_file::decode(&bytes) {
+                    Ok(decoded) => decoded.text.into_owned(),
+                    Err(_) => String::from_utf8_lossy(&bytes).into_owned(),
+                };
+                match config::parse(&text, d) {
                     Ok(cfg) => {
                         cfg.apply(&mut s, &mut have);
                         if !cfg.clamp.is_empty() {

@@ -30,8 +30,9 @@ pub fn run_with_log(max: f64, log: &str, tolerance: f64, lang: Lang, files: &[St
     run_set(max, None, lang, files, false, Some((log, tolerance)))
 }
 
-/// A probe log, read only when it is not larger than [`adjustz::MAX_LOG_BYTES`]; bytes that
-/// are not UTF-8 (a console's odd characters) become U+FFFD. Also `verify --surface`'s reader.
+/// A probe log, read only when it is not larger than [`adjustz::MAX_LOG_BYTES`]; UTF-16 with
+/// a mark is decoded, bytes that are not UTF-8 (a console's odd characters) become U+FFFD.
+/// Also `verify --surface`'s reader.
 pub(crate) fn read_log(path: &str, diags: &mut Diags) -> Option<String> {
     use std::io::Read;
     let limit = adjustz::MAX_LOG_BYTES as u64;
@@ -54,7 +55,17 @@ pub(crate) fn read_log(path: &str, diags: &mut Diags) -> Option<String> {
         diags.error(Msg::ProbeLogTooLarge, origin, millpath_core::args![limit]);
         return None;
     }
-    Some(String::from_utf8_lossy(&bytes).into_owned())
+    match millpath_core::load::text_file::text_of(bytes) {
+        Ok(text) => Some(text),
+        Err(e) => {
+            diags.error(
+                Msg::CannotRead,
+                Origin::Input,
+                millpath_core::args![path, e],
+            );
+            None
+        }
+    }
 }
 
 fn run_set(
@@ -93,7 +104,7 @@ fn run_set(
     };
     let read = |path: &str, diags: &mut Diags| {
         eprintln!("---- {} {path}", verb("Reading", "Einlesen von"));
-        std::fs::read_to_string(path)
+        crate::read::text(path)
             .map_err(|e| {
                 diags.error(
                     Msg::CannotRead,
@@ -124,7 +135,7 @@ fn run_set(
         }
         // the probing program that measured the values, when it is beside them
         let probing_path = format!("{base}_Probing.gcode");
-        let probing = std::fs::read_to_string(&probing_path).ok();
+        let probing = crate::read::text(&probing_path).ok();
         let set = |name, text| adjustz::SetFile { name, text };
         let probing = probing.as_deref().map(|p| set(&probing_path, p));
         let content = match log {

@@ -81,7 +81,9 @@ fn check_all(
     results
 }
 
-pub fn run(m: &MachineArgs, format: Format, quiet: bool, paths: &[PathBuf]) -> u8 {
+/// `check`: `quiet` and `--max-warnings` (over millpath.toml's `max_warnings`) in `options`.
+pub fn run(m: &MachineArgs, format: Format, options: (bool, Option<u32>), paths: &[PathBuf]) -> u8 {
+    let (quiet, max_warnings) = options;
     let mut inputs = Vec::new();
     collect_files(paths, is_drawing, &mut inputs);
     let mut settings = match settings_for(m, inputs.first().map(PathBuf::as_path), false) {
@@ -206,7 +208,31 @@ pub fn run(m: &MachineArgs, format: Format, quiet: bool, paths: &[PathBuf]) -> u
         Format::Json => print_json(&all, inputs.len(), &times, lang),
         _ => print_report(format, &all, inputs.len(), lang),
     }
-    u8::from(errors > 0)
+    let warnings = all
+        .iter()
+        .filter(|d| d.severity == Severity::Warning)
+        .count();
+    let too_many = match max_warnings.or(settings.max_warnings) {
+        Some(max) if warnings > max as usize => {
+            // after the report, on standard error: a JSON or SARIF report stays one document
+            eprintln!("{}", too_many_warnings(warnings, max, lang));
+            true
+        }
+        _ => false,
+    };
+    u8::from(errors > 0 || too_many)
+}
+
+/// The line that says why a check with no error failed.
+fn too_many_warnings(warnings: usize, max: u32, lang: Lang) -> String {
+    match lang {
+        Lang::En => format!(
+            "error: {warnings} warning(s), more than the {max} allowed (--max-warnings, max_warnings in millpath.toml)"
+        ),
+        Lang::De => format!(
+            "Fehler: {warnings} Warnung(en), mehr als die erlaubten {max} (--max-warnings, max_warnings in millpath.toml)"
+        ),
+    }
 }
 
 /// The JSON report with the estimated time of each path (`times`: file, path, seconds and

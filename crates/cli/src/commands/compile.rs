@@ -5,6 +5,7 @@ use crate::args::{lang_of, settings_for, MachineArgs};
 use crate::inputs::compile_inputs;
 use crate::output::{flush_info, print_human, print_stats, write_drawing_outputs};
 use crate::report;
+use crate::stale::Sweeper;
 use millpath_core::diag::{Diags, Severity};
 use millpath_core::{compile_file, Lang, OsFileSystem, Session, Settings};
 use std::path::Path;
@@ -49,8 +50,9 @@ pub fn run(m: &MachineArgs, files: &[String]) -> u8 {
     }
     let lang = each.first().map_or(early, |s| s.lang);
     let mut not_written = Vec::new();
+    let mut sweeper = Sweeper::default();
     for (input, settings) in inputs.iter().zip(&each) {
-        if !compile_one(settings, input) {
+        if !compile_one(settings, input, &mut sweeper) {
             not_written.push(input.as_path());
         }
     }
@@ -60,9 +62,13 @@ pub fn run(m: &MachineArgs, files: &[String]) -> u8 {
     u8::from(!not_written.is_empty())
 }
 
+/// The files a compile writes beside a drawing.
+const OUTPUT_ENDS: [&str; 4] = ["_Milling.gcode", "_Probing.gcode", "_Z.txt", "_Clean.gcode"];
+
 /// Compiles one drawing in a session of its own and writes its outputs; prints its progress,
-/// statistics and diagnostics. Whether its outputs were written.
-fn compile_one(settings: &Settings, input: &Path) -> bool {
+/// statistics and diagnostics. Whether its outputs were written. The temporaries that a
+/// killed earlier compile left beside its outputs are swept first (`stale.rs`).
+fn compile_one(settings: &Settings, input: &Path, sweeper: &mut Sweeper) -> bool {
     let lang = settings.lang;
     let fs = OsFileSystem;
     let mut session = match Session::new(settings.clone(), &fs) {
@@ -73,7 +79,15 @@ fn compile_one(settings: &Settings, input: &Path) -> bool {
         }
     };
     session.one_file = true;
+    let prefix = millpath_core::output_prefix(input, "");
+    for end in OUTPUT_ENDS {
+        sweeper.sweep(Path::new(&format!("{}{end}", prefix.display())));
+    }
     let outcome = compile_file(&mut session, input, &millpath_core::banner());
+    // a drawing's R (its outputs under another name)
+    for o in &outcome.outputs {
+        sweeper.sweep(&o.path);
+    }
     flush_info(&mut session);
     let mut write_errors = Diags::default();
     // a failed drawing writes nothing and leaves none of its older outputs looking current

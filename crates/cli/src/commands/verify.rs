@@ -68,7 +68,21 @@ fn read(path: &PathBuf, lang: Lang) -> Result<String, String> {
         });
     }
     let bytes = std::fs::read(path).map_err(os)?;
-    Ok(String::from_utf8_lossy(&bytes).into_owned())
+    Ok(program_text(bytes))
+}
+
+/// A program's text as the checker reads it: UTF-16 with a mark (Notepad's "Unicode") is
+/// decoded, its mark kept, so that the checker says the controller cannot take the file
+/// (as it says of a UTF-8 mark); other bytes as UTF-8, the rest as U+FFFD.
+fn program_text(bytes: Vec<u8>) -> String {
+    use millpath_core::load::text_file::{decode, Encoding};
+    match decode(&bytes) {
+        Ok(d) if matches!(d.encoding, Encoding::Utf16Le | Encoding::Utf16Be) => {
+            format!("\u{feff}{}", d.text)
+        }
+        _ => String::from_utf8(bytes)
+            .unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned()),
+    }
 }
 
 fn summary(report: &Report, lang: Lang) -> String {

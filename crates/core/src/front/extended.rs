@@ -11,12 +11,52 @@
 use crate::args;
 use crate::diag::{Diags, EntityOrigin, FileRef, Msg, Origin};
 use crate::front::layer::{effective_layer, path_name_of_layer};
-use crate::front::options::FrontOptions;
+use crate::front::options::{FrontOptions, InputMode};
 use crate::geom::P2;
 use millpath_dxf::explode::{self, Reason};
 use millpath_dxf::{Drawing, ExtraKind, Point3};
 use std::collections::BTreeMap;
 use std::sync::Arc;
+
+/// The line types the compiler knows (by prefix, as `drawing::build_paths` compares them).
+const KNOWN_LINE_TYPES: [&str; 7] = [
+    "CONTINUOUS",
+    "DIVIDE",
+    "BORDER",
+    "DASHDOT",
+    "DASHED",
+    "HIDDEN",
+    "DOT",
+];
+
+/// In the reference mode, a line type that the extended mode would read (`Continuous`,
+/// `ACAD_ISO02W100`, …): its "not supported" error (MP005) gets a note naming the mode and
+/// what the name would be read as. Adds each note once.
+pub fn hint_line_types(list: &mut [crate::diag::Diagnostic], mode: InputMode, lang: crate::Lang) {
+    if mode == InputMode::Extended {
+        return;
+    }
+    for d in list
+        .iter_mut()
+        .filter(|d| d.msg == Msg::LineTypeNotSupported && d.related.is_empty())
+    {
+        let Some(name) = d.args.first() else { continue };
+        let read_as = crate::front::linetype_alias::canonical(name);
+        if !KNOWN_LINE_TYPES.iter().any(|k| read_as.starts_with(k)) {
+            continue;
+        }
+        let note = match lang {
+            crate::Lang::En => format!(
+                "the extended mode reads it as {read_as}: --extended, or input = \"extended\" in millpath.toml"
+            ),
+            crate::Lang::De => format!(
+                "der erweiterte Modus liest sie als {read_as}: --extended oder input = \"extended\" in millpath.toml"
+            ),
+        };
+        let origin = d.origin.clone();
+        d.related.push(crate::diag::Related { origin, note });
+    }
+}
 
 fn on_path_layer(layer: &str, opts: &FrontOptions) -> bool {
     opts.layer_pattern

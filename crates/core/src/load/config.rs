@@ -53,6 +53,9 @@ pub struct FileConfig {
     pub clamp: Vec<crate::load::clamps::ClampConfig>,
     /// The toolpath view's cut part: its cell edge (mm); default the checker's (O/8).
     pub cut_cell: Option<f64>,
+    /// `check` fails when it finds more warnings than this (as `--max-warnings`); a whole
+    /// number ≥ 0 (a negative or NaN value is the TOML reader's error, at its line).
+    pub max_warnings: Option<u32>,
 }
 
 /// `[heightmap]`: `step` (mm, required), `margin` (mm, default 0), `area = [xmin, ymin,
@@ -216,6 +219,9 @@ impl FileConfig {
         }
         if self.probe_split.is_some() {
             s.probe_split = self.probe_split;
+        }
+        if self.max_warnings.is_some() {
+            s.max_warnings = self.max_warnings;
         }
         if self.cut_cell.is_some() {
             s.cut_cell = self.cut_cell;

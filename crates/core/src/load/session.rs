@@ -253,8 +253,15 @@ impl<'a> Session<'a> {
             )),
             Ok(bytes) => {
                 let file = FileRef::new(path.to_path_buf());
-                self.parse_drawing(bytes, &file, &mut diags, &mut info)
-                    .map(|d| d.paths.into_iter().map(Arc::new).collect())
+                let parsed = self
+                    .parse_drawing(bytes, &file, &mut diags, &mut info)
+                    .map(|d| d.paths.into_iter().map(Arc::new).collect());
+                crate::front::extended::hint_line_types(
+                    &mut diags.list,
+                    self.settings.input,
+                    self.lang(),
+                );
+                parsed
             }
         };
         ParsedFile {

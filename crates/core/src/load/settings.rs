@@ -102,6 +102,8 @@ pub struct Settings {
     /// The toolpath view's cut part: cell edge in mm (`cut_cell`, `render --cut-cell`);
     /// `None`: the checker's.
     pub cut_cell: Option<f64>,
+    /// `check` fails with more warnings than this (`max_warnings`, `--max-warnings`).
+    pub max_warnings: Option<u32>,
     /// The millpath.toml these settings were read from; `None`: none (options, an editor).
     pub settings_file: Option<PathBuf>,
     /// Settings the command line gave (`feed`, `probe_feed`, …): their errors are located at
@@ -146,6 +148,7 @@ impl Default for Settings {
             clamps: Vec::new(),
             clamps_file: None,
             cut_cell: None,
+            max_warnings: None,
             settings_file: None,
             option_keys: Vec::new(),
         }
@@ -241,7 +244,8 @@ impl Settings {
         {
             errors.push(Diagnostic::error(
                 Msg::MachineNeedsAcceleration,
-                Origin::Options,
+                // `[machine]` of millpath.toml (an editor's settings: the options)
+                self.origin_of("max_velocity"),
                 vec![],
             ));
         }

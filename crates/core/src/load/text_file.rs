@@ -62,6 +62,27 @@ pub fn decode(bytes: &[u8]) -> Result<Decoded<'_>, NulBytes> {
     Ok(Decoded { text, encoding })
 }
 
+/// What [`text_of`] says of bytes that hold NUL bytes and no byte-order mark (German in
+/// `diag::os_error_text`).
+pub const NO_MARK: &str =
+    "holds NUL bytes and no byte-order mark (UTF-16 without a mark?): save it as UTF-8";
+
+/// A whole file's bytes as text, as [`decode`] reads them, for the files beside a drawing
+/// that are read whole (`_Z.txt`, `_Clean.gcode`, probe logs, `millpath.toml`, a program
+/// to verify): a file Notepad saved as "Unicode" (UTF-16 with a mark) reads as the same
+/// text. No mark and NUL bytes is an `InvalidData` error whose text says what to do.
+pub fn text_of(bytes: Vec<u8>) -> std::io::Result<String> {
+    // the usual case without a copy
+    let bytes = match String::from_utf8(bytes) {
+        Ok(s) if !s.starts_with('\u{FEFF}') && !s.contains('\0') => return Ok(s),
+        Ok(s) => s.into_bytes(),
+        Err(e) => e.into_bytes(),
+    };
+    decode(&bytes)
+        .map(|d| d.text.into_owned())
+        .map_err(|NulBytes| std::io::Error::new(std::io::ErrorKind::InvalidData, NO_MARK))
+}
+
 /// The line ends of a text.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LineEnds {
@@ -154,6 +175,28 @@ mod tests {
         let mut odd = utf16("ab", false);
         odd.push(b'c');
         assert_eq!(decode(&odd).unwrap().text, "ab\u{FFFD}");
+    }
+
+    #[test]
+    fn whole_files_read_as_text_in_every_stored_form() {
+        let text = "(a [1 2]/T=3.000) #51=3,1\r\n";
+        let mut bom = b"\xEF\xBB\xBF".to_vec();
+        bom.extend_from_slice(text.as_bytes());
+        for bytes in [
+            text.as_bytes().to_vec(),
+            bom,
+            utf16(text, false),
+            utf16(text, true),
+        ] {
+            assert_eq!(text_of(bytes).unwrap(), text);
+        }
+        let no_mark = utf16(text, false)[2..].to_vec();
+        let e = text_of(no_mark).unwrap_err();
+        assert_eq!(
+            (e.kind(), e.to_string()),
+            (std::io::ErrorKind::InvalidData, NO_MARK.to_string())
+        );
+        assert_eq!(text_of(b"T=\xFF".to_vec()).unwrap(), "T=\u{FFFD}");
     }
 
     #[test]
