@@ -558,8 +558,9 @@ fn cpu_time(pid: u32) -> Option<Duration> {
     Some(Duration::from_millis(ticks * 10))
 }
 
-/// A cancelled code lens, preview or toolpath request answers -32800 at once, and its compile stops
-/// (the server's CPU goes idle instead of finishing the work); the server stays healthy.
+/// A cancelled code lens, preview (`millpath/gcodePreview` or the command
+/// `millpath.server.preview`) or toolpath request answers -32800 at once, and its compile
+/// stops (the server's CPU goes idle instead of finishing the work); the server stays healthy.
 #[test]
 fn cancellation_stops_the_work_of_lenses_preview_and_toolpath() {
     if cpu_time(std::process::id()).is_none() {
@@ -607,6 +608,11 @@ fn cancellation_stops_the_work_of_lenses_preview_and_toolpath() {
         (
             "millpath/toolpath",
             json!({ "textDocument": { "uri": u }, "path": "7000.31P" }),
+        ),
+        // the server's own preview command runs the same preview
+        (
+            "workspace/executeCommand",
+            json!({ "command": "millpath.server.preview", "arguments": [long, "7100.1P"] }),
         ),
     ] {
         let id = c.send_request(method, params);

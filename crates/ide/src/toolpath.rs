@@ -113,7 +113,10 @@ fn toolpath_json(
             }
             Origin::Entity(e) => json!({
                 "file": e.file.path.display().to_string(), "line": e.line.saturating_sub(1), "character": 0,
-                "label": format!("{}:{}", e.file.name, e.line), "text": format!("{} on layer {} at {}", e.code_name, e.layer, e.pos),
+                "label": format!("{}:{}", e.file.name, e.line), "text": match lang {
+                    millpath_core::Lang::En => format!("{} on layer {} at {}", e.code_name, e.layer, e.pos),
+                    millpath_core::Lang::De => format!("{} auf Layer {} bei {}", e.code_name, e.layer, e.pos),
+                },
             }),
             o => {
                 json!({ "file": o.file().map(|f| f.path.display().to_string()), "line": 0, "character": 0, "label": o.context(), "text": "" })
@@ -193,6 +196,11 @@ fn toolpath_json(
     stat_lines.extend(stats.split_line(lang));
     stat_lines.push(stats.time_line(lang));
     let mut data = json!({
+        // the page's words follow the settings' language, as the statistics above
+        "lang": match lang {
+            millpath_core::Lang::En => "en",
+            millpath_core::Lang::De => "de",
+        },
         "path": name,
         "file": path.display().to_string(),
         "moves": moves,

@@ -3,6 +3,10 @@ if vim.g.loaded_millpath then
   return
 end
 vim.g.loaded_millpath = true
+if vim.fn.has('nvim-0.7') == 0 then
+  vim.api.nvim_echo({ { 'millpath: Neovim 0.7 or later is needed; the plugin is off', 'ErrorMsg' } }, true, {})
+  return
+end
 
 vim.api.nvim_create_user_command('MillpathPreview', function(args)
   require('millpath').preview(args.args ~= '' and args.args or nil)

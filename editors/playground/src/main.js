@@ -164,6 +164,7 @@ let viewerWin = null;
 const viewerReady = new Promise((resolve) => {
   frame.addEventListener('load', () => {
     viewerWin = frame.contentWindow;
+    viewerWin.millpathToolpath.setLang(lang);
     viewerWin.addEventListener('millpath-select', (e) => reveal(e.detail && e.detail.source));
     resolve();
   }, { once: true });
@@ -315,6 +316,8 @@ $('lang').addEventListener('change', () => {
   localStorage.setItem('millpath-lang', lang);
   mp.set_lang(lang);
   translate();
+  // the viewer's own words (its data carries the language too, from the next outputs on)
+  if (viewerWin) viewerWin.millpathToolpath.setLang(lang);
   analyse();
   scheduleOutputs(0);
 });

@@ -14,6 +14,7 @@ import { fileURLToPath } from 'node:url';
 import { gzipSync } from 'node:zlib';
 import { chromium } from 'playwright-core';
 import { serve } from './serve.mjs';
+import { WORDS as VIEWER_WORDS } from '../../toolpath/src/words.js';
 
 const here = dirname(fileURLToPath(import.meta.url));
 const repo = join(here, '../../..');
@@ -253,4 +254,142 @@ test('clicking a move in the toolpath selects its source line', { skip, timeout:
   assert.match(sel[1], /^\s*mark \(40, 20\)/);
   assert.deepEqual(errors, []);
   await page.close();
+});
+
+/** The toolbars of the viewer (in its iframe): each bar's overflow and every item's place. */
+async function viewerBars(page) {
+  return page.evaluate(() => {
+    const doc = document.getElementById('viewer').contentDocument;
+    return ['header', '#playbar'].map((sel) => {
+      const bar = doc.querySelector(sel), box = bar.getBoundingClientRect();
+      const outside = [...bar.children].filter((c) => {
+        const r = c.getBoundingClientRect();
+        return r.width > 0 && (r.left < box.left - 0.5 || r.right > box.right + 0.5);
+      }).map((c) => c.id || c.className || c.tagName);
+      return { bar: sel, overflow: bar.scrollWidth - bar.clientWidth, outside, page: doc.documentElement.scrollWidth - doc.documentElement.clientWidth };
+    });
+  });
+}
+
+test('the layout at 1280, 1400 and 1920 px: a click in the editor shifts nothing sideways, the toolbars stay in their boxes', { skip, timeout: 180000 }, async () => {
+  for (const width of [1280, 1400, 1920]) {
+    for (const lang of ['en', 'de']) {
+      const { page, errors } = await open(`?example=2010.mpath&lang=${lang}`, { width, height: 850 });
+      await page.waitForFunction(() => window.playground.viewer() && window.playground.viewer().drawnMoves() > 0);
+      // a click at the end of the longest line of the editor, then the cursor to its end
+      const lines = page.locator('#editor .cm-line');
+      let longest = 0, most = -1;
+      for (let k = 0; k < await lines.count(); k++) {
+        const n = (await lines.nth(k).textContent()).length;
+        if (n > most) { most = n; longest = k; }
+      }
+      const box = await lines.nth(longest).boundingBox();
+      await page.mouse.click(box.x + Math.min(box.width - 2, 400), box.y + box.height / 2);
+      await page.keyboard.press('End');
+      await page.waitForTimeout(150);
+      const m = await page.evaluate(() => {
+        const r = (el) => el.getBoundingClientRect();
+        const left = document.getElementById('left'), toml = document.getElementById('toml-pane');
+        const gutter = document.querySelector('#editor .cm-gutters');
+        // nothing scrolled sideways but the editors' own scrollers
+        const shifted = [document.documentElement, document.body, ...document.querySelectorAll('main, main *')]
+          .filter((e) => e.scrollLeft !== 0 && !e.classList.contains('cm-scroller'))
+          .map((e) => `${e.tagName}#${e.id}.${e.className}: ${e.scrollLeft}`);
+        return {
+          shifted,
+          gutterInside: r(gutter).left - r(left).left,
+          tomlInside: [r(toml).left - r(left).left, r(left).right - r(toml).right],
+          pageOverflow: document.documentElement.scrollWidth - document.documentElement.clientWidth,
+          focused: document.activeElement && document.activeElement.classList.contains('cm-content'),
+        };
+      });
+      const at = `${width} px, ${lang}`;
+      assert.ok(m.focused, `${at}: the click focused the editor`);
+      assert.deepEqual(m.shifted, [], `${at}: scrolled sideways`);
+      assert.ok(m.gutterInside >= 0, `${at}: the line numbers start ${m.gutterInside} px left of the column`);
+      assert.ok(m.tomlInside[0] >= 0 && m.tomlInside[1] >= -0.5, `${at}: the settings pane reaches out of the column: ${m.tomlInside}`);
+      assert.ok(m.pageOverflow <= 0, `${at}: the page scrolls sideways by ${m.pageOverflow} px`);
+      for (const b of await viewerBars(page)) {
+        assert.ok(b.overflow <= 0 && b.page <= 0, `${at}: the viewer's ${b.bar} overflows by ${b.overflow} px (page ${b.page})`);
+        assert.deepEqual(b.outside, [], `${at}: items of the viewer's ${b.bar} outside it`);
+      }
+      if (width === 1400) await page.screenshot({ path: join(artifacts, `playground-1400-${lang}.png`) });
+      assert.deepEqual(errors, []);
+      await page.close();
+    }
+  }
+});
+
+/** The English words of the viewer's controls that German does not share (from its one
+ *  source of words, function words with placeholders): none may show in German. */
+function englishOnly() {
+  const words = (table) => {
+    const out = [];
+    const add = (v) => {
+      if (typeof v === 'function') v = v(7, 8, 9, 10);
+      if (typeof v === 'string') out.push(...v.split(/[^A-Za-zÄÖÜäöüß-]+/));
+      else if (v && typeof v === 'object') Object.values(v).forEach(add);
+    };
+    Object.values(table).forEach(add);
+    return out.filter((x) => x.replace(/-/g, '').length >= 3);
+  };
+  const german = new Set(words(VIEWER_WORDS.de).map((x) => x.toLowerCase()));
+  return [...new Set(words(VIEWER_WORDS.en))].filter((x) => !german.has(x.toLowerCase()));
+}
+
+/** The viewer's control labels, titles, legend and hint as shown, then the info line after
+ *  hovering move `i` (`offset`: the viewer's place in the page). */
+async function viewerLabels(page, doc, offset, i) {
+  const shown = await page.evaluate(`(() => {
+    const d = ${doc};
+    const texts = [...d.querySelectorAll('header, #playbar, summary, #legend, #info, #empty')].map((e) => e.innerText);
+    const attrs = [...d.querySelectorAll('[title], [aria-label]')].map((e) => [e.title, e.getAttribute('aria-label')].join(' '));
+    const options = [...d.querySelectorAll('option')].map((o) => o.textContent);
+    return { lang: d.documentElement.lang, all: [...texts, ...attrs, ...options].join('\\n') };
+  })()`);
+  const [x, y] = await page.evaluate(`(${doc}).defaultView.millpathToolpath.screenOf(${i}, 0.5)`);
+  await page.mouse.move(offset.x + x, offset.y + y);
+  await page.waitForFunction(`/\\d+\\/\\d+/.test((${doc}).getElementById('info').textContent)`);
+  shown.info = await page.evaluate(`(${doc}).getElementById('info').textContent`);
+  return shown;
+}
+
+function assertGerman(shown, where) {
+  assert.equal(shown.lang, 'de', where);
+  const found = englishOnly().filter((w) => new RegExp(`(^|[^A-Za-zÄÖÜäöüß])${w}([^A-Za-zÄÖÜäöüß]|$)`).test(shown.all));
+  assert.deepEqual(found, [], `${where}: English words in German: ${found.join(', ')}\n${shown.all}`);
+  for (const w of ['Farbe', 'nach Tiefe', 'gefrästes Teil', 'Werkzeugbreite', 'Legende', 'Tempo', 'Raster', 'Eine Bewegung berühren']) {
+    assert.ok(shown.all.includes(w), `${where}: no "${w}"\n${shown.all}`);
+  }
+  // the hover line: its words German (the element's own text is the user's)
+  assert.match(shown.info, /^Bewegung \d+\/\d+ .*\nG-Code-Zeile \d+/s, where);
+}
+
+test('in German the toolpath viewer has no English control label: the playground and millpath render\'s page', { skip, timeout: 120000 }, async () => {
+  assert.ok(englishOnly().length > 30, englishOnly().join(' '));
+  // the playground in German: the viewer follows the page's language
+  const { page, errors } = await open('?example=2010.mpath&lang=de');
+  await page.waitForFunction(() => window.playground.viewer() && window.playground.viewer().drawnMoves() > 0);
+  const frame = await page.locator('#viewer').boundingBox();
+  const doc = "document.getElementById('viewer').contentDocument";
+  assertGerman(await viewerLabels(page, doc, frame, 3), 'playground');
+  // and back to English at once
+  await page.selectOption('#lang', 'en');
+  await page.waitForFunction(() => document.getElementById('viewer').contentDocument.documentElement.lang === 'en');
+  const en = await page.evaluate(() => document.getElementById('viewer').contentDocument.querySelector('header').innerText);
+  assert.match(en, /colour/);
+  assert.deepEqual(errors, []);
+  await page.close();
+  // the page millpath render writes with --lang de (the data carries the language)
+  const dir = mkdtempSync(join(tmpdir(), 'millpath-render-de-'));
+  for (const f of readdirSync(work)) if (/\.mpath$|^millpath\.toml$/.test(f)) copyFileSync(join(work, f), join(dir, f));
+  execFileSync(bin, ['render', '2010.mpath', '--lang', 'de', '--html', 'de.html'], { cwd: dir, stdio: 'pipe' });
+  const p2 = await browser.newPage({ viewport: { width: 1000, height: 700 } });
+  const errs2 = [];
+  p2.on('pageerror', (e) => errs2.push(e.message));
+  await p2.goto(`file://${join(dir, 'de.html')}`);
+  await p2.waitForFunction(() => document.body.dataset.ready);
+  assertGerman(await viewerLabels(p2, 'document', { x: 0, y: 0 }, 3), 'millpath render --lang de');
+  assert.deepEqual(errs2, []);
+  await p2.close();
 });

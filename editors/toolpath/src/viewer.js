@@ -8,6 +8,7 @@ import { paths, positionAt, cumulative, moveAt } from './geometry.js';
 import { boundsWithClamps, clampGroup, HIT_COLOUR, CLAMP_COLOUR } from './clamps.js';
 import { CutPart, cutColour } from './cut.js';
 import { widthGroup } from './width.js';
+import { t as say, setCurrent, translatePage } from './words.js';
 
 const t0 = performance.now();
 const KIND_COLOURS = {
@@ -174,7 +175,8 @@ function build(data) {
   gridGeo.setAttribute('position', new THREE.BufferAttribute(new Float32Array(gl), 3));
   const grid = new THREE.LineSegments(gridGeo, new THREE.LineBasicMaterial({ color: gridColour(), transparent: true, opacity: 0.8 }));
   group.add(grid);
-  $('grid-label').textContent = `grid ${step} mm`;
+  st.gridStep = step;
+  $('grid-label').textContent = say('grid', step);
   group.add(new THREE.AxesHelper(Math.max(step, extent / 8)));
 
   // the stock top T as a translucent plane over the drawing
@@ -376,7 +378,7 @@ function legend() {
   for (const k of kinds) {
     const s = document.createElement('span');
     s.dataset.kind = k;
-    s.innerHTML = `<span class="sw" style="background:${KIND_COLOURS[k]}"></span>${k} ${counts[k]}`;
+    s.innerHTML = `<span class="sw" style="background:${KIND_COLOURS[k]}"></span>${kindWord(k)} ${counts[k]}`;
     row.append(s);
   }
   el.append(row);
@@ -419,8 +421,8 @@ function legend() {
       g.fillStyle = `#${c.getHexString()}`;
       g.fillRect(x, 0, 1, 10);
     }
-    const note = [d.cut.coarsened ? 'coarsened' : '', d.cut.thinned ? 'playback in final steps' : ''].filter(Boolean).join(', ');
-    cp.append(`cut part ${d.cut.nx}×${d.cut.ny} of ${f3(d.cut.cell)} mm  Z ${f3(d.cut.top)}`, cv, `${f3(d.cut.lowest)} mm${note ? ` (${note})` : ''}`);
+    const note = [d.cut.coarsened ? say('coarsened') : '', d.cut.thinned ? say('finalSteps') : ''].filter(Boolean).join(', ');
+    cp.append(say('cut', d.cut.nx, d.cut.ny, f3(d.cut.cell), f3(d.cut.top)), cv, `${f3(d.cut.lowest)} mm${note ? ` (${note})` : ''}`);
     el.append(cp);
   }
   const hm = d.heightmap;
@@ -435,9 +437,9 @@ function legend() {
       hm.legend.ramp.forEach((col, k) => grad.addColorStop(k / (hm.legend.ramp.length - 1), col));
       g.fillStyle = grad;
       g.fillRect(0, 0, 120, 10);
-      sf.append(`surface ${n} Z ${f3(hm.legend.min)}`, cv, `${f3(hm.legend.max)} mm`);
+      sf.append(say('surface', n, f3(hm.legend.min)), cv, `${f3(hm.legend.max)} mm`);
     } else {
-      sf.textContent = `height map ${n} probe points at the top ${f3(hm.top)} mm (not measured)`;
+      sf.textContent = say('heightMap', n, f3(hm.top));
     }
     el.append(sf);
   }
@@ -445,12 +447,12 @@ function legend() {
     const cl = document.createElement('div');
     cl.className = 'clamps';
     const hits = st.hits || [];
-    cl.innerHTML = `<span class="sw" style="background:${CLAMP_COLOUR}"></span>clamps ${d.clamps.length}` +
-      (hits.length ? ` · <span class="sw" style="background:${HIT_COLOUR}"></span><b>${hits.length} move${hits.length > 1 ? 's' : ''} into a clamp</b>` : ' · no move touches them');
+    cl.innerHTML = `<span class="sw" style="background:${CLAMP_COLOUR}"></span>${say('clamps', d.clamps.length)}` +
+      (hits.length ? ` · <span class="sw" style="background:${HIT_COLOUR}"></span><b>${say('intoClamp', hits.length)}</b>` : ` · ${say('noClampTouched')}`);
     el.append(cl);
   }
-  const tool = d.tool ? `tool Ø ${f3(d.tool.diameter)} mm` : '';
-  const stock = d.stock ? `stock top ${f3(d.stock.top)} mm` : '';
+  const tool = d.tool ? say('tool', f3(d.tool.diameter)) : '';
+  const stock = d.stock ? say('stock', f3(d.stock.top)) : '';
   const extra = document.createElement('div');
   extra.textContent = [tool, stock].filter(Boolean).join(' · ');
   el.append(extra);
@@ -481,7 +483,7 @@ function setTime(t, follow = true) {
   $('scrub').value = String(st.time);
   const f3 = (v) => v.toFixed(3);
   $('readout').textContent = `X ${f3(point[0])} Y ${f3(point[1])} Z ${f3(point[2])}  ` +
-    `F ${m ? (m.kind === 'rapid' ? 'rapid' : f3(m.feed)) : '-'}  line ${m ? m.line : '-'}  ` +
+    `F ${m ? (m.kind === 'rapid' ? say('rapidFeed') : f3(m.feed)) : '-'}  ${say('line')} ${m ? m.line : '-'}  ` +
     `${fmtTime(st.time)} / −${fmtTime(st.total - st.time)}`;
   document.body.dataset.time = String(st.time);
   requestDraw();
@@ -565,10 +567,10 @@ function sourceOf(m) {
 }
 function describe(i) {
   const m = st.data.moves[i], s = sourceOf(m);
-  const where = s ? `${s.label}  ${s.text || ''}` : '(no source element)';
+  const where = s ? `${s.label}  ${s.text || ''}` : say('noSource');
   const clamps = (m.hits || []).map((k) => ((st.data.clamps || [])[k] || {}).name).filter(Boolean);
-  const into = clamps.length ? `\n⚠ runs into clamp ${clamps.map((n) => `'${n}'`).join(', ')}` : '';
-  return `move ${i + 1}/${st.data.moves.length} ${m.kind}  ${where}\nG-code line ${m.line}: ${m.gcode || ''}${into}`;
+  const into = clamps.length ? `\n⚠ ${say('runsIntoClamp', clamps.map((n) => `'${n}'`).join(', '))}` : '';
+  return `${say('move', i + 1, st.data.moves.length, kindWord(m.kind))}  ${where}\n${say('gcodeLine', m.line)}: ${m.gcode || ''}${into}`;
 }
 function showHighlight(indices) {
   st.selected = indices;
@@ -610,7 +612,7 @@ function highlight({ file, line, gcodeLine }) {
   const hits = [];
   moves.forEach((m, i) => { if (typeof m.source === 'number' && wanted.has(m.source)) hits.push(i); });
   showHighlight(hits);
-  if (hits.length) $('info').textContent = `${hits.length} moves  ${describe(hits[0])}`;
+  if (hits.length) $('info').textContent = `${say('moves', hits.length)}  ${describe(hits[0])}`;
   return hits;
 }
 
@@ -650,16 +652,41 @@ function placeLabels() {
   });
 }
 
+// ---- language ----
+function kindWord(k) {
+  return say('kinds')[k] || k;
+}
+/// Puts the page in `lang`; `redraw`: the words drawn from the data too (the legend, the
+/// grid, the readout and the info line).
+let shownLang = null;
+function useLang(lang, redraw) {
+  const before = shownLang;
+  shownLang = setCurrent(lang);
+  // the same language again (each new data has it): the page's lines stay as they are
+  if (shownLang === before) return;
+  translatePage();
+  if (!st.data || !st.data.moves || !st.data.moves.length) {
+    $('title').textContent = say('title');
+    return;
+  }
+  if (!redraw) return;
+  if (st.gridStep !== undefined) $('grid-label').textContent = say('grid', st.gridStep);
+  legend();
+  setTime(st.time, false);
+}
+
 // ---- data in ----
 function render(data, keepView) {
+  if (data && data.lang) useLang(data.lang, false);
   st.data = data;
   const empty = $('empty');
   if (empty) empty.remove();
   if (!data || !data.moves || !data.moves.length) {
     disposeWorld();
+    $('title').textContent = say('title');
     const div = document.createElement('div');
     div.id = 'empty';
-    div.textContent = `No toolpath${data && data.error ? `: ${data.error}` : ''}`;
+    div.textContent = `${say('none')}${data && data.error ? `: ${data.error}` : ''}`;
     stage.append(div);
     document.body.dataset.moves = '0';
     requestDraw();
@@ -721,6 +748,9 @@ if (served) {
 // for tests and embedding pages
 window.millpathToolpath = {
   render, select, highlight, setView, setTime,
+  /// The page's language, 'en' or 'de' (the data's `lang` sets it too).
+  setLang: (lang) => useLang(lang, true),
+  lang: () => document.documentElement.lang,
   data: () => st.data,
   highlighted: () => st.selected.slice(),
   play, pause,
@@ -752,10 +782,11 @@ window.millpathToolpath = {
   },
 };
 
+useLang(navigator.language, false);
 applyTheme();
 // a narrow view (a webview beside the source) starts with the panel folded
 if (stage.clientWidth < 600) $('side').open = false;
 const embedded = JSON.parse($('toolpath-data').textContent || 'null');
 if (embedded) render(embedded);
-else { const d = document.createElement('div'); d.id = 'empty'; d.textContent = 'No toolpath yet.'; stage.append(d); }
+else { const d = document.createElement('div'); d.id = 'empty'; d.dataset.t = 'noneYet'; d.textContent = say('noneYet'); stage.append(d); }
 if (vscode) vscode.postMessage({ type: 'ready' });

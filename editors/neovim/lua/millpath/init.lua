@@ -19,18 +19,52 @@ local function root_dir(fname)
   return vim.fn.fnamemodify(fname, ':p:h')
 end
 
+--- The language clients attached to a buffer (get_clients: 0.10; get_active_clients takes a
+--- filter from 0.8; 0.7 has buf_get_clients).
+local function clients_of(bufnr)
+  if vim.lsp.get_clients then
+    return vim.lsp.get_clients({ bufnr = bufnr })
+  elseif vim.fn.has('nvim-0.8') == 1 then
+    return vim.lsp.get_active_clients({ bufnr = bufnr })
+  end
+  return vim.tbl_values(vim.lsp.buf_get_clients(bufnr))
+end
+
 local function client_for(bufnr)
-  local get = vim.lsp.get_clients or vim.lsp.get_active_clients
-  for _, c in ipairs(get({ bufnr = bufnr })) do
+  for _, c in ipairs(clients_of(bufnr)) do
     if c.name == 'millpath' then
       return c
     end
   end
 end
+M._client_for = client_for
+
+--- Neovim 0.7 has no vim.lsp.start: one client per project folder, started once and attached
+--- to each of its buffers.
+local started = {}
+local function start_07(conf, bufnr)
+  local id = started[conf.root_dir]
+  local client = id and vim.lsp.get_client_by_id(id)
+  if not client or client.is_stopped() then
+    id = vim.lsp.start_client(conf)
+    started[conf.root_dir] = id
+  end
+  if id then
+    vim.lsp.buf_attach_client(bufnr, id)
+  end
+end
+
+--- The oldest Neovim the plugin works with (nvim_create_autocmd and vim.lsp.commands are 0.7's).
+M.min_version = '0.7'
 
 --- Sets up the language server for *.mpath buffers (Neovim 0.11: vim.lsp.config/enable;
---- 0.10: vim.lsp.start; older: vim.lsp.start_client).
+--- 0.8-0.10: vim.lsp.start; 0.7: vim.lsp.start_client and buf_attach_client).
 function M.setup(opts)
+  if vim.fn.has('nvim-' .. M.min_version) == 0 then
+    vim.notify('millpath: Neovim ' .. M.min_version .. ' or later is needed; the plugin is off',
+      vim.log.levels.ERROR)
+    return false
+  end
   M.config = vim.tbl_deep_extend('force', M.config, opts or {})
   local cfg = M.config
   -- the code lenses' command is a client-side one (arguments: document URI, path name): it
@@ -54,7 +88,7 @@ function M.setup(opts)
       init_options = cfg.settings,
     })
     vim.lsp.enable('millpath')
-    return
+    return true
   end
   vim.api.nvim_create_autocmd('FileType', {
     pattern = 'millpath',
@@ -64,13 +98,11 @@ function M.setup(opts)
       if vim.lsp.start then
         vim.lsp.start(conf, { bufnr = ev.buf })
       else
-        local id = vim.lsp.start_client(conf)
-        if id then
-          vim.lsp.buf_attach_client(ev.buf, id)
-        end
+        start_07(conf, ev.buf)
       end
     end,
   })
+  return true
 end
 
 --- A request to the server (the method call changed in Neovim 0.11).
