@@ -143,9 +143,9 @@ pub enum DialectArg {
     Reference,
     Linuxcnc,
     Grbl,
-    /// The rs274 family (LinuxCNC, Mach3, UCCNC, Centroid): as linuxcnc
+    // the rs274 family (LinuxCNC, Mach3, UCCNC, Centroid), read as linuxcnc
     Rs274,
-    /// Marlin firmware on a router
+    // Marlin firmware on a router
     Marlin,
 }
 

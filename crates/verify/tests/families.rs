@@ -596,7 +596,7 @@ fn write_rs274_family_programs() {
         eprintln!("MILLPATH_RS274_DIR not set: nothing written");
         return;
     };
-    let mut rng = Rng(0x2742_74);
+    let mut rng = Rng(0x0027_4274);
     for k in 0..40 {
         let lines = write(Style::Rs274, &drawing(&mut rng), k % 4 != 3);
         let program = text(&lines);
