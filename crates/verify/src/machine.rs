@@ -5,7 +5,7 @@
 use crate::dialect::{DwellUnit, Rules};
 use crate::finding::{ArcProblem, FamilyProblem, FindingKind, NoFeedReason, Severity, SyntaxError};
 use crate::parse::Block;
-use crate::{Dialect, Options, StockParams};
+use crate::{Dialect, StockParams};
 use std::f64::consts::TAU;
 
 /// Allowed difference of an arc's start and end radius, mm.
@@ -204,12 +204,12 @@ pub struct Machine {
 }
 
 impl Machine {
-    pub fn new(options: &Options) -> Machine {
-        let dialect = options.dialect;
+    /// The machine of `dialect`'s family; `arcs_as_lines`: a G02/G03 is a finding.
+    pub fn new(dialect: Dialect, arcs_as_lines: bool) -> Machine {
         Machine {
             dialect,
             rules: dialect.rules(),
-            arcs_as_lines: options.arcs_as_lines,
+            arcs_as_lines,
             spindle_starting: false,
             last_code_ends: false,
             moves: Vec::new(),

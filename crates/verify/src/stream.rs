@@ -92,7 +92,7 @@ impl Verifier {
             }
         };
         Verifier {
-            m: Machine::new(&options),
+            m: Machine::new(options.dialect, options.arcs_as_lines),
             rise: surface.max_rise(),
             surface,
             map,
