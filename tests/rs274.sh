@@ -5,7 +5,8 @@
 # Probed drawings are also taken through adjust-z (probes measured at their nominal heights).
 # The same drawings in the `reference` dialect are reported, not failed: the reference writes
 # F150 before G94, which resets the feed in LinuxCNC, so a first plunge has no feed.
-# A negative check proves rs274 really rejects such a program. Last line: N passed, M failed.
+# A negative check proves rs274 really rejects such a program. The rs274 family's style (a
+# post with line numbers and `;` comments) is run through rs274 too. Last line: N passed, M failed.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 if ! command -v rs274 >/dev/null; then
@@ -99,6 +100,45 @@ if [ -f "$neg" ] && ! rs274_ok "$neg"; then
 else
   echo "FAIL  negative check: rs274 accepted the reference output of examples/plate/1234.1P.dxf"
   failed=$((failed + 1))
+fi
+
+# the rs274 family's style: a post of our own with line numbers and `;` comments; what
+# the checker accepts of it (compile checks every program) rs274 must accept too
+fam=$tmp/family
+mkdir -p "$fam"
+cp examples/text/*.mpath examples/text/millpath.toml "$fam/"
+"$BIN" post show linuxcnc | sed -e 's/^name = "linuxcnc"/name = "numbered"/' \
+  -e 's/^style = "parens"/style = "semicolon"/' \
+  -e 's/^\[comments\]/[line_numbers]\nstart = 10\nstep = 10\n\n[comments]/' \
+  -e 's/^comment = "{indent}({text})"/comment = "{indent}; {text}"/' \
+  -e 's/^statistics = "  ({text})"/statistics = "; {text}"/' >"$fam/numbered.toml"
+for f in "$fam"/*.mpath; do
+  "$BIN" compile --post "$fam/numbered.toml" --spindle-rpm 9000 "$f" >/dev/null 2>&1 ||
+    echo "FAIL  ${f#"$tmp"/} did not compile with the numbered rs274 post"
+done
+family_ok=0
+for p in "$fam"/*_Milling.gcode "$fam"/*_Clean.gcode "$fam"/*_Probing.gcode; do
+  [ -e "$p" ] || continue
+  if grep -q '^N[0-9]* ;' "$p" && rs274_ok "$p"; then
+    passed=$((passed + 1))
+    family_ok=$((family_ok + 1))
+  else
+    echo "FAIL  numbered rs274 post: ${p#"$tmp"/}"
+    printf '%s\n' "$why"
+    failed=$((failed + 1))
+  fi
+done
+echo "rs274 family (line numbers, ; comments): rs274 accepts $family_ok programs"
+# negative check: a line number after the command, which the checker rejects, rs274 rejects
+p=$fam/2001_Milling.gcode
+if [ -f "$p" ]; then
+  sed -E '0,/^N([0-9]+) (G0[01]) /s//\2 N\1 /' "$p" >"$fam/moved.ngc"
+  if ! rs274_ok "$fam/moved.ngc" && ! "$BIN" verify --dialect rs274 "$fam/moved.ngc" >/dev/null 2>&1; then
+    passed=$((passed + 1))
+  else
+    echo "FAIL  negative check: a line number after the command was accepted"
+    failed=$((failed + 1))
+  fi
 fi
 
 [ -n "$shared" ] || echo "(../shared is absent: only the examples were compiled)"

@@ -143,6 +143,10 @@ pub enum DialectArg {
     Reference,
     Linuxcnc,
     Grbl,
+    // the rs274 family (LinuxCNC, Mach3, UCCNC, Centroid), read as linuxcnc
+    Rs274,
+    // Marlin firmware on a router
+    Marlin,
 }
 
 #[derive(Clone, Copy, ValueEnum, Default, PartialEq)]
@@ -249,6 +253,8 @@ pub fn settings_for(
     }
     if let Some(name) = &m.post {
         select_post(&mut s, name, Path::new(""), lang).map_err(|e| format!("--post: {e}"))?;
+        // its errors are located at the option
+        s.option_keys.push("post");
     }
     if m.plunge_feed.is_some() {
         s.plunge_feed = m.plunge_feed;

@@ -79,7 +79,7 @@ enum Command {
     /// Check G-code programs independently of the compiler: rapids into material, feeds,
     /// arcs, numbers (exit 1 on any error)
     Verify {
-        /// Whose feed-rate rules apply
+        /// Whose rules apply: feed rates, and how a line is read (a post's family)
         #[arg(long, value_enum, default_value = "reference")]
         dialect: DialectArg,
         /// Material top T, mm (default: the program's (MILLPATH-STOCK …) comment)
@@ -353,7 +353,8 @@ fn main() -> ExitCode {
         } => verify::run(&verify::Args {
             dialect: match dialect {
                 DialectArg::Reference => millpath_verify::Dialect::Reference,
-                DialectArg::Linuxcnc => millpath_verify::Dialect::LinuxCnc,
+                DialectArg::Linuxcnc | DialectArg::Rs274 => millpath_verify::Dialect::LinuxCnc,
+                DialectArg::Marlin => millpath_verify::Dialect::Marlin,
                 DialectArg::Grbl => millpath_verify::Dialect::Grbl,
             },
             top,

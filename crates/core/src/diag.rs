@@ -415,6 +415,8 @@ messages! {
     IntoWouldDeletePaths = "{0} holds paths that {2} does not define: {1}. --into would delete them; nothing was written: add them to the text (dxf2text {0} writes them), or pass --delete-missing-paths to delete them", "{0} enthält Pfade, die {2} nicht definiert: {1}. --into würde sie löschen; es wurde nichts geschrieben: sie in den Text aufnehmen (dxf2text {0} schreibt sie), oder mit --delete-missing-paths löschen";
     // posts (issue 32): what a post cannot write is refused, never dropped
     PostCannot = "The post {0} cannot write {1}: it has no `{2}` (in [capabilities] or [templates]); choose a post that can, or leave {1} out", "Der Post {0} kann {1} nicht schreiben: ihm fehlt `{2}` (in [capabilities] oder [templates]); einen Post wählen, der es kann, oder {1} weglassen";
+    // every post's output is checked (issue 32, item 4): a family the checker cannot read is refused
+    PostNotVerifiable = "The post {0} writes programs of the {1} family, which the second opinion (verify) cannot read yet: nothing is written unchecked; choose a post of the rs274, grbl or marlin family", "Der Post {0} schreibt Programme der Familie {1}, die die Zweitprüfung (verify) noch nicht lesen kann: ungeprüft wird nichts geschrieben; einen Post der Familie rs274, grbl oder marlin wählen";
 }
 
 impl Msg {

@@ -378,10 +378,11 @@ fn generate_and_review_as(
         ctl: Controller::for_model(&session.settings, model),
         stop: session.stop,
     };
+    let reading = machine::Reading::checked(session.settings.dialect, job.ctl.post);
     let reviewer = || {
         second_opinion::Reviewer::new(
             model,
-            session.settings.dialect,
+            reading.clone(),
             &session.settings.clamps,
             clamps_only,
         )
@@ -420,7 +421,7 @@ fn generate_and_review_as(
                 model,
                 &generated.line_sources,
                 lang,
-                session.settings.dialect,
+                reading.clone(),
                 &session.settings.clamps,
                 clamps_only,
             );

@@ -2,7 +2,9 @@
 //! (`millpath-verify`, which knows nothing of this compiler) simulates the program against a
 //! stock model, and each finding comes back located at the element that wrote the line.
 //!
-//! Every written program is checked by `millpath-verify`, findings located at their element.
+//! Every written program is checked by `millpath-verify`, findings located at their element,
+//! read as its post's family ([`Reading`]: a custom post's like a built-in's); a family the
+//! checker cannot read is an error, never a skipped check.
 //! `Reviewer` is the checker as a line sink: `check` feeds it while emitting and keeps no program
 //! text and no moves (verify's lean `Verifier`); its second reading (clamps, depths, stock model)
 //! comes from the staged file for compile, from a `Spool` for check (the lines lz4-compressed as
@@ -12,6 +14,7 @@ use crate::args;
 use crate::diag::{Diagnostic, Lang, Msg};
 use crate::emit::program::LineSources;
 use crate::emit::{LineSink, MAX_ITEMS, MAX_LINES};
+use crate::machine::{NotRead, Reading};
 use crate::model::Model;
 use crate::stock::stock_of;
 use lz4_flex::frame::{FrameDecoder, FrameEncoder};
@@ -21,21 +24,22 @@ use millpath_verify::{
 };
 use std::io::{BufRead, BufReader, Write};
 
-/// Checks one written program; findings become diagnostics at the element of their line. In
-/// the reference dialect they are warnings (its output must stay byte-identical to the
-/// reference tool's); for a real controller an error stops the write. A move into a clamp
-/// is an error in every dialect (no program may run into a fixture). `clamps_only`: the
-/// editor's quick check, without the stock model, reports the clamps alone.
+/// Checks one written program, read as `reading` says (its post's family; `Err`: a family
+/// the checker cannot read, an error); findings become diagnostics at the element of their
+/// line. In the reference dialect they are warnings (its output must stay byte-identical to
+/// the reference tool's); for a real controller an error stops the write. A move into a
+/// clamp is an error in every dialect (no program may run into a fixture). `clamps_only`:
+/// the editor's quick check, without the stock model, reports the clamps alone.
 pub fn review(
     program: &str,
     model: &Model,
     line_sources: &LineSources,
     lang: Lang,
-    dialect: crate::machine::Dialect,
+    reading: Result<Reading, NotRead>,
     clamps: &[Clamp],
     clamps_only: bool,
 ) -> Review {
-    let mut reviewer = Reviewer::new(model, dialect, clamps, clamps_only);
+    let mut reviewer = Reviewer::new(model, reading, clamps, clamps_only);
     feed_lines(program, &mut |l| reviewer.verifier.line(l));
     reviewer.finish(model, line_sources, lang, |feed| feed_lines(program, feed))
 }
@@ -47,6 +51,8 @@ pub fn review(
 pub struct Reviewer {
     verifier: Verifier,
     strict: bool,
+    /// The post's family the checker cannot read: the review is this error.
+    unreadable: Option<NotRead>,
     tool: f64,
     clamps_only: bool,
     spool: Option<Spool>,
@@ -72,19 +78,26 @@ impl LineSink for Reviewer {
 impl Reviewer {
     pub fn new(
         model: &Model,
-        dialect: crate::machine::Dialect,
+        reading: Result<Reading, NotRead>,
         clamps: &[Clamp],
         clamps_only: bool,
     ) -> Reviewer {
-        use crate::machine::Dialect as Ours;
-        let (checked_as, strict) = match dialect {
-            Ours::Reference => (Dialect::Reference, false),
-            Ours::LinuxCnc => (Dialect::LinuxCnc, true),
-            Ours::Grbl => (Dialect::Grbl, true),
+        let (checked_as, unreadable) = match reading {
+            Ok(r) => (r, None),
+            // read as rs274 meanwhile; the review is the error
+            Err(not_read) => (
+                Reading {
+                    dialect: Dialect::LinuxCnc,
+                    strict: true,
+                    arcs_as_lines: false,
+                },
+                Some(not_read),
+            ),
         };
         let (top, tool, bottom) = stock_of(model);
         let verifier = Verifier::lean(Options {
-            dialect: checked_as,
+            dialect: checked_as.dialect,
+            arcs_as_lines: checked_as.arcs_as_lines,
             top: Some(top),
             tool: Some(tool),
             bottom,
@@ -101,7 +114,8 @@ impl Reviewer {
         });
         Reviewer {
             verifier,
-            strict,
+            strict: checked_as.strict,
+            unreadable,
             tool,
             clamps_only,
             spool: None,
@@ -146,6 +160,7 @@ impl Reviewer {
         let Reviewer {
             verifier,
             strict,
+            unreadable,
             tool,
             clamps_only,
             ..
@@ -155,32 +170,43 @@ impl Reviewer {
             Lang::En => millpath_verify::Lang::En,
             Lang::De => millpath_verify::Lang::De,
         };
-        let diagnostics = report
-            .findings
-            .iter()
-            .filter(|f| f.severity != Severity::Note)
-            .filter(|f| !clamps_only || matches!(f.kind, FindingKind::ClampHit { .. }))
-            .map(|f| {
-                let origin = f
-                    .line
-                    .and_then(|l| line_sources.origin(l).cloned())
-                    .unwrap_or_else(|| model.raw.start_origin());
-                if let FindingKind::ClampHit { name, .. } = &f.kind {
-                    let at = args![
-                        name,
-                        f.line.unwrap_or(0),
-                        f.text,
-                        crate::params::fmt_num(tool)
-                    ];
-                    return Diagnostic::error(Msg::ClampHit, origin, at);
-                }
-                let args = args![f.line.unwrap_or(0), f.text, f.message(vlang)];
-                if strict && f.severity == Severity::Error {
-                    Diagnostic::error(Msg::SecondOpinion, origin, args)
-                } else {
-                    Diagnostic::warning(Msg::SecondOpinion, origin, args)
-                }
-            })
+        let not_read = unreadable.map(|n| {
+            Diagnostic::error(
+                Msg::PostNotVerifiable,
+                model.raw.start_origin(),
+                args![n.post, n.family.name()],
+            )
+        });
+        let diagnostics = not_read
+            .into_iter()
+            .chain(
+                report
+                    .findings
+                    .iter()
+                    .filter(|f| f.severity != Severity::Note)
+                    .filter(|f| !clamps_only || matches!(f.kind, FindingKind::ClampHit { .. }))
+                    .map(|f| {
+                        let origin = f
+                            .line
+                            .and_then(|l| line_sources.origin(l).cloned())
+                            .unwrap_or_else(|| model.raw.start_origin());
+                        if let FindingKind::ClampHit { name, .. } = &f.kind {
+                            let at = args![
+                                name,
+                                f.line.unwrap_or(0),
+                                f.text,
+                                crate::params::fmt_num(tool)
+                            ];
+                            return Diagnostic::error(Msg::ClampHit, origin, at);
+                        }
+                        let args = args![f.line.unwrap_or(0), f.text, f.message(vlang)];
+                        if strict && f.severity == Severity::Error {
+                            Diagnostic::error(Msg::SecondOpinion, origin, args)
+                        } else {
+                            Diagnostic::warning(Msg::SecondOpinion, origin, args)
+                        }
+                    }),
+            )
             .collect();
         Review {
             diagnostics,
@@ -266,18 +292,15 @@ pub fn clamp_hits(
     dialect: crate::machine::Dialect,
     clamps: &[Clamp],
 ) -> Vec<(usize, usize)> {
-    use crate::machine::Dialect as Ours;
     if clamps.is_empty() {
         return Vec::new();
     }
+    let reading = Reading::of(dialect, dialect.post()).ok();
     let report = verify(
         program,
         &Options {
-            dialect: match dialect {
-                Ours::Reference => Dialect::Reference,
-                Ours::LinuxCnc => Dialect::LinuxCnc,
-                Ours::Grbl => Dialect::Grbl,
-            },
+            dialect: reading.map_or(Dialect::LinuxCnc, |r| r.dialect),
+            arcs_as_lines: reading.is_some_and(|r| r.arcs_as_lines),
             tool: Some(model.params.o),
             clamps: clamps.to_vec(),
             skip_stock: true,

@@ -87,6 +87,34 @@ pub enum SyntaxError {
     NoAxisWords(String),
 }
 
+/// A line its family's controller reads otherwise than written ([`Dialect::rules`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum FamilyProblem {
+    /// `N` with a negative, fractional or too large number (`max`: the family's largest).
+    LineNumber { text: String, max: u32 },
+    /// `N` after another word.
+    LineNumberNotFirst,
+    /// A `( )` comment where the controller reads only `;` comments.
+    ParenComment,
+    /// A `%` line where the controller has none.
+    Percent,
+    /// A second command on a line that takes one (the controller ignores it).
+    SecondCommand { code: String },
+    /// A line that does not start with its command (`word` comes first).
+    CommandNotFirst { word: String },
+    /// Axis words without G0–G3 on their line where motion is not modal.
+    NoMotionWord,
+    /// G02/G03 while the post writes arcs as lines.
+    ArcNotAllowed { code: String },
+    /// Marlin's M30 deletes a file on the SD card.
+    M30DeletesFile,
+    /// A code this family's controller does not have.
+    NoSuchCode { code: String },
+    /// The dwell after a spindle start is shorter than
+    /// [`SHORT_SPINDLE_DWELL`](crate::SHORT_SPINDLE_DWELL) where `G4 P` is milliseconds.
+    ShortSpindleDwell { seconds: f64 },
+}
+
 /// Why a number is not acceptable.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum NumberProblem {
@@ -222,6 +250,11 @@ pub enum FindingKind {
     /// The program's `(MILLPATH-SURFACE …)` record cannot be read: its moves are judged at
     /// their written heights.
     Surface(crate::surface::SurfaceProblem),
+    /// A line its family's controller reads otherwise than written.
+    Family {
+        problem: FamilyProblem,
+        dialect: Dialect,
+    },
     /// A lean checker's second reading (`Verifier::lean`) was not the program it read first:
     /// (lines, moves) read again of those read first.
     RereadDiffers {
@@ -273,6 +306,7 @@ impl FindingKind {
             FindingKind::Adjusted(_) => "adjusted",
             FindingKind::Surface(_) => "surface-record",
             FindingKind::RereadDiffers { .. } => "reread-differs",
+            FindingKind::Family { .. } => "family",
         }
     }
 
@@ -474,6 +508,7 @@ impl FindingKind {
                 format!("the program read a second time for the clamp, depth and stock checks is not the one read first ({} of {} lines, {} of {} moves): those checks are incomplete", lines.0, lines.1, moves.0, moves.1),
                 format!("das für die Klemmen-, Tiefen- und Materialprüfungen ein zweites Mal gelesene Programm ist nicht das zuerst gelesene ({} von {} Zeilen, {} von {} Bewegungen): diese Prüfungen sind unvollständig", lines.0, lines.1, moves.0, moves.1),
             ),
+            FindingKind::Family { problem, dialect } => problem.message(*dialect, lang),
             FindingKind::Limit(l) => match l {
                 Limit::Lines(n) => pick(
                     format!("more than {n} lines: the rest is not checked"),
@@ -484,6 +519,62 @@ impl FindingKind {
                     format!("mehr als {n} Befunde: die weiteren werden nicht aufgeführt"),
                 ),
             },
+        }
+    }
+}
+
+impl FamilyProblem {
+    /// The message, naming the controller of `dialect`.
+    pub fn message(&self, dialect: Dialect, lang: Lang) -> String {
+        let de = lang == Lang::De;
+        let pick = |en: String, de_text: String| if de { de_text } else { en };
+        let who = dialect.controller();
+        let family = dialect.family();
+        match self {
+            FamilyProblem::LineNumber { text, max } => pick(
+                format!("line number {text}: {who} takes whole numbers from 0 to {max} (family {family})"),
+                format!("Satznummer {text}: {who} nimmt ganze Zahlen von 0 bis {max} (Familie {family})"),
+            ),
+            FamilyProblem::LineNumberNotFirst => pick(
+                format!("the line number N is not the first word: {who} reads it only at the start of the line"),
+                format!("die Satznummer N ist nicht das erste Wort: {who} liest sie nur am Zeilenanfang"),
+            ),
+            FamilyProblem::ParenComment => pick(
+                format!("a ( ) comment: {who} reads only ; comments (parentheses need PAREN_COMMENTS)"),
+                format!("ein ( )-Kommentar: {who} liest nur ;-Kommentare (Klammern brauchen PAREN_COMMENTS)"),
+            ),
+            FamilyProblem::Percent => pick(
+                format!("a % line: {who} has no program delimiters and rejects it"),
+                format!("eine %-Zeile: {who} kennt keine Programmbegrenzer und lehnt sie ab"),
+            ),
+            FamilyProblem::SecondCommand { code } => pick(
+                format!("{code} is a second command on this line: {who} reads one command a line and ignores it"),
+                format!("{code} ist ein zweiter Befehl in dieser Zeile: {who} liest einen Befehl je Zeile und übergeht ihn"),
+            ),
+            FamilyProblem::CommandNotFirst { word } => pick(
+                format!("the line starts with {word}, not with its command: {who} reads the first word as the command"),
+                format!("die Zeile beginnt mit {word}, nicht mit ihrem Befehl: {who} liest das erste Wort als Befehl"),
+            ),
+            FamilyProblem::NoMotionWord => pick(
+                format!("axis words without G0/G1/G2/G3 on their line: motion is not modal in {who}"),
+                format!("Achsenwörter ohne G0/G1/G2/G3 in ihrer Zeile: in {who} ist die Bewegungsart nicht modal"),
+            ),
+            FamilyProblem::ArcNotAllowed { code } => pick(
+                format!("{code}: the post writes arcs as lines (arcs = \"lines\"), so its program has no arcs"),
+                format!("{code}: der Post schreibt Bögen als Strecken (arcs = \"lines\"), sein Programm hat keine Bögen"),
+            ),
+            FamilyProblem::M30DeletesFile => pick(
+                format!("M30 deletes a file on the SD card in {who}; it does not end the program (end with M5)"),
+                format!("M30 löscht in {who} eine Datei auf der SD-Karte; es beendet das Programm nicht (mit M5 enden)"),
+            ),
+            FamilyProblem::NoSuchCode { code } => pick(
+                format!("{who} has no {code}: it answers \"Unknown command\" and goes on without it"),
+                format!("{who} kennt kein {code}: es meldet „Unknown command“ und fährt ohne es fort"),
+            ),
+            FamilyProblem::ShortSpindleDwell { seconds } => pick(
+                format!("the dwell after the spindle start lasts {} s: {who} reads G4 P in milliseconds (G4 S in seconds)", f3(*seconds)),
+                format!("die Pause nach dem Spindelstart dauert {} s: {who} liest G4 P in Millisekunden (G4 S in Sekunden)", f3(*seconds)),
+            ),
         }
     }
 }

@@ -14,7 +14,9 @@
 //!   ([`Options::clamps`], `clamps.rs`);
 //! * arcs whose start and end radius differ by more than 0.002 mm, arcs outside G17;
 //! * non-finite or absurd numbers (|v| > 1e6), unknown codes, syntax errors, a missing
-//!   program end (a truncated file).
+//!   program end (a truncated file);
+//! * what the program's family ([`Dialect`], [`Dialect::rules`]) reads otherwise than
+//!   written: line numbers, comments, `%`, Marlin's one command a line, its dwell units.
 //!
 //! Every [`Finding`] carries the 1-based line and its text, so a caller that knows which
 //! source element wrote which line can map findings back to the drawing.
@@ -49,11 +51,12 @@ mod surface_frame;
 
 pub use adjusted::PROBES_WORD;
 pub use clamps::{Clamp, MAX_CLAMPS};
-pub use dialect::Dialect;
+pub use dialect::{Dialect, DwellUnit, Rules};
 pub use finding::{
-    AdjustedProblem, ArcProblem, Finding, FindingKind, Lang, Limit, NoFeedReason, NumberProblem,
-    Severity, StockCommentProblem, StockSkip, SyntaxError,
+    AdjustedProblem, ArcProblem, FamilyProblem, Finding, FindingKind, Lang, Limit, NoFeedReason,
+    NumberProblem, Severity, StockCommentProblem, StockSkip, SyntaxError,
 };
+pub use machine::SHORT_SPINDLE_DWELL;
 pub use magnitude::MAX_MAGNITUDE;
 pub use options::{Limits, Options, XY_TOLERANCE, Z_TOLERANCE};
 pub use parse::{only_a_comment, parse_line, Block, Word};

@@ -2,7 +2,8 @@
 //! feed rate and feed mode, position. Produces the moves for the stock model and the
 //! findings that need no stock (feed, arcs, codes, program end).
 
-use crate::finding::{ArcProblem, FindingKind, NoFeedReason, Severity, SyntaxError};
+use crate::dialect::{DwellUnit, Rules};
+use crate::finding::{ArcProblem, FamilyProblem, FindingKind, NoFeedReason, Severity, SyntaxError};
 use crate::parse::Block;
 use crate::{Dialect, StockParams};
 use std::f64::consts::TAU;
@@ -116,6 +117,24 @@ enum Group {
     Other,
 }
 
+/// G codes ×10 Marlin reads (G17–G19, G20, G38, G53–G59 and G80 with their options).
+const MARLIN_G: [u32; 23] = [
+    0, 10, 20, 30, 40, 170, 180, 190, 200, 210, 280, 382, 383, 530, 540, 550, 560, 570, 580, 590,
+    800, 900, 910,
+];
+
+/// The M codes a family's checker knows besides the program end; others are not modelled.
+fn known_m(dialect: Dialect) -> &'static [u32] {
+    match dialect {
+        Dialect::Marlin => &[0, 1, 3, 4, 5, 7, 8, 9, 17, 18, 84, 400],
+        _ => &[0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 30, 48, 49, 60],
+    }
+}
+
+/// A spindle dwell shorter than this (s) in a family whose `G4 P` is milliseconds is
+/// probably seconds written as P.
+pub const SHORT_SPINDLE_DWELL: f64 = 0.1;
+
 /// G code ×10 (G38.3 → 383) → its modal group; `None`: unknown to any controller.
 fn g_group(code: u32) -> Option<Group> {
     Some(match code {
@@ -152,6 +171,14 @@ pub struct Raw {
 
 pub struct Machine {
     dialect: Dialect,
+    rules: Rules,
+    /// The post writes arcs as lines: a G02/G03 is a finding.
+    arcs_as_lines: bool,
+    /// A spindle start (M3/M4) not yet followed by a dwell or a cut.
+    spindle_starting: bool,
+    /// The last line with code ends the program by [`Rules::end_codes`] (families without
+    /// M2/M30).
+    pub last_code_ends: bool,
     pub moves: Vec<Move>,
     pub findings: Vec<Raw>,
     pub stock: Option<StockParams>,
@@ -177,9 +204,14 @@ pub struct Machine {
 }
 
 impl Machine {
-    pub fn new(dialect: Dialect) -> Machine {
+    /// The machine of `dialect`'s family; `arcs_as_lines`: a G02/G03 is a finding.
+    pub fn new(dialect: Dialect, arcs_as_lines: bool) -> Machine {
         Machine {
             dialect,
+            rules: dialect.rules(),
+            arcs_as_lines,
+            spindle_starting: false,
+            last_code_ends: false,
             moves: Vec::new(),
             findings: Vec::new(),
             stock: None,
@@ -217,6 +249,11 @@ impl Machine {
         });
     }
 
+    fn family(&mut self, line: usize, problem: FamilyProblem, severity: Severity) {
+        let dialect = self.dialect;
+        self.report(line, FindingKind::Family { problem, dialect }, severity);
+    }
+
     fn unsupported(&mut self, line: usize, what: String) {
         self.report(line, FindingKind::Unsupported { what }, Severity::Warning);
     }
@@ -246,6 +283,16 @@ impl Machine {
         for c in &b.comments {
             self.stock_comment(line, c);
         }
+        if let Some(c) = &b.semicolon {
+            self.stock_comment(line, c);
+        }
+        if !self.rules.paren_comments && !b.comments.is_empty() {
+            self.family(line, FamilyProblem::ParenComment, Severity::Error);
+        }
+        if b.percent && !self.rules.percent {
+            self.family(line, FamilyProblem::Percent, Severity::Error);
+            return;
+        }
         if b.percent {
             if self.seen_code || self.percent_open {
                 if self.percent_open {
@@ -264,6 +311,15 @@ impl Machine {
             return;
         }
         self.seen_code = true;
+        if !self.line_numbers(line, b) {
+            return;
+        }
+        if !self.rules.modal_motion {
+            self.motion = None;
+        }
+        if self.rules.one_command_per_line && !self.one_command(line, b) {
+            return;
+        }
 
         // G codes: check and group them
         let mut gs: Vec<(u32, Group)> = Vec::new();
@@ -294,6 +350,11 @@ impl Machine {
                     );
                     return;
                 }
+            }
+            if self.dialect == Dialect::Marlin && !MARLIN_G.contains(&code) {
+                let code = g_name(code);
+                self.family(line, FamilyProblem::NoSuchCode { code }, Severity::Error);
+                return;
             }
             gs.push((code, group));
         }
@@ -344,7 +405,7 @@ impl Machine {
                 Dialect::Grbl => {
                     self.feed_mode == FeedMode::InverseTime && mode != FeedMode::InverseTime
                 }
-                Dialect::Reference => false,
+                Dialect::Reference | Dialect::Marlin => false,
             };
             if mode == FeedMode::PerRev && self.dialect == Dialect::Grbl {
                 self.unsupported(line, "G95 (grbl has no feed per revolution)".into());
@@ -379,17 +440,26 @@ impl Machine {
         // 3. M codes that need no motion
         for &m in &ms {
             match m {
-                0 | 1 | 2 | 3 | 4 | 5 | 6 | 7 | 8 | 9 | 30 | 48 | 49 | 60 => {}
+                30 if self.dialect == Dialect::Marlin => {
+                    self.family(line, FamilyProblem::M30DeletesFile, Severity::Error)
+                }
+                2 if self.dialect == Dialect::Marlin => self.family(
+                    line,
+                    FamilyProblem::NoSuchCode { code: "M2".into() },
+                    Severity::Warning,
+                ),
+                3 | 4 => self.spindle_starting = true,
+                m if known_m(self.dialect).contains(&m) => {}
                 other => self.unsupported(line, format!("M{other}")),
             }
         }
+        if !self.rules.m2_m30_end {
+            let ends = self.rules.end_codes();
+            self.last_code_ends = ms.iter().any(|m| ends.contains(m));
+        }
         // 4. dwell
-        if has_g(40) && !b.get('P').is_some_and(|p| p >= 0.0) {
-            self.report(
-                line,
-                FindingKind::Syntax(SyntaxError::BadDwell),
-                Severity::Error,
-            );
+        if has_g(40) {
+            self.dwell(line, b);
         }
         // 5. plane, units, comp, length, coordinate system, distance modes
         if let Some(p) = g_of(Group::Plane) {
@@ -438,6 +508,12 @@ impl Machine {
             }
         }
         // 7. motion
+        if let Some(code) = g_of(Group::Motion).filter(|c| *c == 20 || *c == 30) {
+            if self.arcs_as_lines {
+                let code = g_name(code);
+                self.family(line, FamilyProblem::ArcNotAllowed { code }, Severity::Error);
+            }
+        }
         if let Some(code) = g_of(Group::Motion) {
             self.motion = match code {
                 0 => Some(Motion::Rapid),
@@ -456,6 +532,9 @@ impl Machine {
         if has_axes && !axes_taken {
             match self.motion {
                 Some(m) => self.motion(line, m, b),
+                None if !self.rules.modal_motion => {
+                    self.family(line, FamilyProblem::NoMotionWord, Severity::Error)
+                }
                 None => self.report(
                     line,
                     FindingKind::Syntax(SyntaxError::AxesWithoutMotion),
@@ -464,8 +543,88 @@ impl Machine {
             }
         }
         // 8. program end
-        if ms.iter().any(|&m| m == 2 || m == 30) {
+        if self.rules.m2_m30_end && ms.iter().any(|&m| m == 2 || m == 30) {
             self.ended = true;
+        }
+    }
+
+    /// The line numbers of a line by the family's rules; `false`: the line is not run.
+    fn line_numbers(&mut self, line: usize, b: &Block) -> bool {
+        let mut run = true;
+        for (k, w) in b.words.iter().enumerate().filter(|(_, w)| w.letter == 'N') {
+            let max = self.rules.max_line_number;
+            if w.value < 0.0 || w.value.fract() != 0.0 || w.value > f64::from(max) {
+                let text = format!("N{}", w.value);
+                self.family(
+                    line,
+                    FamilyProblem::LineNumber { text, max },
+                    Severity::Error,
+                );
+                run = false;
+            } else if k > 0 && self.rules.line_number_first {
+                self.family(line, FamilyProblem::LineNumberNotFirst, Severity::Error);
+                run = false;
+            }
+        }
+        run
+    }
+
+    /// One command a line, first after the line number (Marlin); `false`: the line is not
+    /// run as written.
+    fn one_command(&mut self, line: usize, b: &Block) -> bool {
+        let mut words = b.words.iter().filter(|w| w.letter != 'N');
+        let Some(first) = words.next() else {
+            return true;
+        };
+        if !matches!(first.letter, 'G' | 'M' | 'T') {
+            let word = first.letter.to_string();
+            self.family(
+                line,
+                FamilyProblem::CommandNotFirst { word },
+                Severity::Error,
+            );
+            return false;
+        }
+        if let Some(second) = words.find(|w| matches!(w.letter, 'G' | 'M' | 'T')) {
+            let code = format!("{}{}", second.letter, second.value);
+            self.family(line, FamilyProblem::SecondCommand { code }, Severity::Error);
+            return false;
+        }
+        true
+    }
+
+    /// `G4`: P (and in Marlin S) not negative, P required where S is not read; a short
+    /// dwell after a spindle start where P is milliseconds.
+    fn dwell(&mut self, line: usize, b: &Block) {
+        let p = b.get('P');
+        let s = b.get('S').filter(|_| self.rules.dwell_s);
+        let ok = match (p, s) {
+            (None, None) => self.rules.dwell_s,
+            _ => p.is_none_or(|p| p >= 0.0) && s.is_none_or(|s| s >= 0.0),
+        };
+        if !ok {
+            self.report(
+                line,
+                FindingKind::Syntax(SyntaxError::BadDwell),
+                Severity::Error,
+            );
+            return;
+        }
+        let seconds = match (s, p, self.rules.dwell_p) {
+            (Some(s), _, _) => s,
+            (None, Some(p), DwellUnit::Milliseconds) => p / 1000.0,
+            (None, Some(p), DwellUnit::Seconds) => p,
+            (None, None, _) => 0.0,
+        };
+        if std::mem::take(&mut self.spindle_starting)
+            && self.rules.dwell_p == DwellUnit::Milliseconds
+            && seconds < SHORT_SPINDLE_DWELL
+        {
+            self.family(
+                line,
+                FamilyProblem::ShortSpindleDwell { seconds },
+                Severity::Warning,
+            );
         }
     }
 
@@ -522,6 +681,7 @@ impl Machine {
         }
         if m != Motion::Rapid {
             self.check_feed(line, m, b);
+            self.spindle_starting = false;
         }
         let known = from.iter().all(|v| !v.is_nan());
         match m {

@@ -29,7 +29,10 @@ impl Default for Limits {
 /// What to check against. `top`/`tool`/`bottom` override a `(MILLPATH-STOCK …)` comment.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Options {
+    /// The family whose reading rules apply ([`Dialect::rules`]).
     pub dialect: Dialect,
+    /// The post writes arcs as lines: a G02/G03 in its program is a finding.
+    pub arcs_as_lines: bool,
     pub top: Option<f64>,
     pub tool: Option<f64>,
     pub bottom: Option<f64>,

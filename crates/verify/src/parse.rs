@@ -21,6 +21,8 @@ pub struct Block {
     pub percent: bool,
     /// A `(` inside a parenthesised comment.
     pub nested_comment: bool,
+    /// The text after a `;` (an end-of-line comment), trimmed.
+    pub semicolon: Option<String>,
 }
 
 impl Block {
@@ -89,7 +91,11 @@ pub fn parse_line(line: &str) -> Result<Block, FindingKind> {
                 block.comments.push(text);
                 i += n + 2;
             }
-            ';' => break,
+            ';' => {
+                let text: String = chars[i + 1..].iter().collect();
+                block.semicolon = Some(text.trim().to_string());
+                break;
+            }
             c if c.is_ascii_alphabetic() => {
                 let letter = c.to_ascii_uppercase();
                 i += 1;
@@ -237,7 +243,13 @@ mod tests {
         assert_eq!(b.get('Z'), Some(0.8));
         assert_eq!(b.comments, vec!["=0.800+0.794*[#51-2.000]"]);
         assert!(parse_line("%").unwrap().percent);
-        assert!(parse_line("; G00 X1").unwrap().words.is_empty());
+        let semi = parse_line("; G00 X1").unwrap();
+        assert!(semi.words.is_empty());
+        assert_eq!(semi.semicolon.as_deref(), Some("G00 X1"));
+        let numbered = parse_line("N10 G01 X1 ; cut (here)").unwrap();
+        assert_eq!(numbered.words[0].letter, 'N');
+        assert_eq!(numbered.semicolon.as_deref(), Some("cut (here)"));
+        assert!(numbered.comments.is_empty());
         assert_eq!(parse_line("g38.3 z0").unwrap().get('G'), Some(38.3));
     }
 

@@ -146,7 +146,7 @@ impl Rereading {
             (top, tool) => (None, Some(missing_params(top, tool))),
         };
         let pass = Pass {
-            m: Machine::new(options.dialect),
+            m: Machine::new(options.dialect, options.arcs_as_lines),
             lines: report.lines,
             moves: folded.moves,
             seen: 0,

@@ -92,7 +92,7 @@ impl Verifier {
             }
         };
         Verifier {
-            m: Machine::new(options.dialect),
+            m: Machine::new(options.dialect, options.arcs_as_lines),
             rise: surface.max_rise(),
             surface,
             map,
@@ -194,7 +194,11 @@ impl Verifier {
             ..
         } = self;
         let limits = options.limits;
-        if !m.ended && !m.percent_closed && m.findings.len() <= limits.max_findings {
+        if !m.ended
+            && !m.percent_closed
+            && !m.last_code_ends
+            && m.findings.len() <= limits.max_findings
+        {
             m.findings.push(Raw {
                 line: last_text,
                 kind: FindingKind::MissingProgramEnd,

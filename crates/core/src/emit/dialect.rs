@@ -24,8 +24,8 @@ impl Dialect {
 /// (the dialect of that name), or a post file relative to `base`, read by `read`. A post
 /// file named like a built-in (`post show` prints them so) keeps that dialect's rules (the
 /// reference's plunge feeds and refusals); any other writes as a controller of its family.
-/// The checker reads `rs274` and `grbl` programs; a post of another family is refused (the
-/// second opinion may not be skipped). The error is the message in `lang`.
+/// A family the checker cannot read is refused by the settings' checks (the second opinion
+/// may not be skipped). The error is the message in `lang`.
 pub fn select_post(
     name_or_path: &str,
     base: &std::path::Path,
@@ -44,21 +44,9 @@ pub fn select_post(
     let dialect = match (Dialect::from_name(&post.name), post.family) {
         (Some(d), _) => d,
         (None, millpath_post::Family::Rs274) => Dialect::LinuxCnc,
-        (None, millpath_post::Family::Grbl) => Dialect::Grbl,
-        (None, family) => {
-            return Err(match lang {
-                crate::diag::Lang::De => format!(
-                    "{}: Programme der Familie {} kann die Zweitprüfung (verify) noch nicht lesen; ungeprüft wird nichts geschrieben",
-                    post.origin,
-                    family.name()
-                ),
-                _ => format!(
-                    "{}: the second opinion (verify) cannot read programs of the {} family yet; nothing is written unchecked",
-                    post.origin,
-                    family.name()
-                ),
-            })
-        }
+        // grbl, and the families the checker may not read: refused, located, by the
+        // settings' checks (`machine::Reading`)
+        (None, _) => Dialect::Grbl,
     };
     Ok((dialect, Some(intern(post))))
 }

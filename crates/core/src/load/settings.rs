@@ -333,12 +333,21 @@ impl Settings {
         errors
     }
 
-    /// What a post file cannot write of these settings: a height map, a spindle speed, a
-    /// dwell (the built-in posts write what their dialect allows).
+    /// A post file whose family the second opinion cannot read; what it cannot write of
+    /// these settings: a height map, a spindle speed, a dwell (the built-in posts write what
+    /// their dialect allows).
     fn post_errors(&self) -> Vec<Diagnostic> {
         let Some(post) = self.post else {
             return Vec::new();
         };
+        // the second opinion reads every program: a family it cannot read is refused here
+        if let Err(family) = crate::machine::Reading::of(self.dialect, post) {
+            return vec![Diagnostic::error(
+                Msg::PostNotVerifiable,
+                self.origin_of("post"),
+                args![post.name.clone(), family.name()],
+            )];
+        }
         let asks = [
             (
                 self.heightmap.is_some(),
