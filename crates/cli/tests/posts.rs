@@ -46,7 +46,16 @@ fn post_list_names_every_built_in_post() {
     let out = millpath(dir.path(), &["post", "list"]);
     assert!(out.status.success());
     let text = String::from_utf8(out.stdout).unwrap();
-    for name in ["reference", "linuxcnc", "grbl"] {
+    for name in [
+        "reference",
+        "linuxcnc",
+        "grbl",
+        "mach3",
+        "uccnc",
+        "centroid",
+        "fluidnc",
+        "grblhal",
+    ] {
         assert!(text.lines().any(|l| l.starts_with(name)), "{text}");
     }
     let out = millpath(dir.path(), &["post", "show", "mach9"]);
@@ -65,6 +74,12 @@ fn a_shown_post_compiles_to_the_built_in_bytes() {
         ("grbl", "spindle_rpm = 9000.5\n"),
         ("linuxcnc", "probe_split = 3\n[heightmap]\nstep = 9\n"),
         ("grbl", "[heightmap]\nstep = 6\nmargin = 1\n"),
+        // Mach and UCCNC write no G4 (its P unit is a setting there)
+        ("mach3", "spindle_rpm = 12000\nspindle_dwell = 0\n"),
+        ("uccnc", "spindle_rpm = 12000\nspindle_dwell = 0\n"),
+        ("centroid", "spindle_rpm = 12000\nspindle_dwell = 1.5\n"),
+        ("fluidnc", "spindle_rpm = 9000.5\n"),
+        ("grblhal", "[heightmap]\nstep = 6\nmargin = 1\n"),
     ];
     for (name, extra) in settings {
         let built_in = tempfile::tempdir().unwrap();

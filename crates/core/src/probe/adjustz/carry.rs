@@ -9,12 +9,12 @@
 //! a subpath's probe in its own drawing's coordinates (a subpath placed elsewhere keeps it),
 //! the program its output coordinates (a moved start point moves them all).
 
-use crate::digest::nominal_z_line;
 use super::grid_set::point_of;
 use super::log_match::{probe_points, ProbePoint};
 use super::zfile::{sane_number, split_z_line};
 use super::MAX_LINE;
 use crate::diag::Lang;
+use crate::digest::nominal_z_line;
 use std::collections::{HashMap, VecDeque};
 
 /// The `_Z.txt` an earlier compile left where the new one goes.

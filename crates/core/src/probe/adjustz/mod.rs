@@ -20,12 +20,12 @@ mod rewrite;
 mod set_check;
 mod zfile;
 
-pub use carry::{plan_new_z, Aside, OldZ, Unreadable, ZPlan};
 pub use crate::digest::{
     banner_index, banner_index_of_first, banner_with_digest, set_digest, set_digest_lines,
     stored_digest, SET_WORD,
 };
 pub use bounds::{check_max, MaxOption, LIMIT, MAX_DEPTH, MAX_LINE};
+pub use carry::{plan_new_z, Aside, OldZ, Unreadable, ZPlan};
 pub use expr::eval;
 pub use follow::{split_summary, Followed, CHORD_TOL, MAX_LINES, SPLIT_WORD};
 pub use log_match::{
