@@ -101,7 +101,17 @@ fn a_shown_post_compiles_to_the_built_in_bytes() {
         let b = millpath(file.path(), &["compile", "."]);
         assert_eq!(a.status.code(), b.status.code(), "{name} {extra}");
         let (a, b) = (outputs(built_in.path()), outputs(file.path()));
-        assert!(a.len() >= 3, "{name} {extra}: {a:?}");
+        // posts that cannot probe refuse the probed example (2020): two programs
+        let least = if ["mach3", "uccnc", "centroid"].contains(&name) {
+            2
+        } else {
+            3
+        };
+        assert!(
+            a.len() >= least,
+            "{name} {extra}: {:?}",
+            a.iter().map(|x| &x.0).collect::<Vec<_>>()
+        );
         assert_eq!(
             a.iter().map(|x| &x.0).collect::<Vec<_>>(),
             b.iter().map(|x| &x.0).collect::<Vec<_>>()
