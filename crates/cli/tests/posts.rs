@@ -306,3 +306,64 @@ fn arcs_as_chords_or_radii_are_written_so_and_check_clean() {
     let (r, _) = arcs("radius.toml");
     assert!(r.len() >= ij.len() && r.iter().all(|l| l.contains(" R") && !l.contains(" I")));
 }
+
+/// The controller posts (docs/src/controllers.md): Mach and UCCNC write no G4 (its P unit is
+/// a setting there) and nothing probes on Mach, UCCNC or Centroid yet, so those are refused
+/// at the setting or element that asks for them; Centroid writes the dwell in seconds;
+/// FluidNC and grblHAL probe as GRBL does, without `%` lines.
+#[test]
+fn controller_posts_refuse_what_they_cannot_write() {
+    for name in ["mach3", "uccnc", "centroid"] {
+        let dir = tempfile::tempdir().unwrap();
+        example(dir.path());
+        let out = millpath(dir.path(), &["compile", "--post", name, "2020.mpath"]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_ne!(out.status.code(), Some(0), "{name}");
+        assert!(
+            err.contains("MP207") && err.contains("2020.mpath:"),
+            "{name}: {err}"
+        );
+        assert!(!dir.path().join("2020_Clean.gcode").exists(), "{name}");
+    }
+    for (name, dwell) in [("mach3", false), ("uccnc", false), ("centroid", true)] {
+        let dir = tempfile::tempdir().unwrap();
+        example(dir.path());
+        let toml = dir.path().join("millpath.toml");
+        let own = std::fs::read_to_string(&toml).unwrap();
+        std::fs::write(&toml, format!("{own}spindle_rpm = 12000\n")).unwrap();
+        let out = millpath(dir.path(), &["compile", "--post", name, "2001.mpath"]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.success(), dwell, "{name}: {err}");
+        if dwell {
+            let text = std::fs::read_to_string(dir.path().join("2001_Milling.gcode")).unwrap();
+            assert!(text.contains("\nM3 S12000\nG4 P2\n"), "{name}");
+            assert!(!text.starts_with('%'), "{name}");
+        } else {
+            assert!(err.contains("spindle_dwell"), "{name}: {err}");
+            std::fs::write(
+                &toml,
+                format!("{own}spindle_rpm = 12000\nspindle_dwell = 0\n"),
+            )
+            .unwrap();
+            let out = millpath(dir.path(), &["compile", "--post", name, "2001.mpath"]);
+            assert!(out.status.success(), "{name}");
+            let text = std::fs::read_to_string(dir.path().join("2001_Milling.gcode")).unwrap();
+            assert!(
+                text.contains("\nM3 S12000\n") && !text.contains("\nG4 "),
+                "{name}"
+            );
+        }
+    }
+    for name in ["fluidnc", "grblhal"] {
+        let dir = tempfile::tempdir().unwrap();
+        example(dir.path());
+        let out = millpath(dir.path(), &["compile", "--post", name, "2020.mpath"]);
+        assert!(out.status.success(), "{name}");
+        let probing = std::fs::read_to_string(dir.path().join("2020_Probing.gcode")).unwrap();
+        assert!(probing.contains("\nG38.3 Z0 F50.000\n"), "{name}");
+        assert!(
+            !probing.contains('%') && !probing.contains("PROBEOPEN"),
+            "{name}"
+        );
+    }
+}
