@@ -5,7 +5,9 @@
 # Probed drawings are also taken through adjust-z (probes measured at their nominal heights).
 # The same drawings in the `reference` dialect are reported, not failed: the reference writes
 # F150 before G94, which resets the feed in LinuxCNC, so a first plunge has no feed.
-# A negative check proves rs274 really rejects such a program. The rs274 family's style (a
+# A negative check proves rs274 really rejects such a program. The other built-in posts of
+# the rs274 family (RS274_POSTS) are checked the same way; a post that cannot probe must
+# refuse the probed drawings (with its message), not write them. The rs274 family's style (a
 # post with line numbers and `;` comments) is run through rs274 too. Last line: N passed, M failed.
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -45,12 +47,20 @@ compile_all() {
   fi
   for f in "$out"/plate/*.dxf "$out"/text/*.mpath; do
     # the examples carry their machine settings (millpath.toml) and must compile
-    "$BIN" compile --dialect "$d" "$f" >/dev/null 2>&1 || echo "COMPILE-FAILED $f"
+    if ! "$BIN" compile --post "$d" "$f" >"$out/last.err" 2>&1; then
+      # a post without probing refuses probed drawings (and says so): expected
+      if grep -q -w "$d" <<<"$NO_PROBING" &&
+        grep -q -i "prob" "$out/last.err"; then
+        echo "REFUSED $f"
+      else
+        echo "COMPILE-FAILED $f"
+      fi
+    fi
   done
   for f in "$out"/fixtures/*.dxf "$out"/samples/*.dxf; do
     [ -e "$f" ] || continue
     # a drawing that does not compile alone (several paths, errors) writes nothing: skipped
-    "$BIN" compile --dialect "$d" --feed 150 --sweep-speed 500 --sweep-height 15 "$f" \
+    "$BIN" compile --post "$d" --feed 150 --sweep-speed 500 --sweep-height 15 "$f" \
       >/dev/null 2>&1 || true
   done
   # probed drawings: every probe measured at its nominal height, then adjust-z
@@ -63,26 +73,39 @@ compile_all() {
   find "$out" -name '*_Milling.gcode' -o -name '*_Clean.gcode' -o -name '*_Probing.gcode' | sort
 }
 
+# the built-in posts of the rs274 family, and those of them that cannot probe
+RS274_POSTS=${RS274_POSTS:-linuxcnc mach3 uccnc centroid}
+NO_PROBING="mach3 uccnc centroid"
 passed=0
 failed=0
-programs=$(compile_all linuxcnc)
-while IFS= read -r p; do
-  [ -n "$p" ] || continue
-  case $p in
-  COMPILE-FAILED*)
-    echo "FAIL  ${p#COMPILE-FAILED } failed in the linuxcnc dialect"
-    failed=$((failed + 1))
-    continue
-    ;;
-  esac
-  if rs274_ok "$p"; then
-    passed=$((passed + 1))
-  else
-    echo "FAIL  linuxcnc ${p#"$tmp"/linuxcnc/}"
-    printf '%s\n' "$why"
-    failed=$((failed + 1))
-  fi
-done <<<"$programs"
+for post in $RS274_POSTS; do
+  ok=0
+  refused=0
+  programs=$(compile_all "$post")
+  while IFS= read -r p; do
+    [ -n "$p" ] || continue
+    case $p in
+    REFUSED*)
+      refused=$((refused + 1))
+      continue
+      ;;
+    COMPILE-FAILED*)
+      echo "FAIL  ${p#COMPILE-FAILED } failed with the $post post"
+      failed=$((failed + 1))
+      continue
+      ;;
+    esac
+    if rs274_ok "$p"; then
+      passed=$((passed + 1))
+      ok=$((ok + 1))
+    else
+      echo "FAIL  $post ${p#"$tmp"/"$post"/}"
+      printf '%s\n' "$why"
+      failed=$((failed + 1))
+    fi
+  done <<<"$programs"
+  echo "$post: rs274 accepts $ok programs ($refused probed examples refused by the post)"
+done
 
 # the reference dialect, for comparison (reported, not failed)
 ref_ok=0

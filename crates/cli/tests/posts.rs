@@ -46,7 +46,16 @@ fn post_list_names_every_built_in_post() {
     let out = millpath(dir.path(), &["post", "list"]);
     assert!(out.status.success());
     let text = String::from_utf8(out.stdout).unwrap();
-    for name in ["reference", "linuxcnc", "grbl"] {
+    for name in [
+        "reference",
+        "linuxcnc",
+        "grbl",
+        "mach3",
+        "uccnc",
+        "centroid",
+        "fluidnc",
+        "grblhal",
+    ] {
         assert!(text.lines().any(|l| l.starts_with(name)), "{text}");
     }
     let out = millpath(dir.path(), &["post", "show", "mach9"]);
@@ -65,6 +74,12 @@ fn a_shown_post_compiles_to_the_built_in_bytes() {
         ("grbl", "spindle_rpm = 9000.5\n"),
         ("linuxcnc", "probe_split = 3\n[heightmap]\nstep = 9\n"),
         ("grbl", "[heightmap]\nstep = 6\nmargin = 1\n"),
+        // Mach and UCCNC write no G4 (its P unit is a setting there)
+        ("mach3", "spindle_rpm = 12000\nspindle_dwell = 0\n"),
+        ("uccnc", "spindle_rpm = 12000\nspindle_dwell = 0\n"),
+        ("centroid", "spindle_rpm = 12000\nspindle_dwell = 1.5\n"),
+        ("fluidnc", "spindle_rpm = 9000.5\n"),
+        ("grblhal", "[heightmap]\nstep = 6\nmargin = 1\n"),
     ];
     for (name, extra) in settings {
         let built_in = tempfile::tempdir().unwrap();
@@ -86,7 +101,17 @@ fn a_shown_post_compiles_to_the_built_in_bytes() {
         let b = millpath(file.path(), &["compile", "."]);
         assert_eq!(a.status.code(), b.status.code(), "{name} {extra}");
         let (a, b) = (outputs(built_in.path()), outputs(file.path()));
-        assert!(a.len() >= 3, "{name} {extra}: {a:?}");
+        // posts that cannot probe refuse the probed example (2020): two programs
+        let least = if ["mach3", "uccnc", "centroid"].contains(&name) {
+            2
+        } else {
+            3
+        };
+        assert!(
+            a.len() >= least,
+            "{name} {extra}: {:?}",
+            a.iter().map(|x| &x.0).collect::<Vec<_>>()
+        );
         assert_eq!(
             a.iter().map(|x| &x.0).collect::<Vec<_>>(),
             b.iter().map(|x| &x.0).collect::<Vec<_>>()
@@ -280,4 +305,65 @@ fn arcs_as_chords_or_radii_are_written_so_and_check_clean() {
     );
     let (r, _) = arcs("radius.toml");
     assert!(r.len() >= ij.len() && r.iter().all(|l| l.contains(" R") && !l.contains(" I")));
+}
+
+/// The controller posts (docs/src/controllers.md): Mach and UCCNC write no G4 (its P unit is
+/// a setting there) and nothing probes on Mach, UCCNC or Centroid yet, so those are refused
+/// at the setting or element that asks for them; Centroid writes the dwell in seconds;
+/// FluidNC and grblHAL probe as GRBL does, without `%` lines.
+#[test]
+fn controller_posts_refuse_what_they_cannot_write() {
+    for name in ["mach3", "uccnc", "centroid"] {
+        let dir = tempfile::tempdir().unwrap();
+        example(dir.path());
+        let out = millpath(dir.path(), &["compile", "--post", name, "2020.mpath"]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_ne!(out.status.code(), Some(0), "{name}");
+        assert!(
+            err.contains("MP207") && err.contains("2020.mpath:"),
+            "{name}: {err}"
+        );
+        assert!(!dir.path().join("2020_Clean.gcode").exists(), "{name}");
+    }
+    for (name, dwell) in [("mach3", false), ("uccnc", false), ("centroid", true)] {
+        let dir = tempfile::tempdir().unwrap();
+        example(dir.path());
+        let toml = dir.path().join("millpath.toml");
+        let own = std::fs::read_to_string(&toml).unwrap();
+        std::fs::write(&toml, format!("{own}spindle_rpm = 12000\n")).unwrap();
+        let out = millpath(dir.path(), &["compile", "--post", name, "2001.mpath"]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.success(), dwell, "{name}: {err}");
+        if dwell {
+            let text = std::fs::read_to_string(dir.path().join("2001_Milling.gcode")).unwrap();
+            assert!(text.contains("\nM3 S12000\nG4 P2\n"), "{name}");
+            assert!(!text.starts_with('%'), "{name}");
+        } else {
+            assert!(err.contains("spindle_dwell"), "{name}: {err}");
+            std::fs::write(
+                &toml,
+                format!("{own}spindle_rpm = 12000\nspindle_dwell = 0\n"),
+            )
+            .unwrap();
+            let out = millpath(dir.path(), &["compile", "--post", name, "2001.mpath"]);
+            assert!(out.status.success(), "{name}");
+            let text = std::fs::read_to_string(dir.path().join("2001_Milling.gcode")).unwrap();
+            assert!(
+                text.contains("\nM3 S12000\n") && !text.contains("\nG4 "),
+                "{name}"
+            );
+        }
+    }
+    for name in ["fluidnc", "grblhal"] {
+        let dir = tempfile::tempdir().unwrap();
+        example(dir.path());
+        let out = millpath(dir.path(), &["compile", "--post", name, "2020.mpath"]);
+        assert!(out.status.success(), "{name}");
+        let probing = std::fs::read_to_string(dir.path().join("2020_Probing.gcode")).unwrap();
+        assert!(probing.contains("\nG38.3 Z0 F50.000\n"), "{name}");
+        assert!(
+            !probing.contains('%') && !probing.contains("PROBEOPEN"),
+            "{name}"
+        );
+    }
 }

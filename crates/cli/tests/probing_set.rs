@@ -467,8 +467,9 @@ fn hostile_z_files_are_kept_beside() {
         std::fs::metadata(d.join("2020_Z.1.txt")).unwrap().len(),
         65 << 20
     );
-    // read-only, its probing program gone (a failed compile removed it): kept beside with its
-    // permissions, nothing compared
+    // read-only, its probing program gone (a failed compile removed it): a read-only output is
+    // never replaced (issue 31 item 6), so the compile refuses, the file stays as it is and no
+    // copy is left beside it
     clear(d);
     std::fs::write(d.join("2020.mpath"), &original).unwrap();
     assert_eq!(run(d, &["compile", "2020.mpath"]).0, 0);
@@ -480,13 +481,23 @@ fn hostile_z_files_are_kept_beside() {
     std::fs::remove_file(d.join("2020_Probing.gcode")).unwrap();
     std::fs::write(d.join("2020.mpath"), &moved).unwrap();
     let (code, text) = run(d, &["compile", "2020.mpath"]);
+    assert_eq!(code, 1, "{text}");
+    assert!(
+        text.contains("Cannot write 2020_Z.txt: read-only: not replaced"),
+        "{text}"
+    );
+    assert_eq!(read(d, "2020_Z.txt"), filled);
+    assert!(std::fs::metadata(&z).unwrap().permissions().readonly());
+    assert!(!d.join("2020_Z.1.txt").exists(), "{text}");
+    // made writable, the same compile keeps the measured file beside, nothing compared
+    let mut rw = std::fs::metadata(&z).unwrap().permissions();
+    #[allow(clippy::permissions_set_readonly_false)]
+    rw.set_readonly(false);
+    std::fs::set_permissions(&z, rw).unwrap();
+    let (code, text) = run(d, &["compile", "2020.mpath"]);
     assert_eq!(code, 0, "{text}");
     assert!(text.contains("2020_Z.txt held 2 measured value(s) of another probing set, but its probing program is missing or of another compile"), "{text}");
     assert_eq!(read(d, "2020_Z.1.txt"), filled);
-    assert!(std::fs::metadata(d.join("2020_Z.1.txt"))
-        .unwrap()
-        .permissions()
-        .readonly());
     // no free name for a copy: nothing of the drawing is written, nothing left behind
     for n in 2..=999 {
         std::fs::write(d.join(format!("2020_Z.{n}.txt")), "").unwrap();

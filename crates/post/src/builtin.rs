@@ -5,12 +5,26 @@ use crate::Post;
 use std::sync::OnceLock;
 
 /// The built-in posts' names, in the order `millpath post list` shows them.
-pub const NAMES: [&str; 3] = ["reference", "linuxcnc", "grbl"];
+pub const NAMES: [&str; 8] = [
+    "reference",
+    "linuxcnc",
+    "grbl",
+    "mach3",
+    "uccnc",
+    "centroid",
+    "fluidnc",
+    "grblhal",
+];
 
-const SOURCES: [&str; 3] = [
+const SOURCES: [&str; 8] = [
     include_str!("../posts/reference.toml"),
     include_str!("../posts/linuxcnc.toml"),
     include_str!("../posts/grbl.toml"),
+    include_str!("../posts/mach3.toml"),
+    include_str!("../posts/uccnc.toml"),
+    include_str!("../posts/centroid.toml"),
+    include_str!("../posts/fluidnc.toml"),
+    include_str!("../posts/grblhal.toml"),
 ];
 
 /// The text of a built-in post.

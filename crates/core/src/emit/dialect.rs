@@ -37,8 +37,8 @@ pub fn select_post(
         _ => millpath_post::Lang::En,
     };
     let post = millpath_post::resolve(name_or_path, base, read).map_err(|e| e.render(post_lang))?;
-    if post.origin.starts_with("builtin:") {
-        let d = Dialect::from_name(&post.name).expect("every built-in post is a dialect");
+    let builtin = post.origin.starts_with("builtin:");
+    if let (true, Some(d)) = (builtin, Dialect::from_name(&post.name)) {
         return Ok((d, None));
     }
     let dialect = match (Dialect::from_name(&post.name), post.family) {
@@ -48,7 +48,15 @@ pub fn select_post(
         // settings' checks (`machine::Reading`)
         (None, _) => Dialect::Grbl,
     };
-    Ok((dialect, Some(intern(post))))
+    // a built-in post without a dialect of its own (mach3, fluidnc …): its family's rules
+    let kept = match builtin
+        .then(|| millpath_post::builtin::get(&post.name))
+        .flatten()
+    {
+        Some(p) => p,
+        None => intern(post),
+    };
+    Ok((dialect, Some(kept)))
 }
 
 /// A loaded post kept for the rest of the process (a `Controller` is `Copy`): each distinct
