@@ -14,6 +14,16 @@ fn example(name: &str) -> PathBuf {
         .join(name)
 }
 
+/// A copy the test may change: the shared drawings are read-only, and `std::fs::copy` keeps
+/// that (text2dxf refuses to replace a read-only drawing).
+fn copy_writable(from: &Path, to: &Path) {
+    std::fs::copy(from, to).unwrap();
+    let mut p = std::fs::metadata(to).unwrap().permissions();
+    #[allow(clippy::permissions_set_readonly_false)]
+    p.set_readonly(false);
+    std::fs::set_permissions(to, p).unwrap();
+}
+
 fn ok(o: &std::process::Output) -> String {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     String::from_utf8_lossy(&o.stdout).into_owned()
@@ -198,8 +208,8 @@ fn into_every_shared_drawing_changes_nothing_it_should_not() {
         std::fs::create_dir(&a).unwrap();
         std::fs::create_dir(&b).unwrap();
         let name = f.file_name().unwrap().to_str().unwrap();
-        std::fs::copy(&f, a.join(name)).unwrap();
-        std::fs::copy(&f, b.join(name)).unwrap();
+        copy_writable(&f, &a.join(name));
+        copy_writable(&f, &b.join(name));
         let text = ok(&millpath(&b, &["dxf2text", name]));
         std::fs::write(b.join("t.mpath"), &text).unwrap();
         ok(&millpath(&b, &["text2dxf", "t.mpath", "--into", name]));
@@ -285,7 +295,7 @@ fn extended_into_replaces_polylines_and_blocks_and_plain_into_warns() {
     let d = dir.path();
     let cad =
         Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/extended/drawings/cad/7001.dxf");
-    std::fs::copy(&cad, d.join("7001.dxf")).unwrap();
+    copy_writable(&cad, &d.join("7001.dxf"));
     let mut compile = vec!["compile", "--extended"];
     compile.extend(MACHINE);
     compile.push("7001.dxf");
@@ -320,7 +330,7 @@ fn extended_into_replaces_polylines_and_blocks_and_plain_into_warns() {
     assert!(std::fs::read(d.join("7001_Milling.gcode")).unwrap() == expected);
 
     // without --extended: kept, with a warning that names them and the way out
-    std::fs::copy(&cad, d.join("7001.dxf")).unwrap();
+    copy_writable(&cad, &d.join("7001.dxf"));
     let o = millpath(d, &["text2dxf", "7001.mpath", "--into", "7001.dxf"]);
     ok(&o);
     let err = String::from_utf8_lossy(&o.stderr);
@@ -487,7 +497,7 @@ fn into_with_the_same_text_twice_leaves_the_drawing_byte_identical() {
         if !f.extension().is_some_and(|e| e.eq_ignore_ascii_case("dxf")) {
             continue;
         }
-        std::fs::copy(&f, d.join("s.dxf")).unwrap();
+        copy_writable(&f, &d.join("s.dxf"));
         let text = ok(&millpath(d, &["dxf2text", "s.dxf"]));
         std::fs::write(d.join("s.mpath"), &text).unwrap();
         ok(&millpath(d, &["text2dxf", "s.mpath", "--into", "s.dxf"]));
