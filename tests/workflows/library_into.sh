@@ -46,7 +46,7 @@ grep -q 'path 8998.1P' after.mpath && ! grep -q '8998.2P' after.mpath \
 # 4. the shared samples: the same text twice, the same bytes
 if [ -d "$SHARED/samples" ]; then
   for f in "$SHARED"/samples/*.dxf; do
-    cp "$f" s.dxf
+    cp "$f" s.dxf && chmod u+w s.dxf # the shared drawings are read-only
     "$MILLPATH" dxf2text s.dxf >s.mpath 2>/dev/null
     expect_status 0 "$MILLPATH" text2dxf s.mpath --into s.dxf
     cp s.dxf s.once

@@ -28,7 +28,7 @@ machine=(--feed 150 --sweep-speed 1000 --sweep-height 10)
 gcode() { sed -e 's/part\.mpath/part/g' -e 's/part\.dxf/part/g' "$1"; }
 
 # 1. the drawing from CAD, and what it compiles to
-cp "$SHARED/conformance/fixtures/8999.14P.dxf" part.dxf
+cp "$SHARED/conformance/fixtures/8999.14P.dxf" part.dxf && chmod u+w part.dxf # shared files are read-only
 cp part.dxf original.dxf
 mkdir original && cp part.dxf original/part.dxf
 "$MILLPATH" compile "${machine[@]}" original/part.dxf >/dev/null 2>&1
