@@ -8,23 +8,10 @@
 //! German, and nothing is written.
 
 use std::path::Path;
-use std::process::{Command, Output};
 
-fn millpath(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_millpath"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap()
-}
+mod common;
 
-fn example(dir: &Path) {
-    let from = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/text");
-    for e in std::fs::read_dir(from).unwrap() {
-        let p = e.unwrap().path();
-        std::fs::copy(&p, dir.join(p.file_name().unwrap())).unwrap();
-    }
-}
+use common::{copy_text_examples as example, millpath};
 
 fn shown(dir: &Path, name: &str) -> String {
     String::from_utf8(millpath(dir, &["post", "show", name]).stdout).unwrap()

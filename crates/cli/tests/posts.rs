@@ -4,23 +4,10 @@
 //! read by the checker and adjusted by adjust-z, and what a post cannot write refused.
 
 use std::path::Path;
-use std::process::{Command, Output};
 
-fn millpath(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_millpath"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap()
-}
+mod common;
 
-fn example(dir: &Path) {
-    let from = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/text");
-    for e in std::fs::read_dir(from).unwrap() {
-        let p = e.unwrap().path();
-        std::fs::copy(&p, dir.join(p.file_name().unwrap())).unwrap();
-    }
-}
+use common::{copy_text_examples as example, millpath};
 
 /// Every output file of a folder, by name.
 fn outputs(dir: &Path) -> Vec<(String, Vec<u8>)> {

@@ -15,6 +15,15 @@ pub fn millpath(dir: &Path, args: &[&str]) -> Output {
         .unwrap()
 }
 
+/// Copies the text examples (`examples/text`: drawings and millpath.toml) into `dir`.
+pub fn copy_text_examples(dir: &Path) {
+    let from = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/text");
+    for e in std::fs::read_dir(from).unwrap() {
+        let p = e.unwrap().path();
+        std::fs::copy(&p, dir.join(p.file_name().unwrap())).unwrap();
+    }
+}
+
 /// Runs the binary in `dir` with `args`, without colour: its exit status and its standard
 /// output followed by its standard error.
 pub fn status_and_text(dir: &Path, args: &[&str]) -> (i32, String) {
