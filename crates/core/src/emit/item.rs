@@ -2,7 +2,7 @@
 //! feed and target, its source element and what it makes. The statistics, the time model,
 //! the height map's extent and the toolpath view read these.
 
-use crate::geom::P2;
+use crate::geom::{P2, P3};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Kind {
@@ -61,6 +61,15 @@ pub struct Target {
 }
 
 impl Target {
+    /// Where a move from `from` ends: the axes it names, the others staying.
+    pub fn end(&self, from: P3) -> P3 {
+        P3 {
+            x: self.x.unwrap_or(from.x),
+            y: self.y.unwrap_or(from.y),
+            z: self.z.unwrap_or(from.z),
+        }
+    }
+
     pub(crate) fn z(z: f64) -> Target {
         Target {
             z: Some(z),

@@ -51,6 +51,19 @@ enum Bucket {
     Sweep,
 }
 
+impl Bucket {
+    /// The statistics line of a move and whether it is a rapid; `None` for a comment.
+    fn of(kind: crate::emit::Kind) -> Option<(Bucket, bool)> {
+        use crate::emit::Kind;
+        match kind {
+            Kind::Mill => Some((Bucket::Mill, false)),
+            Kind::Drill => Some((Bucket::Drill, false)),
+            Kind::HSweep | Kind::VSweep => Some((Bucket::Sweep, true)),
+            Kind::Comment => None,
+        }
+    }
+}
+
 /// Time of a move of length `l` at target speed `v` and acceleration `a`, entered at `v0`
 /// and left at `v1`.
 pub fn trapezoid(l: f64, v: f64, a: f64, v0: f64, v1: f64) -> f64 {

@@ -4,7 +4,7 @@
 //! centripetal cap and the helix's effective radius), and the tangents at both ends.
 
 use super::Bucket;
-use crate::emit::{Item, Kind};
+use crate::emit::Item;
 use crate::geom::P3;
 use crate::machine::{Axes, Machine};
 
@@ -77,18 +77,11 @@ pub(super) fn segments(items: &[Item], start: P3, m: &Machine) -> Vec<Seg> {
     let mut pos = start;
     let mut out = Vec::new();
     for (item, it) in items.iter().enumerate() {
-        let (bucket, rapid) = match it.kind {
-            Kind::Mill => (Bucket::Mill, false),
-            Kind::Drill => (Bucket::Drill, false),
-            Kind::HSweep | Kind::VSweep => (Bucket::Sweep, true),
-            Kind::Comment => continue,
+        let Some((bucket, rapid)) = Bucket::of(it.kind) else {
+            continue;
         };
         let t = it.target;
-        let to = P3 {
-            x: t.x.unwrap_or(pos.x),
-            y: t.y.unwrap_or(pos.y),
-            z: t.z.unwrap_or(pos.z),
-        };
+        let to = t.end(pos);
         let d = [to.x - pos.x, to.y - pos.y, to.z - pos.z];
         let seg = match t.arc {
             None => line(d, &vel, &acc),

@@ -5,7 +5,7 @@
 
 use super::Grbl;
 use crate::emit::timing::Bucket;
-use crate::emit::{Item, Kind};
+use crate::emit::Item;
 use crate::geom::P3;
 use std::f64::consts::TAU;
 
@@ -99,18 +99,11 @@ pub(super) fn blocks(
     let mut at = steps(start);
     let mut pos = start;
     for (item, it) in items.iter().enumerate() {
-        let (bucket, rapid) = match it.kind {
-            Kind::Mill => (Bucket::Mill, false),
-            Kind::Drill => (Bucket::Drill, false),
-            Kind::HSweep | Kind::VSweep => (Bucket::Sweep, true),
-            Kind::Comment => continue,
+        let Some((bucket, rapid)) = Bucket::of(it.kind) else {
+            continue;
         };
         let t = it.target;
-        let to = P3 {
-            x: t.x.unwrap_or(pos.x),
-            y: t.y.unwrap_or(pos.y),
-            z: t.z.unwrap_or(pos.z),
-        };
+        let to = t.end(pos);
         let points = match t.arc {
             Some((c, ccw)) => chords(pos, to, (c.x, c.y), ccw, g.arc_tolerance),
             None => vec![to],
