@@ -3,7 +3,9 @@
 // (the stock height field, on by default). Targets: < 2 s from navigation to the first drawn
 // frame; the playback stays interactive: a jump to half-way (cutting the stock up to there)
 // and its frame < PLAYBACK_MS. Prints the figures; exits 1 above a target.
-//   node bench/toolpath_load.mjs [MILLPATH_BIN]
+//   node bench/toolpath_load.mjs [MILLPATH_BIN] [--report]
+// With --report (CI's smoke run on a shared machine) the figures are printed and only a page
+// that does not load, or lacks its cut part, fails: wall-clock targets are judged by hand.
 // Needs editors/vscode's node_modules (npm ci there) and /usr/bin/chromium.
 import { execFileSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync, statSync } from 'node:fs';
@@ -15,7 +17,9 @@ import { fileURLToPath, pathToFileURL } from 'node:url';
 const repo = join(dirname(fileURLToPath(import.meta.url)), '..');
 const require = createRequire(join(repo, 'editors/vscode/package.json'));
 const { chromium } = require('playwright-core');
-const bin = process.argv[2] || process.env.MILLPATH_BIN || join(repo, 'target/release/millpath');
+const args = process.argv.slice(2);
+const reportOnly = args.includes('--report');
+const bin = args.find((a) => a !== '--report') || process.env.MILLPATH_BIN || join(repo, 'target/release/millpath');
 const TARGET_MS = 2000;
 const PLAYBACK_MS = 500;
 const WANT_MOVES = 100_000;
@@ -73,4 +77,6 @@ try {
 const best = Math.min(...runs), jump = Math.min(...jumps);
 const cut = data.cut ? `cut part ${data.cut.nx}×${data.cut.ny} cells of ${data.cut.cell.toFixed(3)} mm${data.cut.thinned ? ', lowerings thinned' : ''}` : 'no cut part';
 console.log(`toolpath page: ${data.moves.length} moves (${segments} segments, ${mb} MB page, ${cut}): loaded and drawn in ${runs.map((t) => t.toFixed(0)).join(' / ')} ms (best ${best.toFixed(0)} ms, target < ${TARGET_MS} ms); playback jump to half-way and its frame ${jumps.map((t) => t.toFixed(0)).join(' / ')} ms (best ${jump.toFixed(0)} ms, target < ${PLAYBACK_MS} ms)`);
-process.exit(best < TARGET_MS && jump < PLAYBACK_MS && data.cut ? 0 : 1);
+const inTime = best < TARGET_MS && jump < PLAYBACK_MS;
+if (!inTime) console.log(reportOnly ? 'toolpath page: above a target (reported only: --report)' : 'toolpath page: FAIL, above a target');
+process.exit(data.cut && data.moves.length >= WANT_MOVES && (inTime || reportOnly) ? 0 : 1);
