@@ -42,6 +42,7 @@ fn post_list_names_every_built_in_post() {
         "centroid",
         "fluidnc",
         "grblhal",
+        "marlin",
     ] {
         assert!(text.lines().any(|l| l.starts_with(name)), "{text}");
     }
@@ -67,6 +68,8 @@ fn a_shown_post_compiles_to_the_built_in_bytes() {
         ("centroid", "spindle_rpm = 12000\nspindle_dwell = 1.5\n"),
         ("fluidnc", "spindle_rpm = 9000.5\n"),
         ("grblhal", "[heightmap]\nstep = 6\nmargin = 1\n"),
+        // Marlin's M3 S is PWM 0-255 by default
+        ("marlin", "spindle_rpm = 255\nspindle_dwell = 1.5\n"),
     ];
     for (name, extra) in settings {
         let built_in = tempfile::tempdir().unwrap();
@@ -89,7 +92,7 @@ fn a_shown_post_compiles_to_the_built_in_bytes() {
         assert_eq!(a.status.code(), b.status.code(), "{name} {extra}");
         let (a, b) = (outputs(built_in.path()), outputs(file.path()));
         // posts that cannot probe refuse the probed example (2020): two programs
-        let least = if ["mach3", "uccnc", "centroid"].contains(&name) {
+        let least = if ["mach3", "uccnc", "centroid", "marlin"].contains(&name) {
             2
         } else {
             3
@@ -326,7 +329,13 @@ fn controller_posts_refuse_what_they_cannot_write() {
             assert!(text.contains("\nM3 S12000\nG4 P2\n"), "{name}");
             assert!(!text.starts_with('%'), "{name}");
         } else {
-            assert!(err.contains("spindle_dwell"), "{name}: {err}");
+            assert!(err.contains("set spindle_dwell = 0"), "{name}: {err}");
+            let de = millpath(
+                dir.path(),
+                &["compile", "--lang", "de", "--post", name, "2001.mpath"],
+            );
+            let de = String::from_utf8_lossy(&de.stderr);
+            assert!(de.contains("spindle_dwell = 0 (oder"), "{name}: {de}");
             std::fs::write(
                 &toml,
                 format!("{own}spindle_rpm = 12000\nspindle_dwell = 0\n"),

@@ -574,6 +574,14 @@ impl Diagnostic {
     /// errors of its own says so ({2}: its file, {4} = `known`); with no file it says where
     /// it looked ({2}: the folders searched, {3}: the file-name pattern).
     fn human_text(&self, lang: Lang) -> &'static str {
+        // a post without a dwell (Mach3, UCCNC: G4's P unit is a setting there): the way out
+        // is no dwell, not leaving spindle_dwell out (its default is 2 s)
+        if self.msg == Msg::PostCannot && self.args.get(2).is_some_and(|a| a == "dwell") {
+            return match lang {
+                Lang::En => "The post {0} cannot write {1}: it has no `{2}` (in [capabilities] or [templates]); set spindle_dwell = 0 (or --spindle-dwell 0) and let the controller's own spindle delay wait, or choose a post that can",
+                Lang::De => "Der Post {0} kann {1} nicht schreiben: ihm fehlt `{2}` (in [capabilities] oder [templates]); spindle_dwell = 0 (oder --spindle-dwell 0) setzen und die Spindelverzögerung der Steuerung warten lassen, oder einen Post wählen, der es kann",
+            };
+        }
         let no_file = self.args.get(1).is_some_and(String::is_empty);
         match (self.msg, no_file, self.args.get(4).map(String::as_str), lang) {
             (Msg::CouldNotFind, _, Some("known"), Lang::En) => "Path {0} (in {2}) cannot be embedded: it has errors of its own",
