@@ -137,6 +137,11 @@ enum Command {
         /// With --probe-log: largest XY distance, mm, between a measurement and its probe point
         #[arg(long, value_name = "MM", default_value_t = millpath_core::probe::adjustz::DEFAULT_TOLERANCE, requires = "probe_log", value_parser = numbers::decimal)]
         tolerance: f64,
+        /// The post the programs were written with, a built-in's name or a post file (default:
+        /// `post =` or `dialect =` of their millpath.toml); a height map's moves are written in
+        /// its words
+        #[arg(long, value_name = "NAME|FILE")]
+        post: Option<String>,
         /// The probed programs: NAME_Clean.gcode (or NAME; NAME_Z.txt is read beside it)
         #[arg(required = true)]
         files: Vec<String>,
@@ -375,12 +380,22 @@ fn main() -> ExitCode {
             lang,
             probe_log,
             tolerance,
+            post,
             files,
         } => {
-            let lang = lang_for(lang, None, files.first().map(Path::new));
-            match probe_log {
-                Some(log) => commands::adjust_z::run_with_log(max, &log, tolerance, lang, &files),
-                None => commands::adjust_z::run(max, None, lang, &files, false),
+            let first = files.first().map(Path::new);
+            let lang = lang_for(lang, None, first);
+            match commands::adjust_z::post_of(post.as_deref(), first, lang) {
+                Err(e) => {
+                    eprintln!("{e}");
+                    2
+                }
+                Ok(post) => match probe_log {
+                    Some(log) => {
+                        commands::adjust_z::run_with_log(max, &log, tolerance, lang, &files, post)
+                    }
+                    None => commands::adjust_z::run(max, None, lang, &files, false, post),
+                },
             }
         }
         Command::Dxf2text {

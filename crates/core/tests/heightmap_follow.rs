@@ -462,6 +462,7 @@ fn every_cut_keeps_its_depth_below_the_measured_surface() {
                     },
                     DEFAULT_TOLERANCE,
                     5.0,
+                    dialect.post(),
                     &mut diags,
                 )
                 .unwrap_or_else(|| panic!("{what}: {:?}", diags.list));

@@ -4,14 +4,61 @@ use crate::{report, write};
 use millpath_core::diag::{Diagnostic, Diags, Msg, Origin};
 use millpath_core::probe::adjustz;
 use millpath_core::Lang;
+use millpath_post::Post;
 use std::path::{Path, PathBuf};
 
-pub fn run(max: f64, x: Option<&str>, lang: Lang, files: &[String], reference_lines: bool) -> u8 {
-    run_set(max, x, lang, files, reference_lines, None)
+/// `post`: the post the programs were written with (a height map's moves are written in
+/// its words).
+pub fn run(
+    max: f64,
+    x: Option<&str>,
+    lang: Lang,
+    files: &[String],
+    reference_lines: bool,
+    post: &Post,
+) -> u8 {
+    run_set(max, x, lang, files, reference_lines, None, post)
+}
+
+/// The post the programs were written with: `--post`, else `post =` (or `dialect =`) of the
+/// millpath.toml compile read for them (the nearest above the first program), else the
+/// default dialect's. The error names the option or the file.
+pub fn post_of(
+    option: Option<&str>,
+    first: Option<&Path>,
+    lang: Lang,
+) -> Result<&'static Post, String> {
+    let read = |p: &Path| std::fs::read_to_string(p).map_err(|e| e.to_string());
+    let select = |name: &str, base: &Path| {
+        millpath_core::emit::dialect::select_post(name, base, &read, lang)
+            .map(|(dialect, post)| post.unwrap_or_else(|| dialect.post()))
+    };
+    if let Some(name) = option {
+        return select(name, Path::new("")).map_err(|e| format!("--post: {e}"));
+    }
+    let default = || millpath_core::Dialect::default().post();
+    let Some(path) = first.and_then(crate::config::find) else {
+        return Ok(default());
+    };
+    let cfg = crate::config::load_in(&path, lang)?;
+    match (&cfg.post, cfg.dialect) {
+        (Some(name), _) => {
+            select(name, &cfg.base_dir).map_err(|e| format!("{}: post: {e}", path.display()))
+        }
+        (None, Some(dialect)) => Ok(dialect.post()),
+        (None, None) => Ok(default()),
+    }
 }
 
 /// `adjust-z --probe-log LOG`: the measured heights of the one program come from the log.
-pub fn run_with_log(max: f64, log: &str, tolerance: f64, lang: Lang, files: &[String]) -> u8 {
+pub fn run_with_log(
+    max: f64,
+    log: &str,
+    tolerance: f64,
+    lang: Lang,
+    files: &[String],
+    post: &Post,
+) -> u8 {
     let fail = |d: Diagnostic| {
         eprintln!("{}", report::human(&d, lang));
         2
@@ -27,7 +74,7 @@ pub fn run_with_log(max: f64, log: &str, tolerance: f64, lang: Lang, files: &[St
     if let Some(d) = adjustz::check_tolerance(tolerance, &tolerance.to_string()) {
         return fail(d);
     }
-    run_set(max, None, lang, files, false, Some((log, tolerance)))
+    run_set(max, None, lang, files, false, Some((log, tolerance)), post)
 }
 
 /// A probe log, read only when it is not larger than [`adjustz::MAX_LOG_BYTES`]; UTF-16 with
@@ -75,6 +122,7 @@ fn run_set(
     files: &[String],
     reference_lines: bool,
     log: Option<(&str, f64)>,
+    post: &Post,
 ) -> u8 {
     let print = |d: &Diagnostic| {
         if reference_lines {
@@ -150,6 +198,7 @@ fn run_set(
                     set(log_path, &log_text),
                     tol,
                     max,
+                    post,
                     &mut diags,
                 )
             }
@@ -159,6 +208,7 @@ fn run_set(
                 probing,
                 max,
                 opt,
+                post,
                 &mut diags,
             ),
         };

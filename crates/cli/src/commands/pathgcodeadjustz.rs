@@ -18,5 +18,6 @@ pub fn run(args: &[String]) -> u8 {
         lang,
         &parsed.files,
         true,
+        millpath_core::Dialect::Reference.post(),
     )
 }

@@ -22,9 +22,11 @@
 //! rapids only above the highest point; the `MILLPATH-SURFACE` record and the split count.
 
 use super::bounds::line_origin;
+use super::words::Words;
 use crate::args;
 use crate::diag::{Diags, Msg, Origin};
 use crate::geom::{F3, P2};
+use millpath_post::Post;
 use millpath_verify::surface::HeightMap;
 use millpath_verify::{parse_line, Block};
 use std::f64::consts::TAU;
@@ -66,17 +68,6 @@ enum Motion {
     Ccw,
 }
 
-impl Motion {
-    fn code(self) -> &'static str {
-        match self {
-            Motion::Rapid => "G00",
-            Motion::Line => "G01",
-            Motion::Cw => "G02",
-            Motion::Ccw => "G03",
-        }
-    }
-}
-
 /// The G and other words of a line that adjust-z can carry over, or the first that it
 /// cannot (as written in the message).
 fn motion_of(block: &Block) -> Result<Option<Motion>, String> {
@@ -96,7 +87,8 @@ fn motion_of(block: &Block) -> Result<Option<Motion>, String> {
     let axis = block.words.iter().any(|w| "XYZIJ".contains(w.letter));
     for w in &block.words {
         let ok = match w.letter {
-            'G' | 'X' | 'Y' | 'Z' | 'I' | 'J' | 'F' => true,
+            // N: the line number (the program is numbered again as its post numbers)
+            'G' | 'X' | 'Y' | 'Z' | 'I' | 'J' | 'F' | 'N' => true,
             // spindle, tool, dwell time, program end: only on lines without a move
             'M' | 'S' | 'T' | 'P' => !axis,
             _ => false,
@@ -183,9 +175,11 @@ struct Tool {
     written_z: Option<f64>,
 }
 
-/// The program being written: lines, and the bound on their number.
+/// The program being written: lines (in the words of the program's post), and the bound
+/// on their number.
 struct Writer<'a> {
     lines: Vec<String>,
+    words: Words<'a>,
     map: &'a HeightMap,
     safe: f64,
     split_moves: usize,
@@ -200,13 +194,10 @@ impl Writer<'_> {
     }
 
     fn push_move(&mut self, text: String, count: &mut usize) -> bool {
-        self.lines.push(text);
+        // a post's template may hold more than one line
+        self.lines.extend(text.split('\n').map(str::to_string));
         *count += 1;
         self.lines.len() <= MAX_LINES
-    }
-
-    fn feed_word(feed: Option<f64>) -> String {
-        feed.map(|f| format!(" F{}", F3(f))).unwrap_or_default()
     }
 
     /// A straight move from (p0, z0) to (p1, z1), split; returns the last written Z.
@@ -224,7 +215,7 @@ impl Writer<'_> {
         let mut last = self.z_at(z0, p0);
         if len < 1e-9 {
             last = self.z_at(z1, p1);
-            let text = format!("{}{} Z{}", m.code(), Self::feed_word(feed), F3(last));
+            let text = self.words.vertical(m == Motion::Rapid, feed, last);
             self.push_move(text, &mut count).then_some(())?;
             self.count(count);
             return Some(last);
@@ -253,13 +244,9 @@ impl Writer<'_> {
                     (at(t), z0 + (z1 - z0) * t)
                 };
                 last = self.z_at(z, p);
-                let f = if first {
-                    Self::feed_word(feed)
-                } else {
-                    String::new()
-                };
+                let f = if first { feed } else { None };
                 first = false;
-                let text = format!("{}{f} X{} Y{} Z{}", m.code(), F3(p.x), F3(p.y), F3(last));
+                let text = self.words.straight(m == Motion::Rapid, f, p.x, p.y, last);
                 self.push_move(text, &mut count).then_some(())?;
             }
         }
@@ -343,21 +330,11 @@ impl Writer<'_> {
                 };
                 let z = if is_end { z1 } else { z0 + (z1 - z0) * t };
                 last = self.z_at(z, end);
-                let f = if first {
-                    Self::feed_word(feed)
-                } else {
-                    String::new()
-                };
+                let f = if first { feed } else { None };
                 first = false;
-                let text = format!(
-                    "{}{f} I{} J{} X{} Y{} Z{}",
-                    m.code(),
-                    F3(i),
-                    F3(j),
-                    F3(end.x),
-                    F3(end.y),
-                    F3(last)
-                );
+                let text = self
+                    .words
+                    .arc(m == Motion::Ccw, f, (i, j), (end.x, end.y, last));
                 self.push_move(text, &mut count).then_some(())?;
                 at = P2::new(round3(end.x), round3(end.y));
             }
@@ -403,12 +380,20 @@ fn last_centre(at: P2, p1: P2, c: P2) -> (f64, f64) {
 }
 
 /// The adjusted program of `clean` on `map`, or `None` after errors (each at its line of
-/// `file`). Nothing is produced unless every move could follow the surface.
-pub fn follow(clean: &str, file: &str, map: &HeightMap, diags: &mut Diags) -> Option<Followed> {
+/// `file`). Nothing is produced unless every move could follow the surface. The lines it
+/// writes are `post`'s, the post of the program it adjusts.
+pub fn follow(
+    clean: &str,
+    file: &str,
+    map: &HeightMap,
+    post: &Post,
+    diags: &mut Diags,
+) -> Option<Followed> {
     let before = diags.error_count();
     let eol = if clean.contains("\r\n") { "\r\n" } else { "\n" };
     let mut w = Writer {
         lines: Vec::new(),
+        words: Words { post },
         map,
         safe: f64::NAN,
         split_moves: 0,
@@ -425,12 +410,19 @@ pub fn follow(clean: &str, file: &str, map: &HeightMap, diags: &mut Diags) -> Op
             diags.error(Msg::HeightMapAlreadyAdjusted, at, args![file]);
             return None;
         }
-        if line.starts_with("(MILLPATH-STOCK") {
+        let line = w.words.unnumbered(line);
+        // a comment's text, after `(` or `;`
+        let comment = line
+            .trim_start()
+            .strip_prefix(['(', ';'])
+            .map(str::trim_start);
+        if comment.is_some_and(|c| c.starts_with("MILLPATH-STOCK")) {
             stock_line = Some(w.lines.len());
         }
-        let trimmed = line.trim();
-        if trimmed.starts_with("(Command count:") || trimmed.starts_with("(Befehlszahl:") {
-            stats_line = Some((w.lines.len(), trimmed.starts_with("(Befehlszahl")));
+        if let Some(c) =
+            comment.filter(|c| c.starts_with("Command count:") || c.starts_with("Befehlszahl:"))
+        {
+            stats_line = Some((w.lines.len(), c.starts_with("Befehlszahl")));
         }
         let block = match parse_line(line) {
             Ok(b) => b,
@@ -506,7 +498,7 @@ pub fn follow(clean: &str, file: &str, map: &HeightMap, diags: &mut Diags) -> Op
         if !off_map(p0) {
             let want = round3(w.z_at(z0, p0));
             if (written - want).abs() >= 0.0005 {
-                w.lines.push(format!("G00 Z{}", F3(want)));
+                w.lines.push(w.words.vertical(true, None, want));
                 w.pieces += 1;
                 written = want;
             }
@@ -566,20 +558,20 @@ pub fn follow(clean: &str, file: &str, map: &HeightMap, diags: &mut Diags) -> Op
         return None;
     }
     let (moves, pieces) = (w.split_moves, w.pieces);
-    let mut lines = w.lines;
+    let mut lines = std::mem::take(&mut w.lines);
     if let Some((k, german)) = stats_line {
         let text = if german {
-            format!("  (Geteilte Wege: {moves} in {pieces} Teile)")
+            format!("Geteilte Wege: {moves} in {pieces} Teile")
         } else {
-            format!("  (Split moves:  {moves} into {pieces} pieces)")
+            format!("Split moves:  {moves} into {pieces} pieces")
         };
-        lines.insert(k + 1, text);
+        lines.insert(k + 1, w.words.statistics(&text));
     }
     let mut record = map.comment_lines();
     record.push(format!("({SPLIT_WORD} MOVES={moves} PIECES={pieces})"));
     let at = stock_line.map_or(2.min(lines.len()), |k| k + 1);
     lines.splice(at..at, record);
-    let mut text = lines.join(eol);
+    let mut text = w.words.finish(lines).join(eol);
     text.push_str(eol);
     Some(Followed {
         text,
@@ -628,10 +620,52 @@ mod tests {
 
     const PROLOGUE: &str = "%\n(millpath V.1)\n(MILLPATH-STOCK T=2.000 O=1.000)\nG17 G21 G90\nG00 Z5.000\nG00 X0.000 Y0.000\n";
 
+    fn linuxcnc() -> &'static Post {
+        millpath_post::builtin::get("linuxcnc").unwrap()
+    }
+
+    #[test]
+    fn a_numbered_posts_program_is_numbered_again_in_its_words() {
+        let text = millpath_post::builtin::source("linuxcnc")
+            .unwrap()
+            .replace("modal = []", "modal = [\"F\", \"motion\"]")
+            .replace(
+                "[comments]",
+                "[line_numbers]\nstart = 10\nstep = 10\n\n[comments]",
+            );
+        let post = millpath_post::load("n.toml", &text).unwrap();
+        let body =
+            "G00 Z3.000\nG01 F100.000 Z1.500\nG01 F300.000 X20.000 Y0.000 Z1.500\nG00 Z5.000\n";
+        let program: String = format!("{PROLOGUE}{body}M30\n%\n")
+            .lines()
+            .enumerate()
+            .map(|(k, l)| match l {
+                "%" => "%\n".to_string(),
+                l => format!("N{} {l}\n", 10 * k),
+            })
+            .collect();
+        let mut d = Diags::default();
+        let out = follow(&program, "c", &map(), &post, &mut d).unwrap().text;
+        assert!(d.list.is_empty(), "{:?}", d.list);
+        let lines: Vec<&str> = out.lines().collect();
+        assert_eq!(lines[0], "%");
+        for (k, l) in lines[1..lines.len() - 1].iter().enumerate() {
+            assert!(l.starts_with(&format!("N{} ", 10 * (k + 1))), "{out}");
+        }
+        // modal words as the post leaves them out: G01 after the plunge, the feed on the
+        // split line's second piece
+        assert!(out.contains("N130 G01 F100.000 Z1.500\n"), "{out}");
+        assert!(
+            out.contains("N140 F300.000 X10.000 Y0.000 Z1.600\n"),
+            "{out}"
+        );
+        assert!(out.contains("N150 X20.000 Y0.000 Z1.700\n"), "{out}");
+    }
+
     fn run(body: &str) -> (Option<Followed>, Vec<(Msg, String)>) {
         let mut d = Diags::default();
         let program = format!("{PROLOGUE}{body}M30\n%\n");
-        let out = follow(&program, "c", &map(), &mut d);
+        let out = follow(&program, "c", &map(), linuxcnc(), &mut d);
         let msgs = d.list.iter().map(|x| (x.msg, x.origin.context())).collect();
         (out, msgs)
     }
@@ -743,7 +777,13 @@ mod tests {
             assert!(out.is_none(), "{body}");
             assert_eq!(msgs[0].0, Msg::SurfaceLineUnsupported, "{body}");
             let mut d = Diags::default();
-            follow(&format!("{PROLOGUE}{body}M30\n"), "c", &map(), &mut d);
+            follow(
+                &format!("{PROLOGUE}{body}M30\n"),
+                "c",
+                &map(),
+                linuxcnc(),
+                &mut d,
+            );
             assert!(
                 d.list[0]
                     .message(crate::Lang::En)
@@ -755,7 +795,7 @@ mod tests {
         // a surface that reaches the safe height: the sweeps would hit it
         let mut d = Diags::default();
         let low = PROLOGUE.replace("G00 Z5.000", "G00 Z2.200");
-        assert!(follow(&format!("{low}M30\n"), "c", &map(), &mut d).is_none());
+        assert!(follow(&format!("{low}M30\n"), "c", &map(), linuxcnc(), &mut d).is_none());
         assert_eq!(d.list[0].msg, Msg::SurfaceAboveSafeHeight);
         assert_eq!(
             d.list[0].message(crate::Lang::En),
@@ -763,12 +803,19 @@ mod tests {
         );
         // a move before the safe height is known
         let mut d = Diags::default();
-        assert!(follow("%\nG01 X1.000 Z1.000\nM30\n", "c", &map(), &mut d).is_none());
+        assert!(follow(
+            "%\nG01 X1.000 Z1.000\nM30\n",
+            "c",
+            &map(),
+            linuxcnc(),
+            &mut d
+        )
+        .is_none());
         assert_eq!(d.list[0].msg, Msg::SurfaceNoSafeHeight);
         // a program that follows a surface already
         let (out, _) = run("G00 Z3.000\n");
         let mut d = Diags::default();
-        assert!(follow(&out.unwrap().text, "m", &map(), &mut d).is_none());
+        assert!(follow(&out.unwrap().text, "m", &map(), linuxcnc(), &mut d).is_none());
         assert_eq!(d.list[0].msg, Msg::HeightMapAlreadyAdjusted);
     }
 
@@ -776,7 +823,7 @@ mod tests {
     fn crlf_stays_crlf() {
         let program = format!("{PROLOGUE}G00 Z3.000\nM30\n").replace('\n', "\r\n");
         let mut d = Diags::default();
-        let out = follow(&program, "c", &map(), &mut d).unwrap();
+        let out = follow(&program, "c", &map(), linuxcnc(), &mut d).unwrap();
         assert!(out.text.ends_with("M30\r\n"));
         assert!(!out.text.replace("\r\n", "").contains('\n'));
     }

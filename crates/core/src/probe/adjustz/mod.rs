@@ -18,6 +18,7 @@ mod log_match;
 mod probe_log;
 mod rewrite;
 mod set_check;
+mod words;
 mod zfile;
 
 pub use crate::digest::{
@@ -43,6 +44,7 @@ pub use zfile::{parse_z_file, ZLine};
 use crate::args;
 use crate::diag::{Diags, Msg, Origin};
 use bounds::line_origin;
+use millpath_post::Post;
 
 /// The file argument reduced to its base: `.dxf`, `_Clean.gcode`, `_Z.txt` or `.gcode` removed.
 pub fn base_path(arg: &str) -> String {
@@ -56,7 +58,8 @@ pub fn base_path(arg: &str) -> String {
 }
 
 /// The whole of adjust-z for one part: `_Milling.gcode`'s content, or `None` after errors
-/// (each naming its file and line). Nothing is produced unless every check passes.
+/// (each naming its file and line). Nothing is produced unless every check passes. A height
+/// map's moves are written as the `linuxcnc` post writes them ([`adjust_set`] takes the post).
 pub fn adjust(
     clean: &str,
     clean_file: &str,
@@ -74,7 +77,15 @@ pub fn adjust(
         name: z_file,
         text: z,
     };
-    adjust_set(clean, z, None, max, opt, diags)
+    adjust_set(
+        clean,
+        z,
+        None,
+        max,
+        opt,
+        crate::Dialect::LinuxCnc.post(),
+        diags,
+    )
 }
 
 /// Whether a `_Z.txt` lists the points of a height map (`[heightmap]`: `#1000` on), not
@@ -91,13 +102,15 @@ fn is_height_map(lines: &[ZLine]) -> bool {
 
 /// [`adjust`] with the `_Probing.gcode` beside them, when there is one: a set whose files
 /// come from different compiles is refused first ([`check_set`]), as its other errors would
-/// only be consequences of the mix.
+/// only be consequences of the mix. `post` is the post the set was written with: a height
+/// map's moves are written in its words.
 pub fn adjust_set(
     clean: SetFile,
     z: SetFile,
     probing: Option<SetFile>,
     max: f64,
     opt: MaxOption,
+    post: &Post,
     diags: &mut Diags,
 ) -> Option<String> {
     let before = diags.error_count();
@@ -121,7 +134,7 @@ pub fn adjust_set(
             return None;
         }
         let map = grid_set::surface(z_text, z_file, &lines, max, opt, diags)?;
-        return follow::follow(clean_text, clean_file, &map, diags).map(|f| f.text);
+        return follow::follow(clean_text, clean_file, &map, post, diags).map(|f| f.text);
     }
     let prog = read_clean(clean_text, clean_file, diags);
     if diags.error_count() > before {
@@ -153,6 +166,7 @@ pub fn adjust_with_log(
     log: SetFile,
     tol: f64,
     max: f64,
+    post: &Post,
     diags: &mut Diags,
 ) -> Option<String> {
     let [clean, z] = set.map(SetFile::without_bom);
@@ -168,7 +182,9 @@ pub fn adjust_with_log(
         return None;
     }
     let format = match probe_log::detect(log.text) {
-        Some(LogFormat::ZFile) => return adjust_set(clean, log, Some(probing), max, opt, diags),
+        Some(LogFormat::ZFile) => {
+            return adjust_set(clean, log, Some(probing), max, opt, post, diags)
+        }
         Some(f) => f,
         None => {
             let first = log.text.lines().position(|l| !l.trim().is_empty());
@@ -196,7 +212,7 @@ pub fn adjust_with_log(
         name: z.name,
         text: &filled,
     };
-    adjust_set(clean, z, Some(probing), max, opt, diags)
+    adjust_set(clean, z, Some(probing), max, opt, post, diags)
 }
 
 #[cfg(test)]
@@ -491,6 +507,7 @@ mod tests {
                 },
                 DEFAULT_TOLERANCE,
                 0.5,
+                crate::Dialect::LinuxCnc.post(),
                 d,
             )
         };
@@ -545,6 +562,7 @@ mod tests {
             set("log", "10 5 2.1\n"),
             DEFAULT_TOLERANCE,
             0.5,
+            crate::Dialect::LinuxCnc.post(),
             &mut d,
         );
         assert!(out.is_none());
