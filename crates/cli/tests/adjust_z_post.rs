@@ -82,7 +82,10 @@ fn a_height_map_set_of_a_numbered_post_is_adjusted_in_its_words() {
             .any(|l| l.split(' ').nth(1).is_some_and(|w| w.starts_with('X'))),
         "{milling}"
     );
-    let verified = millpath(d, &["verify", "--dialect", "linuxcnc", "2010_Milling.gcode"]);
+    let verified = millpath(
+        d,
+        &["verify", "--dialect", "linuxcnc", "2010_Milling.gcode"],
+    );
     assert!(
         verified.status.success(),
         "{}",
@@ -92,10 +95,21 @@ fn a_height_map_set_of_a_numbered_post_is_adjusted_in_its_words() {
     // the post given as an option instead: the same program
     let first = milling.clone();
     let toml = std::fs::read_to_string(d.join("millpath.toml")).unwrap();
-    std::fs::write(d.join("millpath.toml"), toml.replace("post = \"mymill.toml\"\n", "")).unwrap();
+    std::fs::write(
+        d.join("millpath.toml"),
+        toml.replace("post = \"mymill.toml\"\n", ""),
+    )
+    .unwrap();
     let out = millpath(
         d,
-        &["adjust-z", "--post", "mymill.toml", "--max", "1", "2010_Clean.gcode"],
+        &[
+            "adjust-z",
+            "--post",
+            "mymill.toml",
+            "--max",
+            "1",
+            "2010_Clean.gcode",
+        ],
     );
     assert!(out.status.success());
     assert_eq!(
@@ -112,7 +126,14 @@ fn a_height_map_set_of_a_numbered_post_is_adjusted_in_its_words() {
     .unwrap();
     let out = millpath(
         d,
-        &["adjust-z", "--post", "bad.toml", "--max", "1", "2010_Clean.gcode"],
+        &[
+            "adjust-z",
+            "--post",
+            "bad.toml",
+            "--max",
+            "1",
+            "2010_Clean.gcode",
+        ],
     );
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
