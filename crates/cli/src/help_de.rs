@@ -44,6 +44,7 @@ fn arg(cmd: &str, id: &str) -> Option<&'static str> {
         ("verify" | "adjust-z", "lang") => Some("Sprache der Meldungen (Standard: lang aus millpath.toml, sonst Englisch)"),
         ("adjust-z", "probe_log") => Some("Die gemessenen Höhen aus diesem Protokoll der Steuerung lesen (LinuxCNC PROBEOPEN, GRBL-Konsole mit [PRB:…], Zeilen x y z oder eine ausgefüllte _Z.txt) statt aus den Werten der NAME_Z.txt; nur ein Programm"),
         ("adjust-z", "tolerance") => Some("Mit --probe-log: größter XY-Abstand in mm zwischen einer Messung und ihrem Antastpunkt"),
+        ("adjust-z", "post") => Some("Der Post, mit dem die Programme geschrieben wurden, Name eines eingebauten oder eine Post-Datei (Standard: `post =` oder `dialect =` ihrer millpath.toml); die Wege einer Höhenkarte werden in seinen Worten geschrieben"),
         ("adjust-z", "files") => Some("Die angetasteten Programme: NAME_Clean.gcode (oder NAME; NAME_Z.txt wird daneben gelesen)"),
         ("dxf2text", "file") => Some("Die auszugebende DXF-Zeichnung"),
         ("dxf2text", "output") => Some("In diese Datei schreiben statt auf die Standardausgabe (`-`: Standardausgabe)"),

@@ -21,33 +21,39 @@ pub fn run(
 }
 
 /// The post the programs were written with: `--post`, else `post =` (or `dialect =`) of the
-/// millpath.toml compile read for them (the nearest above the first program), else the
-/// default dialect's. The error names the option or the file.
+/// millpath.toml compile read for them (the nearest above the first program). The
+/// `reference` writes no height maps, so without either (or with it) a set is taken in
+/// `linuxcnc`'s words, the follower's own before the posts. The error names the option or
+/// the file.
 pub fn post_of(
     option: Option<&str>,
     first: Option<&Path>,
     lang: Lang,
 ) -> Result<&'static Post, String> {
+    use millpath_core::Dialect;
     let read = |p: &Path| std::fs::read_to_string(p).map_err(|e| e.to_string());
     let select = |name: &str, base: &Path| {
         millpath_core::emit::dialect::select_post(name, base, &read, lang)
             .map(|(dialect, post)| post.unwrap_or_else(|| dialect.post()))
     };
-    if let Some(name) = option {
-        return select(name, Path::new("")).map_err(|e| format!("--post: {e}"));
-    }
-    let default = || millpath_core::Dialect::default().post();
-    let Some(path) = first.and_then(crate::config::find) else {
-        return Ok(default());
-    };
-    let cfg = crate::config::load_in(&path, lang)?;
-    match (&cfg.post, cfg.dialect) {
-        (Some(name), _) => {
-            select(name, &cfg.base_dir).map_err(|e| format!("{}: post: {e}", path.display()))
+    let chosen = match (option, first.and_then(crate::config::find)) {
+        (Some(name), _) => select(name, Path::new("")).map_err(|e| format!("--post: {e}"))?,
+        (None, None) => Dialect::LinuxCnc.post(),
+        (None, Some(path)) => {
+            let cfg = crate::config::load_in(&path, lang)?;
+            match (&cfg.post, cfg.dialect) {
+                (Some(name), _) => select(name, &cfg.base_dir)
+                    .map_err(|e| format!("{}: post: {e}", path.display()))?,
+                (None, Some(dialect)) => dialect.post(),
+                (None, None) => Dialect::LinuxCnc.post(),
+            }
         }
-        (None, Some(dialect)) => Ok(dialect.post()),
-        (None, None) => Ok(default()),
-    }
+    };
+    Ok(if std::ptr::eq(chosen, Dialect::Reference.post()) {
+        Dialect::LinuxCnc.post()
+    } else {
+        chosen
+    })
 }
 
 /// `adjust-z --probe-log LOG`: the measured heights of the one program come from the log.
