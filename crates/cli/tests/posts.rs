@@ -92,7 +92,7 @@ fn a_shown_post_compiles_to_the_built_in_bytes() {
         assert_eq!(a.status.code(), b.status.code(), "{name} {extra}");
         let (a, b) = (outputs(built_in.path()), outputs(file.path()));
         // posts that cannot probe refuse the probed example (2020): two programs
-        let least = if ["mach3", "uccnc", "centroid", "marlin"].contains(&name) {
+        let least = if ["centroid", "marlin"].contains(&name) {
             2
         } else {
             3
@@ -298,12 +298,85 @@ fn arcs_as_chords_or_radii_are_written_so_and_check_clean() {
 }
 
 /// The controller posts (docs/src/controllers.md): Mach and UCCNC write no G4 (its P unit is
-/// a setting there) and nothing probes on Mach, UCCNC or Centroid yet, so those are refused
-/// at the setting or element that asks for them; Centroid writes the dwell in seconds;
-/// FluidNC and grblHAL probe as GRBL does, without `%` lines.
+/// a setting there) and probe with G31 (drawn probes: the set is checked and adjusted; height
+/// maps refused); nothing probes on Centroid yet; refusals are at the setting or element that
+/// asks; Centroid writes the dwell in seconds; FluidNC and grblHAL probe as GRBL does,
+/// without `%` lines.
 #[test]
 fn controller_posts_refuse_what_they_cannot_write() {
-    for name in ["mach3", "uccnc", "centroid"] {
+    for name in ["mach3", "uccnc"] {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        example(d);
+        let out = millpath(d, &["compile", "--post", name, "2020.mpath"]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{name}: {err}");
+        let probing = std::fs::read_to_string(d.join("2020_Probing.gcode")).unwrap();
+        assert!(
+            probing.contains("\nG31 Z0 F50.000\nM0\n"),
+            "{name}: {probing}"
+        );
+        assert!(!probing.contains("G38") && !probing.contains('%'), "{name}");
+        // the probes measured, the set adjusted; every program read clean as rs274
+        let z = std::fs::read_to_string(d.join("2020_Z.txt")).unwrap();
+        let filled: String = z.lines().map(|l| format!("{l}3.050\n")).collect();
+        std::fs::write(d.join("2020_Z.txt"), filled).unwrap();
+        let out = millpath(d, &["adjust-z", "--max", "0.5", "2020_Clean.gcode"]);
+        assert!(
+            out.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        for f in [
+            "2020_Probing.gcode",
+            "2020_Clean.gcode",
+            "2020_Milling.gcode",
+        ] {
+            let v = millpath(d, &["verify", "--dialect", "rs274", f]);
+            let report = format!(
+                "{}{}",
+                String::from_utf8_lossy(&v.stdout),
+                String::from_utf8_lossy(&v.stderr)
+            );
+            assert!(
+                v.status.success() && report.contains(" 0 error(s), 0 warning(s)"),
+                "{name} {f}: {report}"
+            );
+        }
+        // G31 is read as a probe move: with a feed of 0 it is an error; GRBL has no G31
+        let stalled = probing.replacen("G31 Z0 F50.000", "G31 Z0 F0", 1);
+        std::fs::write(d.join("stalled.gcode"), stalled).unwrap();
+        let v = millpath(d, &["verify", "--dialect", "rs274", "stalled.gcode"]);
+        let report = format!(
+            "{}{}",
+            String::from_utf8_lossy(&v.stdout),
+            String::from_utf8_lossy(&v.stderr)
+        );
+        assert!(
+            !v.status.success() && report.contains("F0"),
+            "{name}: {report}"
+        );
+        let v = millpath(d, &["verify", "--dialect", "grbl", "2020_Probing.gcode"]);
+        assert!(!v.status.success(), "{name}: grbl reads no G31");
+        // a height map: refused, its points would all be typed in
+        let out = millpath(
+            d,
+            &[
+                "compile",
+                "--post",
+                name,
+                "--heightmap-step",
+                "5",
+                "2001.mpath",
+            ],
+        );
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            !out.status.success() && err.contains("MP207") && err.contains("grid_probe"),
+            "{name}: {err}"
+        );
+    }
+    for name in ["centroid"] {
         let dir = tempfile::tempdir().unwrap();
         example(dir.path());
         let out = millpath(dir.path(), &["compile", "--post", name, "2020.mpath"]);

@@ -88,6 +88,7 @@ impl Motion {
             Motion::Line => "G01".into(),
             Motion::Arc { cw: true } => "G02".into(),
             Motion::Arc { cw: false } => "G03".into(),
+            Motion::Probe(c) if c % 10 == 0 => format!("G{}", c / 10),
             Motion::Probe(c) => format!("G{}.{}", c / 10, c % 10),
             Motion::Unmodelled => "a canned cycle".into(),
         }
@@ -135,10 +136,11 @@ fn known_m(dialect: Dialect) -> &'static [u32] {
 /// probably seconds written as P.
 pub const SHORT_SPINDLE_DWELL: f64 = 0.1;
 
-/// G code ×10 (G38.3 → 383) → its modal group; `None`: unknown to any controller.
+/// G code ×10 (G38.3 → 383) → its modal group; `None`: unknown to any controller. G31 is
+/// the probe move of Mach3/4 and UCCNC (rs274 family; GRBL and Marlin refuse it).
 fn g_group(code: u32) -> Option<Group> {
     Some(match code {
-        0 | 10 | 20 | 30 | 382..=385 | 800 | 730 | 760 | 810..=890 => Group::Motion,
+        0 | 10 | 20 | 30 | 310 | 382..=385 | 800 | 730 | 760 | 810..=890 => Group::Motion,
         170 | 180 | 190 => Group::Plane,
         900 | 910 => Group::Distance,
         901 | 911 => Group::ArcDistance,
@@ -520,7 +522,7 @@ impl Machine {
                 10 => Some(Motion::Line),
                 20 => Some(Motion::Arc { cw: true }),
                 30 => Some(Motion::Arc { cw: false }),
-                382..=385 => Some(Motion::Probe(code)),
+                310 | 382..=385 => Some(Motion::Probe(code)),
                 800 => None,
                 other => {
                     self.unsupported(line, format!("the canned cycle {}", g_name(other)));

@@ -46,14 +46,17 @@ fn word(line: &str, letter: char) -> Option<f64> {
         .filter(|v| v.is_finite() && v.abs() <= LIMIT)
 }
 
-/// The XY of every `G38` probe move of a probing program, in order (the current XY when it
-/// starts; our probing programs move only Z there).
+/// The XY of every probe move of a probing program (`G38.x`; `G31` of Mach and UCCNC), in
+/// order (the current XY when it starts; our probing programs move only Z there).
 pub fn probe_points(probing: &str) -> Vec<ProbePoint> {
     let (mut x, mut y) = (0.0, 0.0);
     let mut out = Vec::new();
     for (i, line) in probing.lines().enumerate() {
         let code = line.split(['(', ';']).next().unwrap_or("");
-        if code.split_whitespace().any(|w| w.starts_with("G38")) {
+        if code
+            .split_whitespace()
+            .any(|w| w.starts_with("G38") || w == "G31")
+        {
             out.push(ProbePoint { line: i + 1, x, y });
         } else if code.split_whitespace().any(|w| w == "G00" || w == "G0") {
             x = word(code, 'X').unwrap_or(x);
@@ -222,6 +225,9 @@ mod tests {
                 }
             ]
         );
+        // Mach's and UCCNC's G31 probes are probe points too (their pause is M0)
+        let mach = PROBING.replace("G38.3", "G31").replace("G04 P4", "M0");
+        assert_eq!(probe_points(&mach), p);
     }
 
     #[test]
