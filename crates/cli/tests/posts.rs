@@ -376,18 +376,17 @@ fn controller_posts_refuse_what_they_cannot_write() {
             "{name}: {err}"
         );
     }
-    for name in ["centroid"] {
-        let dir = tempfile::tempdir().unwrap();
-        example(dir.path());
-        let out = millpath(dir.path(), &["compile", "--post", name, "2020.mpath"]);
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert_ne!(out.status.code(), Some(0), "{name}");
-        assert!(
-            err.contains("MP207") && err.contains("2020.mpath:"),
-            "{name}: {err}"
-        );
-        assert!(!dir.path().join("2020_Clean.gcode").exists(), "{name}");
-    }
+    // Centroid: no probing yet
+    let dir = tempfile::tempdir().unwrap();
+    example(dir.path());
+    let out = millpath(dir.path(), &["compile", "--post", "centroid", "2020.mpath"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_ne!(out.status.code(), Some(0));
+    assert!(
+        err.contains("MP207") && err.contains("2020.mpath:"),
+        "{err}"
+    );
+    assert!(!dir.path().join("2020_Clean.gcode").exists());
     for (name, dwell) in [("mach3", false), ("uccnc", false), ("centroid", true)] {
         let dir = tempfile::tempdir().unwrap();
         example(dir.path());
