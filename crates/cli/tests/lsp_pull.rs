@@ -639,11 +639,15 @@ fn cancellation_stops_the_work_of_lenses_preview_and_toolpath() {
             "{method}: the cancelled work went on ({busy:?} CPU in 1.5 s)"
         );
     }
-    // healthy: a lens request answers every path
-    let lenses = c.request(
+    // healthy: a lens request answers every path (it compiles 40 paths: on a busy machine,
+    // with a debug build, that takes longer than the client's usual 30 s)
+    let id = c.send_request(
         "textDocument/codeLens",
         json!({ "textDocument": { "uri": u } }),
     );
+    let lenses = c
+        .wait_response(id, Duration::from_secs(300))
+        .expect("the lenses");
     let lenses = ok(&lenses).as_array().unwrap().clone();
     assert_eq!(lenses.len(), 40);
     assert!(lenses[0]["command"]["title"]
