@@ -233,6 +233,24 @@ enum Command {
         #[arg(long, value_name = "MM", value_parser = numbers::decimal)]
         cut_cell: Option<f64>,
     },
+    /// What changed between two versions of drawings and what it does to the part: OLD NEW,
+    /// REV -- FILE… or REV..REV (exit 0: no change, 1: changed, 2: error)
+    Diff {
+        #[command(flatten)]
+        machine: MachineArgs,
+        /// Report format: human text, json, markdown (a pull-request comment)
+        #[arg(long, value_enum, default_value = "human")]
+        format: commands::diff::DiffFormat,
+        /// Compare the drawings as written only: do not compile them
+        #[arg(long)]
+        no_compile: bool,
+        /// OLD NEW (two drawings), or a git revision REV or REV..REV (default HEAD)
+        #[arg(value_name = "OLD NEW | REV")]
+        revs: Vec<String>,
+        /// With a revision: the drawings to compare (default: those git lists as changed)
+        #[arg(last = true, value_name = "FILE")]
+        files: Vec<PathBuf>,
+    },
     /// The post-processors: list the built-in ones, print one as a post file to adapt
     Post {
         #[command(subcommand)]
@@ -436,6 +454,19 @@ fn main() -> ExitCode {
                 (cut, cut_cell),
             )
         }
+        Command::Diff {
+            machine,
+            format,
+            no_compile,
+            revs,
+            files,
+        } => commands::diff::run(&commands::diff::Args {
+            machine,
+            format,
+            compile: !no_compile,
+            revs,
+            files,
+        }),
         Command::Lsp { .. } => millpath_lsp::run_stdio(),
         Command::Pathdxf2gcode { args } => commands::pathdxf2gcode::run(&args),
         Command::Pathgcodeadjustz { args } => commands::pathgcodeadjustz::run(&args),

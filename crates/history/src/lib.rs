@@ -10,8 +10,12 @@
 //! Dependencies point one way: this crate uses `core`, `syntax` and `ide`; nothing below it
 //! imports it.
 
+pub mod compiled;
+pub mod diff;
 pub mod matching;
+pub mod report;
 pub mod version;
 
+pub use diff::{diff, ChangeKind, Diff, EffectGroup, ElementChange, PathDiff, PathStatus, Side};
 pub use matching::{match_elements, match_paths, ElementMatch, Pairing, PathPairing, Relation};
 pub use version::{Element, PathVersion, Version};
