@@ -28,6 +28,9 @@ pub struct Outcome {
     pub moves: usize,
     /// The program's move lines (their G-code) in order, hashed: equal ⇔ same G-code moves.
     pub gcode_digest: u64,
+    /// Every move in program order with its element's line in the canonical text (0: an
+    /// element of another file, or none); the pictures draw them.
+    pub sequence: Vec<(MoveKey, usize)>,
     /// Moves by the line of their element in the canonical text (1-based).
     pub by_line: HashMap<usize, Vec<MoveKey>>,
     /// Moves from elements of other files (embedded subpaths), by their element's label
@@ -144,7 +147,15 @@ fn outcome_of(data: &serde_json::Value, at: &Path) -> Outcome {
             arc.map(|(x, y, ccw)| (r3(x), r3(y), ccw)),
             r3(m["feed"].as_f64().unwrap_or(0.0)),
         );
-        match m["source"].as_u64().and_then(|i| lines.get(i as usize)) {
+        let source = m["source"].as_u64().and_then(|i| lines.get(i as usize));
+        out.sequence.push((
+            key.clone(),
+            match source {
+                Some(Ok(line)) => *line,
+                _ => 0,
+            },
+        ));
+        match source {
             Some(Ok(line)) => out.by_line.entry(*line).or_default().push(key),
             Some(Err(label)) => out.elsewhere.entry(label.clone()).or_default().push(key),
             None => out.elsewhere.entry(String::new()).or_default().push(key),

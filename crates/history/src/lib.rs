@@ -13,6 +13,7 @@
 pub mod compiled;
 pub mod diff;
 pub mod matching;
+pub mod picture;
 pub mod report;
 pub mod version;
 

@@ -36,6 +36,21 @@ pub struct Args {
     pub compile: bool,
     pub revs: Vec<String>,
     pub files: Vec<PathBuf>,
+    /// The visual diff: HTML page, SVG, PNG.
+    pub pictures: Pictures,
+}
+
+#[derive(Default)]
+pub struct Pictures {
+    pub html: Option<PathBuf>,
+    pub svg: Option<PathBuf>,
+    pub png: Option<PathBuf>,
+}
+
+impl Pictures {
+    fn any(&self) -> bool {
+        self.html.is_some() || self.svg.is_some() || self.png.is_some()
+    }
 }
 
 pub fn run(a: &Args) -> u8 {
@@ -52,7 +67,19 @@ pub fn run(a: &Args) -> u8 {
             return 2;
         }
     };
+    if a.pictures.any() && pairs.len() != 1 {
+        eprintln!(
+            "{}",
+            match lang {
+                Lang::En => "error: --html, --svg and --png draw one drawing: name one file",
+                Lang::De =>
+                    "Fehler: --html, --svg und --png zeichnen eine Zeichnung: eine Datei angeben",
+            }
+        );
+        return 2;
+    }
     let mut changed = false;
+    let mut status = 0;
     let mut texts = Vec::new();
     let mut jsons = Vec::new();
     for (old, new) in &pairs {
@@ -79,6 +106,11 @@ pub fn run(a: &Args) -> u8 {
         );
         changed |= d.changed();
         let title = format!("{} → {}", old.label, new.label);
+        let texts_of = (
+            (old.label.as_str(), o.text.as_str()),
+            (new.label.as_str(), n.text.as_str()),
+        );
+        status |= pictures(&a.pictures, &d, &title, texts_of, lang);
         match a.format {
             DiffFormat::Human => texts.push(out::human(&d, &title, lang)),
             DiffFormat::Markdown => texts.push(out::markdown(&d, &title, lang)),
@@ -96,10 +128,131 @@ pub fn run(a: &Args) -> u8 {
         },
         _ => texts.join("\n"),
     };
-    if crate::output::emit(None, &text, lang) != 0 {
+    if crate::output::emit(None, &text, lang) != 0 || status != 0 {
         return 2;
     }
     u8::from(changed)
+}
+
+/// Writes the visual diff; 0, or 1 when a file could not be written (said on stderr).
+fn pictures(
+    p: &Pictures,
+    d: &millpath_history::Diff,
+    title: &str,
+    (old, new): ((&str, &str), (&str, &str)),
+    lang: Lang,
+) -> u8 {
+    use millpath_history::picture;
+    let writing = match lang {
+        Lang::En => "Writing",
+        Lang::De => "Schreiben von",
+    };
+    let mut status = 0;
+    if let Some(out) = &p.html {
+        eprintln!("---- {writing} {}", out.display());
+        let page = picture::html(d, title, old, new, lang == Lang::De);
+        status |= crate::output::emit(Some(out), &page, lang);
+    }
+    if let Some(out) = &p.svg {
+        eprintln!("---- {writing} {}", out.display());
+        status |= crate::output::emit(Some(out), &picture::svg(d), lang);
+    }
+    if let Some(out) = &p.png {
+        eprintln!("---- {writing} {}", out.display());
+        let written = crate::png::svg_to_png(&picture::svg(d)).and_then(|bytes| {
+            crate::write::write_atomic_bytes(out, &bytes).map_err(|e| e.to_string())
+        });
+        if let Err(e) = written {
+            eprintln!(
+                "{}: {}: {e}",
+                report::severity_word(millpath_core::diag::Severity::Error, lang),
+                out.display()
+            );
+            status |= 1;
+        }
+    }
+    status
+}
+
+/// `millpath difftool LOCAL REMOTE [MERGED]` (git difftool): the visual diff of two versions
+/// as an HTML page, located at MERGED (the drawing in the work tree: its subpaths and
+/// millpath.toml); the page's path is printed, and opened with `--open`.
+pub fn difftool(
+    machine: &MachineArgs,
+    local: &Path,
+    remote: &Path,
+    merged: Option<&Path>,
+    html: Option<PathBuf>,
+    open: bool,
+) -> u8 {
+    let lang = lang_of(machine, merged.or(Some(remote)));
+    let source = |p: &Path| -> Result<Source, String> {
+        let bytes = std::fs::read(p).map_err(|e| cannot_read(p, e, lang))?;
+        // git's temporary copies have the drawing's extension; the drawing itself is MERGED
+        Ok(Source {
+            label: merged.unwrap_or(p).display().to_string(),
+            file: absolute(merged.unwrap_or(p)),
+            bytes: Some(bytes),
+        })
+    };
+    let (old, new) = match (source(local), source(remote)) {
+        (Ok(o), Ok(n)) => (o, n),
+        (Err(e), _) | (_, Err(e)) => {
+            eprintln!("{e}");
+            return 2;
+        }
+    };
+    let (o, n) = match (version(&old, machine, lang), version(&new, machine, lang)) {
+        (Ok(o), Ok(n)) => (o, n),
+        (Err(e), _) | (_, Err(e)) => {
+            eprintln!("{e}");
+            return 2;
+        }
+    };
+    let d = millpath_history::diff(
+        Side {
+            version: &o,
+            file: &old.file,
+        },
+        Side {
+            version: &n,
+            file: &new.file,
+        },
+        true,
+    );
+    let name = new
+        .file
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let out =
+        html.unwrap_or_else(|| std::env::temp_dir().join(format!("millpath-diff-{name}.html")));
+    let title = format!("{} ({} → {})", old.label, local.display(), remote.display());
+    let page = millpath_history::picture::html(
+        &d,
+        &title,
+        (&local.display().to_string(), &o.text),
+        (&remote.display().to_string(), &n.text),
+        lang == Lang::De,
+    );
+    if crate::output::emit(Some(&out), &page, lang) != 0 {
+        return 2;
+    }
+    print!("{}", out::human(&d, &title, lang));
+    println!("{}", out.display());
+    if open {
+        let opener = if cfg!(target_os = "macos") {
+            "open"
+        } else if cfg!(windows) {
+            "explorer"
+        } else {
+            "xdg-open"
+        };
+        if let Err(e) = Command::new(opener).arg(&out).spawn() {
+            eprintln!("{opener}: {e}");
+        }
+    }
+    0
 }
 
 /// A version from its source (an absent file: no paths).
