@@ -103,9 +103,18 @@ fn drawn(p: &PathDiff) -> Vec<Drawn<'_>> {
 }
 
 /// The SVG path data of a move in drawing units (Y up, flipped by the caller's transform).
-fn path_data(k: &MoveKey) -> String {
+/// A plunge (no X/Y travel: a drill) is a small ring of radius `dot`.
+fn path_data(k: &MoveKey, dot: f64) -> String {
     let f = |v: i64| v as f64 / 1000.0;
     let (x0, y0, x1, y1) = (f(k.1[0]), f(k.1[1]), f(k.1[3]), f(k.1[4]));
+    if k.2.is_none() && k.1[0] == k.1[3] && k.1[1] == k.1[4] {
+        return format!(
+            "M{} {y0}A{dot} {dot} 0 1 0 {} {y0}A{dot} {dot} 0 1 0 {} {y0}",
+            x0 - dot,
+            x0 + dot,
+            x0 - dot
+        );
+    }
     match k.2 {
         Some((cx, cy, ccw)) => {
             let r = (x0 - f(cx)).hypot(y0 - f(cy));
@@ -210,7 +219,7 @@ pub fn svg(d: &Diff) -> String {
                 body,
                 r#"<path id="m{pi}-{mi}" class="{c}" d="{d}" stroke="{col}" stroke-width="{sw}" fill="none" data-old-line="{ol}" data-new-line="{nl}" data-path="{name}"/>"#,
                 c = class(m.mark),
-                d = path_data(m.key),
+                d = path_data(m.key, 4.0 * stroke),
                 col = colour(m.mark),
                 sw = if m.mark == Mark::Same {
                     stroke
@@ -273,7 +282,7 @@ pub fn html(d: &Diff, title: &str, old: (&str, &str), new: (&str, &str), german:
 <style>
 body {{ font-family: sans-serif; margin: 1em; }}
 #view .hidden {{ display: none; }}
-#view path {{ cursor: pointer; }}
+#view path {{ cursor: pointer; pointer-events: all; }}
 #texts {{ display: flex; gap: 1em; }}
 .text {{ flex: 1; overflow: auto; max-height: 40em; }}
 .line {{ display: block; white-space: pre; }}
