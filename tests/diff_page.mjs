@@ -77,6 +77,8 @@ try {
   const near = (rgb, want) => rgb.split(',').map(Number).every((v, i) => Math.abs(v - want[i]) <= 12);
   const rgbs = { removed: [214, 39, 40], added: [44, 160, 44], depth: [31, 95, 214], same: [154, 154, 154] };
   for (const [k, v] of Object.entries(rgbs)) if (!sampled[k].some((s) => near(s, v))) fail(`PNG has no ${k} colour where the page draws it: ${sampled[k].slice(0, 8)}`);
+  // a picture of the page for a review note (SCREENSHOT=FILE)
+  if (process.env.SCREENSHOT) await page.screenshot({ path: process.env.SCREENSHOT, fullPage: true });
   console.log(JSON.stringify({ colours, clicked, toggles, png: Object.fromEntries(Object.entries(sampled).map(([k, v]) => [k, v.length])) }));
 } finally {
   await browser.close();
