@@ -253,7 +253,8 @@ fn listing(id: &str, title: &str, text: &str) -> String {
         escape(title)
     );
     for (i, l) in text.lines().enumerate() {
-        let _ = writeln!(
+        // block spans: no newline between them (a <pre> would show it as a blank line)
+        let _ = write!(
             out,
             r#"<span id="{id}-{n}" class="line">{n:>5}  {}</span>"#,
             escape(l),
