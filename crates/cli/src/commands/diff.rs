@@ -402,8 +402,14 @@ fn git_source(rev: &str, file: &Path, lang: Lang) -> Result<Source, String> {
             ));
         }
     };
+    // a full commit id (a merge base in CI) shown short, as git does
+    let shown = if rev.len() == 40 && rev.bytes().all(|b| b.is_ascii_hexdigit()) {
+        &rev[..10]
+    } else {
+        rev
+    };
     Ok(Source {
-        label: format!("{rev}:{}", file.display()),
+        label: format!("{shown}:{}", file.display()),
         file: abs,
         bytes,
     })
