@@ -170,6 +170,13 @@ open("part.dxf", "w").write(d[:i] + line + d[i:])
 EOF
       rm part.mpath
       git init -q . && git add part.dxf && git commit -qm "part" ;;
+    version-control)
+      # the text examples and a DXF drawing in git, two commits (the second deepens part.dxf)
+      cp "$examples/text/2001.mpath" "$examples/text/2010.mpath" "$examples/text/millpath.toml" .
+      cp 2001.mpath part.mpath && millpath text2dxf part.mpath -o part.dxf && rm part.mpath
+      git init -q . && git add . && git commit -qm "parts"
+      sed 's/B-0,2/B-0,4/' 2001.mpath >part.mpath && millpath text2dxf part.mpath -o part.dxf && rm part.mpath
+      git commit -qam "deeper part" ;;
     probes)
       # the NAME of the page: a compiled height-map set, its _Z.txt filled in, the logs
       heightmap_set
