@@ -19,6 +19,10 @@
 //! the features, the files and folders the analysis read (its dependencies, recorded by a wrapping
 //! `FileSystem`); gives up between stages when `cancelled()`, and inside the compiler through
 //! `Session::stop` (asked between elements and passes).
+//!
+//! Posts (issue 32): `settings_for` resolves `post =` as `millpath compile` does (the post
+//! file, as saved, is a dependency of every document it writes for); `toml_doc` checks
+//! `millpath.toml` and post files, `post_names` completes and explains post names.
 
 mod call_hierarchy;
 mod code_actions;
