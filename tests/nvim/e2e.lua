@@ -223,6 +223,32 @@ local ok, err = pcall(function()
   check('outgoing calls: the project embeds 2030.7Q', #qf == 1 and qf[1].text == '2030.7Q'
     and vim.api.nvim_buf_get_name(qf[1].bufnr) == file and qf[1].lnum == 5, vim.inspect(vim.tbl_map(at, qf)))
   vim.cmd('cclose')
+
+  -- a post file (posts/*.toml): the server attaches and shows the post loader's located error
+  vim.fn.mkdir(dir .. '/posts', 'p')
+  local post = dir .. '/posts/mine.toml'
+  local shown = vim.fn.systemlist({ bin, 'post', 'show', 'grbl' })
+  local tline
+  for i, l in ipairs(shown) do
+    if l == 'tool = "T{tool_number}"' then
+      shown[i] = 'tool = "T{tool_numbr}"'
+      tline = i
+    end
+  end
+  vim.fn.writefile(shown, post)
+  vim.cmd('filetype on')
+  vim.cmd('edit ' .. post)
+  check('a post file is TOML', vim.bo.filetype == 'toml', vim.bo.filetype)
+  vim.wait(15000, function() return #vim.diagnostic.get(0) > 0 end, 50)
+  local pd = vim.diagnostic.get(0)
+  check('the post error as a diagnostic, at its line', tline and #pd == 1 and pd[1].lnum == tline - 1
+    and pd[1].message:find('templates.tool: unknown variable {tool_numbr}', 1, true) ~= nil, vim.inspect(pd))
+  -- another TOML file: no millpath client
+  local other = dir .. '/other.toml'
+  vim.fn.writefile({ '[a]', 'b = 1' }, other)
+  vim.cmd('edit ' .. other)
+  vim.wait(500)
+  check('no millpath client for another TOML file', require('millpath')._client_for(0) == nil)
 end)
 if not ok then
   check('no Lua error', false, err)

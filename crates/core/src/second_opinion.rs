@@ -290,12 +290,15 @@ pub fn clamp_hits(
     program: &str,
     model: &Model,
     dialect: crate::machine::Dialect,
+    post: &millpath_post::Post,
     clamps: &[Clamp],
 ) -> Vec<(usize, usize)> {
     if clamps.is_empty() {
         return Vec::new();
     }
-    let reading = Reading::of(dialect, dialect.post()).ok();
+    // the post's family, not the dialect's built-in post (a custom post of the grbl family
+    // is read as grbl)
+    let reading = Reading::of(dialect, post).ok();
     let report = verify(
         program,
         &Options {

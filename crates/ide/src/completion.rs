@@ -22,6 +22,10 @@ pub fn completion(a: &Analysis, ws: &Workspace, offset: usize) -> Vec<Completion
         .map_or(0, |p| p + 1);
     let before = &a.src[line_start..offset.min(a.src.len())];
     let word = before.rsplit(char::is_whitespace).next().unwrap_or("");
+    // a quoted text (`"` is a trigger character for post names in millpath.toml)
+    if word.starts_with('"') {
+        return Vec::new();
+    }
     if let Some(prefix) = word.strip_prefix('>') {
         let mut names: Vec<String> = workspace_symbols(ws, prefix)
             .into_iter()

@@ -9,8 +9,9 @@
 //! depth levels).
 
 use base64::Engine;
-use millpath_core::machine::Dialect as Ours;
-use millpath_verify::{verify, Dialect, Options, ViewRequest};
+use millpath_core::emit::Controller;
+use millpath_core::machine::Reading;
+use millpath_verify::{verify, Options, ViewRequest};
 use serde_json::{json, Value};
 
 /// Cells of the view's grid at most (a finer cell is coarsened, the legend says so).
@@ -27,22 +28,23 @@ fn b64<T: Copy>(values: &[T], bytes: impl Fn(T) -> [u8; 4]) -> String {
 }
 
 /// The cut part of `program` with tool diameter `tool` from material top `top`; `cell`: the
-/// resolution asked for (mm; `None`: the checker's, O/8 where the area allows).
+/// resolution asked for (mm; `None`: the checker's, O/8 where the area allows). The program
+/// is read as the second opinion reads what `controller`'s post writes: by the post's family
+/// (a custom post of the grbl family is read as grbl), not by the dialect's name.
 pub fn cut_json(
     program: &str,
-    dialect: Ours,
+    controller: &Controller,
     top: f64,
     tool: f64,
     cell: Option<f64>,
 ) -> Option<Value> {
+    // a family the checker cannot read was refused with the settings: no cut part
+    let reading = Reading::of(controller.dialect, controller.post).ok()?;
     let report = verify(
         program,
         &Options {
-            dialect: match dialect {
-                Ours::Reference => Dialect::Reference,
-                Ours::LinuxCnc => Dialect::LinuxCnc,
-                Ours::Grbl => Dialect::Grbl,
-            },
+            dialect: reading.dialect,
+            arcs_as_lines: reading.arcs_as_lines,
             top: Some(top),
             tool: Some(tool),
             skip_stock: true,

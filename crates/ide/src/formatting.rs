@@ -6,6 +6,10 @@ use millpath_syntax::{File, Item};
 
 /// The canonical form of the document, when it parses.
 pub fn format(a: &Analysis) -> Option<String> {
+    // settings and post files are TOML, not MillPath text
+    if crate::toml_doc::is_toml(&a.path) {
+        return None;
+    }
     millpath_core::convert::format_text(&a.src, &file_ref(&a.path)).ok()
 }
 

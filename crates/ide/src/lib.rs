@@ -19,6 +19,10 @@
 //! the features, the files and folders the analysis read (its dependencies, recorded by a wrapping
 //! `FileSystem`); gives up between stages when `cancelled()`, and inside the compiler through
 //! `Session::stop` (asked between elements and passes).
+//!
+//! Posts (issue 32): `settings_for` resolves `post =` as `millpath compile` does (the post
+//! file, as saved, is a dependency of every document it writes for); `toml_doc` checks
+//! `millpath.toml` and post files, `post_names` completes and explains post names.
 
 mod call_hierarchy;
 mod code_actions;
@@ -38,6 +42,7 @@ mod inlay_hints;
 pub mod line_index;
 mod navigation;
 mod param_doc;
+mod post_names;
 mod preview;
 mod preview_files;
 mod provenance;
@@ -47,6 +52,7 @@ mod selection;
 mod semantic_delta;
 mod semantic_tokens;
 mod symbols;
+mod toml_doc;
 mod toolpath;
 pub mod walk;
 pub mod workspace_check;
@@ -67,6 +73,7 @@ pub use hover::{hover, Hover};
 pub use inlay_hints::{inlay_hints, inlay_hints_in, Hint};
 pub use navigation::{definition, references};
 pub use param_doc::param_doc;
+pub use post_names::{completion as settings_completion, hover as settings_hover};
 pub use preview::{preview, preview_of, preview_of_until, preview_until};
 pub use preview_files::Preview;
 pub use rename::{prepare_rename, rename, FileEdit};
@@ -74,6 +81,7 @@ pub use selection::selection_ranges;
 pub use semantic_delta::{apply_token_edit, relative_tokens, token_edit, RelToken, TokenEdit};
 pub use semantic_tokens::{semantic_tokens, SemToken, TOKEN_TYPES};
 pub use symbols::{document_symbols, workspace_symbols, Symbol};
+pub use toml_doc::{analyze as analyze_toml, is_toml};
 pub use toolpath::{toolpath, toolpath_html, toolpath_svg, toolpath_until};
 
 use millpath_core::build::traverse_memo::TraversalMemo;
@@ -197,6 +205,11 @@ pub struct DocSettings {
     pub probe_feed: SettingSource,
     /// A `millpath.toml` that does not parse.
     pub config_error: Option<(PathBuf, String)>,
+    /// The post file `post =` names (a dependency of every document it writes for).
+    pub post_file: Option<PathBuf>,
+    /// A `post =` that names no built-in post and no readable, valid post file: the
+    /// settings file and the loader's located message (in the settings' language).
+    pub post_error: Option<(PathBuf, String)>,
 }
 
 impl Workspace {
@@ -234,6 +247,8 @@ impl Workspace {
                 sweep_speed: SettingSource::Editor,
                 probe_feed: SettingSource::Editor,
                 config_error: None,
+                post_file: None,
+                post_error: None,
             };
         }
         let mut s = Settings::default();
@@ -245,7 +260,11 @@ impl Workspace {
             sweep_speed: SettingSource::Default,
             probe_feed: SettingSource::Default,
             config_error: None,
+            post_file: None,
+            post_error: None,
         };
+        // the `post =` of millpath.toml and the folder its file is found from
+        let mut post: Option<(String, PathBuf, PathBuf)> = None;
         let fs = self.fs();
         let mut dir = path.parent();
         while let Some(d) = dir {
@@ -259,6 +278,10 @@ impl Workspace {
                 match config::parse(&text, d) {
                     Ok(cfg) => {
                         cfg.apply(&mut s, &mut have);
+                        post = cfg
+                            .post
+                            .clone()
+                            .map(|p| (p, cfg.base_dir.clone(), candidate.clone()));
                         if !cfg.clamp.is_empty() {
                             s.clamps_file = Some(candidate.clone());
                         }
@@ -295,9 +318,57 @@ impl Workspace {
         if self.client.probe_feed.is_some() {
             ds.probe_feed = SettingSource::Editor;
         }
+        // the editor's `dialect` over the file's `post`, its `post` over both (as the
+        // command line's options over millpath.toml)
+        if self.client.dialect.is_some() {
+            post = None;
+        }
+        if let Some(p) = &self.client.post {
+            let base = self.roots.first().cloned().unwrap_or_default();
+            post = Some((p.clone(), base, PathBuf::from("editor settings")));
+        }
+        if let Some((name, base, from)) = post {
+            self.select_post(&mut s, &mut ds, &name, &base, &from);
+        }
         ds.settings = s;
         ds
     }
+
+    /// Sets the dialect and post `name` selects, as `millpath compile` does (a built-in's
+    /// name, or a post file relative to `base`, read through the editor's view: an open
+    /// buffer of the post file wins over the disk).
+    fn select_post(
+        &self,
+        s: &mut Settings,
+        ds: &mut DocSettings,
+        name: &str,
+        base: &Path,
+        from: &Path,
+    ) {
+        let fs = self.fs();
+        let read = |p: &Path| -> Result<String, String> {
+            let bytes = fs.read(p).map_err(|e| e.to_string())?;
+            // as `millpath compile` reads it
+            String::from_utf8(bytes).map_err(|e| e.to_string())
+        };
+        if let Some(file) = post_file_of(name, base) {
+            ds.post_file = Some(file);
+        }
+        match millpath_core::emit::dialect::select_post(name, base, &read, s.lang) {
+            Ok((dialect, post)) => {
+                s.dialect = dialect;
+                s.post = post;
+            }
+            Err(e) => ds.post_error = Some((from.to_path_buf(), e)),
+        }
+    }
+}
+
+/// The file a `post =` value names (`None`: a built-in's name), as the post loader reads it.
+pub fn post_file_of(name: &str, base: &Path) -> Option<PathBuf> {
+    let n = name.trim();
+    let is_path = n.contains(['/', '\\']) || n.to_ascii_lowercase().ends_with(".toml");
+    is_path.then(|| base.join(n))
 }
 
 impl DocSettings {
@@ -520,8 +591,18 @@ pub fn analyze_from(
             millpath_core::args![cfg.display(), e],
         ));
     }
+    if let Some((from, e)) = &settings.post_error {
+        // `millpath compile` refuses to run with it: as its message, located at `post`
+        diagnostics.push(Diagnostic::error(
+            millpath_core::Msg::SettingsUnusable,
+            Origin::Input,
+            millpath_core::args![format!("{}: post: {e}", from.display())],
+        ));
+    }
     let index = ws.line_index(&src);
     let mut deps = fs.files.into_inner().unwrap_or_default();
+    // the post file writes this document's programs: editing it re-checks the document
+    deps.extend(settings.post_file.clone());
     deps.remove(path);
     // the settings: any `millpath.toml` above the file
     deps.extend(path.ancestors().skip(1).map(|d| d.join(config::FILE_NAME)));

@@ -92,7 +92,7 @@ fn toolpath_json(
     let hits = clamp_hits(program.as_deref(), &model, &controller, &clamps);
     let cut = program.as_deref().and_then(|p| {
         let (top, tool) = (model.params.t, model.params.o);
-        crate::cut_view::cut_json(p, controller.dialect, top, tool, cut_cell)
+        crate::cut_view::cut_json(p, &controller, top, tool, cut_cell)
     });
     // each file's line index and lines, made once (a program has many elements per file)
     let mut texts: std::collections::HashMap<PathBuf, (crate::LineIndex, Vec<String>)> =
@@ -268,8 +268,14 @@ fn clamp_hits(
     let Some(program) = program.filter(|_| !clamps.is_empty()) else {
         return by_line;
     };
-    let found =
-        millpath_core::second_opinion::clamp_hits(program, model, controller.dialect, clamps);
+    // read by the post's family, as compile's check reads the program
+    let found = millpath_core::second_opinion::clamp_hits(
+        program,
+        model,
+        controller.dialect,
+        controller.post,
+        clamps,
+    );
     for (line, k) in found {
         by_line.entry(line).or_default().push(k);
     }

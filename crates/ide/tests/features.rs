@@ -226,6 +226,12 @@ fn completion_of_letters_names_and_kinds() {
     let a = analyze(&ws, &path);
     let items = completion(&a, &ws, at(&src3, "  \n  mill") + 2);
     assert!(items.iter().any(|c| c.label == "helix"), "{items:?}");
+    // an opened quote (the trigger of post names in millpath.toml): nothing to offer
+    let src4 = NO_B.replace("mill (0, 0) -> (20, 0)", "mill (0, 0) -> (20, 0)  \"");
+    ws.overlays.insert(path.clone(), src4.clone());
+    let a = analyze(&ws, &path);
+    let items = completion(&a, &ws, at(&src4, "(20, 0)  \"") + "(20, 0)  \"".len());
+    assert_eq!(items, Vec::new());
 }
 
 #[test]

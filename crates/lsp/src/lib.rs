@@ -17,7 +17,7 @@
 //!   folders it searched (the dependency graph: embedding → the file that defines the
 //!   subpath, `millpath.toml`). A change of a buffer, closing it, `didSave`, or
 //!   `workspace/didChangeWatchedFiles` (registered dynamically for `**/*.{mpath,dxf,DXF}` and
-//!   `**/millpath.toml` when the client allows it) re-analyses and republishes the open
+//!   `**/*.toml`, settings and post files, when the client allows it) re-analyses and republishes the open
 //!   documents that depend on the file. Opening a buffer equal to the disk changes nothing
 //!   for them. Open DXF drawings are read from the disk (an editor's text of them is
 //!   decoded).
@@ -34,6 +34,10 @@
 //!   vscode-languageclient registers every advertised command as a VS Code command. A
 //!   non-`file:` URI (`untitled:`) and a buffer opened with the language id `millpath` get a
 //!   made-up `*.mpath` path (`to_path`): text, never a drawing to load.
+//!
+//! - **TOML documents.** `millpath.toml` and post files are analysed by `ide::analyze_toml`
+//!   (the post loader's located errors); completion and hover there are the post names'
+//!   (`ide::settings_completion`, `ide::settings_hover`).
 //!
 //! The `LanguageServer` impl (one line per method, delegating to `handlers/`), `service()` with the
 //! custom requests, `run_stdio` and the exit status.

@@ -148,6 +148,10 @@ impl Backend {
                         let r = tokio::task::spawn_blocking(move || {
                             catch_unwind(AssertUnwindSafe(|| {
                                 let cancelled = || g != u64::MAX && !is_current(&st, &p, g);
+                                if millpath_ide::is_toml(&p) {
+                                    // millpath.toml or a post file: its own checks
+                                    return Some(millpath_ide::analyze_toml(&ws, &p));
+                                }
                                 analyze_from(&ws, &p, prev.as_deref(), &cancelled)
                             }))
                         })

@@ -27,6 +27,12 @@ impl Millpath {
     pub fn set_lang(&mut self, lang: &str) {
         self.0.set_lang(lang)
     }
+    pub fn set_post(&mut self, name: &str) {
+        self.0.set_post(name)
+    }
+    pub fn posts() -> String {
+        playground::Playground::posts()
+    }
     pub fn set_file(&mut self, path: &str, content: &str) {
         self.0.set_file(path, content)
     }

@@ -6,7 +6,8 @@
 //! `MemFileSystem` under them (`Workspace::memory`, no disk); one analysis per file and change;
 //! diagnostics, hover, completion, format, the path at the cursor, compile's files (`compile_file`;
 //! a library: the preview of the path), the toolpath data, `dxf2text` of bytes, `text2dxf`, all as
-//! JSON with UTF-16 offsets.
+//! JSON with UTF-16 offsets. The post selector (`set_post`, a built-in's name) is the editor's
+//! `post` setting: every answer, the G-code first, is written by that post.
 
 use crate::offsets::{from_utf16, to_utf16};
 use millpath_core::diag::{FileRef, Severity};
@@ -46,6 +47,24 @@ impl Playground {
     pub fn set_lang(&mut self, lang: &str) {
         self.ws.client.lang = Some(if lang == "de" { "de" } else { "en" }.to_string());
         self.generation += 1;
+    }
+
+    /// The post that writes the programs (a built-in's name, as `--post NAME`, over the
+    /// `post =` of `millpath.toml`); empty: `millpath.toml`'s, else the dialect's.
+    pub fn set_post(&mut self, name: &str) {
+        let name = name.trim();
+        self.ws.client.post = (!name.is_empty()).then(|| name.to_string());
+        self.generation += 1;
+    }
+
+    /// The built-in posts for the selector: `[{name, description, family}]`.
+    pub fn posts() -> String {
+        let list: Vec<Value> = millpath_post::builtin::NAMES
+            .iter()
+            .filter_map(|n| millpath_post::builtin::get(n))
+            .map(|p| json!({ "name": p.name, "description": p.description, "family": p.family.name() }))
+            .collect();
+        Value::Array(list).to_string()
     }
 
     /// Adds or replaces a file: a `.mpath` text as a buffer, anything else (`millpath.toml`)

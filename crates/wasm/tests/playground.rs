@@ -108,3 +108,74 @@ fn text2dxf_then_dxf2text_gives_the_text_back() {
         "{c}"
     );
 }
+
+/// The post selector: each built-in post's files are what compile writes with `--post NAME`
+/// (core's compile over the disk with that post), and switching the post changes the G-code.
+#[test]
+fn the_post_selector_compiles_with_the_chosen_post() {
+    let mut p = loaded();
+    let names: Vec<String> = json(Playground::posts())
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x["name"].as_str().unwrap().to_string())
+        .collect();
+    assert!(
+        names.len() >= 8 && names.iter().any(|n| n == "mach3"),
+        "{names:?}"
+    );
+    let f = "/examples/text/2001.mpath";
+    let mut seen: Vec<(String, String)> = Vec::new();
+    for name in &names {
+        p.set_post(name);
+        let got = json(p.compile(f, None));
+        let cfg = millpath_core::load::config::parse(
+            &std::fs::read_to_string(examples().join("millpath.toml")).unwrap(),
+            &examples(),
+        )
+        .unwrap();
+        let mut settings = millpath_core::Settings::default();
+        cfg.apply(&mut settings, &mut Default::default());
+        let read = |p: &Path| std::fs::read_to_string(p).map_err(|e| e.to_string());
+        let (dialect, post) = millpath_core::emit::dialect::select_post(
+            name,
+            Path::new(""),
+            &read,
+            millpath_core::Lang::En,
+        )
+        .unwrap();
+        settings.dialect = dialect;
+        settings.post = post;
+        let mut session = Session::new(settings, &OsFileSystem).unwrap();
+        let want = compile_file(
+            &mut session,
+            &examples().join("2001.mpath"),
+            &millpath_core::banner(),
+        );
+        let files = got["files"].as_array().unwrap();
+        assert_eq!(files.len(), want.outputs.len(), "{name}: {got}");
+        assert!(!files.is_empty(), "{name}: {got}");
+        for (g, w) in files.iter().zip(&want.outputs) {
+            assert_eq!(
+                g["name"],
+                w.path.file_name().unwrap().to_str().unwrap(),
+                "{name}"
+            );
+            assert_eq!(g["content"].as_str().unwrap(), w.content, "{name}");
+        }
+        let gcode = files[0]["content"].as_str().unwrap().to_string();
+        seen.push((name.clone(), gcode));
+    }
+    let of = |n: &str| &seen.iter().find(|(m, _)| m == n).unwrap().1;
+    // GRBL has no `%` lines, LinuxCNC has them; Mach3 is another program again
+    assert!(of("linuxcnc").starts_with("%\n") && !of("grbl").starts_with('%'));
+    assert_ne!(of("grbl"), of("linuxcnc"));
+    assert_ne!(of("mach3"), of("linuxcnc"));
+    // empty: back to millpath.toml's (no post: the reference)
+    p.set_post("");
+    let back = json(p.compile(f, None));
+    assert_eq!(
+        back["files"][0]["content"].as_str().unwrap(),
+        of("reference")
+    );
+}

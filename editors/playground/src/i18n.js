@@ -10,6 +10,7 @@ export const WORDS = {
     loading: 'Loading the compiler…', problems: (e, w) => `${e} errors, ${w} warnings`,
     removeFile: 'Remove this file', offline: 'Everything runs in this page: nothing is sent anywhere.',
     badShare: 'This share link cannot be read: ', dxfOpened: (n) => `${n} opened as text`,
+    post: 'Post:', postOfToml: 'as millpath.toml says',
   },
   de: {
     files: 'Dateien', newFile: '+ Datei', newFilePrompt: 'Name der neuen Datei (.mpath):', format: 'Formatieren',
@@ -20,5 +21,6 @@ export const WORDS = {
     loading: 'Der Compiler wird geladen…', problems: (e, w) => `${e} Fehler, ${w} Warnungen`,
     removeFile: 'Diese Datei entfernen', offline: 'Alles läuft in dieser Seite: nichts wird irgendwohin gesendet.',
     badShare: 'Dieser Link ist nicht lesbar: ', dxfOpened: (n) => `${n} als Text geöffnet`,
+    post: 'Post:', postOfToml: 'wie millpath.toml sagt',
   },
 };

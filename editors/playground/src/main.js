@@ -311,6 +311,24 @@ $('share').addEventListener('click', async () => {
   try { await navigator.clipboard.writeText(url); status(w().copied); } catch (_) { /* the field shows it */ }
 });
 
+// the post selector: the built-in posts (a name as `--post NAME`, over millpath.toml's `post`)
+function fillPosts() {
+  const sel = $('post');
+  for (const p of JSON.parse(Millpath.posts())) {
+    const o = new Option(p.name, p.name);
+    o.title = `${p.family}: ${p.description}`;
+    sel.add(o);
+  }
+  const wanted = params.get('post') || '';
+  if ([...sel.options].some((o) => o.value === wanted)) sel.value = wanted;
+  mp.set_post(sel.value);
+}
+$('post').addEventListener('change', () => {
+  mp.set_post($('post').value);
+  analyse();
+  scheduleOutputs(0);
+});
+
 $('lang').addEventListener('change', () => {
   lang = $('lang').value;
   localStorage.setItem('millpath-lang', lang);
@@ -327,6 +345,7 @@ async function start() {
   translate();
   await init({ module_or_path: new URL('millpath.wasm', import.meta.url) });
   mp = new Millpath(lang);
+  fillPosts();
   $('version').textContent = Millpath.version();
   let initial = { files: examples, active: params.get('example') || '2010.mpath' };
   if (location.hash.length > 1) {
@@ -356,6 +375,7 @@ window.playground = {
   outputs: () => outputs,
   toolpath: () => toolpathData,
   viewer: () => viewerWin && viewerWin.millpathToolpath,
+  setPost: (name) => { $('post').value = name; $('post').dispatchEvent(new Event('change')); },
   shareUrl,
   dxf2text: (name, bytes) => JSON.parse(mp.dxf2text(DIR + name, new Uint8Array(bytes))),
   openFile,

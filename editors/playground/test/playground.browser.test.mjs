@@ -65,11 +65,11 @@ async function openFile(page, name) {
   await page.waitForFunction((k) => Number(document.body.dataset.outputs) > k, n);
 }
 
-/** What `millpath compile` writes for `file` in `dir`: {name: content}. */
-function compiled(dir, file) {
+/** What `millpath compile` writes for `file` in `dir` (with `args`): {name: content}. */
+function compiled(dir, file, args = []) {
   const before = new Set(readdirSync(dir));
   for (const f of before) if (/_(Milling|Clean|Probing)\.gcode$|_Z\.txt$/.test(f)) execFileSync('rm', [join(dir, f)]);
-  execFileSync(bin, ['compile', file], { cwd: dir, stdio: 'pipe' });
+  execFileSync(bin, ['compile', ...args, file], { cwd: dir, stdio: 'pipe' });
   const stem = file.replace(/\.[^.]+$/, '');
   return Object.fromEntries(readdirSync(dir)
     .filter((f) => f.startsWith(stem) && /_(Milling|Clean|Probing)\.gcode$|_Z\.txt$/.test(f))
@@ -165,6 +165,34 @@ test('the G-code pane is what millpath compile writes, for every example', { ski
     const pane = await page.locator('#gcode').evaluate((e) => e.textContent);
     assert.equal(pane, want[got.files[0].name], f);
   }
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('the post selector: the G-code switches to what millpath compile --post writes', { skip, timeout: 180000 }, async () => {
+  const { page, errors } = await open('?example=2001.mpath');
+  const offered = await page.$$eval('#post option', (os) => os.map((o) => o.value));
+  for (const p of ['', 'reference', 'linuxcnc', 'grbl', 'mach3']) assert.ok(offered.includes(p), JSON.stringify(offered));
+  const seen = {};
+  for (const post of ['grbl', 'linuxcnc', 'mach3', 'grbl']) {
+    const n = await outputsCount(page);
+    await page.selectOption('#post', post);
+    await page.waitForFunction((k) => Number(document.body.dataset.outputs) > k, n);
+    const got = await page.evaluate(() => window.playground.outputs());
+    const want = compiled(work, '2001.mpath', ['--post', post]);
+    assert.deepEqual(got.files.map((x) => x.name).sort(), Object.keys(want).sort(), post);
+    for (const x of got.files) assert.equal(x.content, want[x.name], `${post}: ${x.name}`);
+    const pane = await page.locator('#gcode').evaluate((e) => e.textContent);
+    assert.equal(pane, want[got.files[0].name], post);
+    seen[post] = pane;
+  }
+  // GRBL writes no `%` lines, LinuxCNC does; Mach3's program is another again
+  assert.ok(seen.linuxcnc.startsWith('%\n') && !seen.grbl.startsWith('%'));
+  assert.notEqual(seen.mach3, seen.linuxcnc);
+  // the toolpath view follows the post too: its moves name lines of the program shown
+  const tp = await page.evaluate(() => window.playground.toolpath());
+  const mill = tp.moves.find((m) => m.kind === 'mill');
+  assert.equal(seen.grbl.split('\n')[mill.line - 1], mill.gcode);
   assert.deepEqual(errors, []);
   await page.close();
 });

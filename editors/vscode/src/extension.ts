@@ -7,6 +7,7 @@ import { execFile } from 'node:child_process';
 import { LanguageClient, LanguageClientOptions, ServerOptions } from 'vscode-languageclient/node';
 import {
   initializationOptions, findServer, ServerLookup, previewUri, parsePreviewUri, pathAtLine, statusText, previewText, PreviewResult, isSourceRef, PREVIEW_SCHEME, MachineSettings,
+  documentSelector,
 } from './logic';
 
 let client: LanguageClient | undefined;
@@ -273,7 +274,7 @@ export async function activate(ctx: vscode.ExtensionContext): Promise<void> {
     log.appendLine(`millpath server: ${found.command} (${found.source})`);
     const serverOptions: ServerOptions = { command: found.command, args: ['lsp'] };
     const clientOptions: LanguageClientOptions = {
-      documentSelector: [{ language: 'millpath' }],
+      documentSelector,
       initializationOptions: initializationOptions(settings()),
       outputChannel: log,
     };

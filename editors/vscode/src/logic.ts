@@ -25,6 +25,15 @@ export function initializationOptions(s: MachineSettings): Record<string, unknow
   return out;
 }
 
+/** The documents the language server serves: MillPath text, `millpath.toml` (completion and
+ *  hover of post names, its errors) and the post files of a `posts/` folder (the post loader's
+ *  errors as diagnostics). Any file, whatever language another extension gives TOML. */
+export const documentSelector = [
+  { language: 'millpath' },
+  { scheme: 'file', pattern: '**/millpath.toml' },
+  { scheme: 'file', pattern: '**/posts/*.toml' },
+];
+
 /** The server binary: the setting, else the bundled one when it exists, else `millpath`. */
 export function serverCommand(setting: string, bundled: string | undefined, exists: (p: string) => boolean): string {
   if (setting && setting.trim()) return setting.trim();

@@ -3,7 +3,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { spawn, spawnSync } from 'node:child_process';
-import { mkdtempSync, writeFileSync, readFileSync } from 'node:fs';
+import { mkdtempSync, mkdirSync, writeFileSync, readFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, dirname } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
@@ -76,6 +76,62 @@ test('initialize with the extension options, preview and toolpath', async () => 
   assert.equal(tp.probes.length, 2);
 
   await assert.rejects(conn.sendRequest('millpath/toolpath', { textDocument: { uri }, path: '9.9Q' }));
+  await conn.sendRequest('shutdown');
+  await conn.sendNotification('exit');
+  conn.dispose();
+  proc.kill();
+});
+
+test('a post file: the extension serves it, its errors are diagnostics, the preview writes through it', async () => {
+  // the extension sends millpath.toml and the post files of posts/ to the server
+  assert.ok(logic.documentSelector.some((s) => s.pattern === '**/posts/*.toml'));
+  assert.ok(logic.documentSelector.some((s) => s.pattern === '**/millpath.toml'));
+  const dir = mkdtempSync(join(tmpdir(), 'millpath-vscode-post-'));
+  mkdirSync(join(dir, 'posts'));
+  const shown = spawnSync(bin, ['post', 'show', 'grbl'], { encoding: 'utf8' }).stdout;
+  const mine = shown.replace('name = "grbl"', 'name = "mine"').replace('decimals = 3', 'decimals = 4');
+  const broken = mine.replace('tool = "T{tool_number}"', 'tool = "T{tool_numbr}"');
+  const postFile = join(dir, 'posts/mine.toml');
+  writeFileSync(postFile, broken);
+  writeFileSync(join(dir, 'millpath.toml'), 'feed = 300\nsweep_speed = 1000\nsweep_height = 10\npost = "posts/mine.toml"\n');
+  const text = readFileSync(join(repo, 'examples/text/2020.mpath'), 'utf8');
+  const file = join(dir, '2020.mpath');
+  writeFileSync(file, text);
+  const proc = spawn(bin, ['lsp'], { stdio: ['pipe', 'pipe', 'ignore'] });
+  const conn = rpc.createMessageConnection(new rpc.StreamMessageReader(proc.stdout), new rpc.StreamMessageWriter(proc.stdin));
+  const waiting = new Map();
+  conn.onNotification('textDocument/publishDiagnostics', (p) => {
+    const w = waiting.get(p.uri);
+    if (w) { waiting.delete(p.uri); w(p); }
+  });
+  const diagnosticsOf = (uri) => new Promise((resolve) => waiting.set(uri, resolve));
+  conn.listen();
+  await conn.sendRequest('initialize', {
+    processId: process.pid, rootUri: fileUri(dir), capabilities: {},
+    initializationOptions: logic.initializationOptions({ language: 'en' }),
+    workspaceFolders: [{ uri: fileUri(dir), name: 'ws' }],
+  });
+  await conn.sendNotification('initialized', {});
+  const postUri = fileUri(postFile);
+  let d = diagnosticsOf(postUri);
+  await conn.sendNotification('textDocument/didOpen', { textDocument: { uri: postUri, languageId: 'toml', version: 1, text: broken } });
+  const found = (await d).diagnostics;
+  assert.equal(found.length, 1);
+  assert.match(found[0].message, /templates\.tool: unknown variable \{tool_numbr\}/);
+  assert.equal(found[0].range.start.line, broken.split('\n').findIndex((l) => l.startsWith('tool = ')));
+  // fixed and saved: no diagnostics, and the drawing's preview is written by this post
+  writeFileSync(postFile, mine);
+  d = diagnosticsOf(postUri);
+  await conn.sendNotification('textDocument/didChange', { textDocument: { uri: postUri, version: 2 }, contentChanges: [{ text: mine }] });
+  assert.deepEqual((await d).diagnostics, []);
+  const uri = fileUri(file);
+  d = diagnosticsOf(uri);
+  await conn.sendNotification('textDocument/didOpen', { textDocument: { uri, languageId: 'millpath', version: 1, text } });
+  assert.deepEqual((await d).diagnostics, []);
+  const pv = await conn.sendRequest('millpath/gcodePreview', { textDocument: { uri }, path: '2020.1P' });
+  assert.match(pv.gcode, /X60\.0000/);
+  spawnSync(bin, ['compile', file], { encoding: 'utf8' });
+  assert.equal(pv.gcode, readFileSync(join(dir, '2020_Clean.gcode'), 'utf8'));
   await conn.sendRequest('shutdown');
   await conn.sendNotification('exit');
   conn.dispose();

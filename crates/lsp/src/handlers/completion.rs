@@ -14,7 +14,12 @@ pub(crate) async fn completion(
         .await?;
     let at = offset(&a, params.text_document_position.position);
     guarded(|| {
-        let items = millpath_ide::completion(&a, &ws, at)
+        let found = if millpath_ide::is_toml(&a.path) {
+            millpath_ide::settings_completion(&a, &ws, at)
+        } else {
+            millpath_ide::completion(&a, &ws, at)
+        };
+        let items = found
             .into_iter()
             .map(|c| CompletionItem {
                 label: c.label,

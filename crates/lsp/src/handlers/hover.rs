@@ -11,7 +11,12 @@ pub(crate) async fn hover(b: &Backend, params: HoverParams) -> Result<Option<Hov
         .await?;
     let at = offset(&a, params.text_document_position_params.position);
     guarded(|| {
-        millpath_ide::hover(&a, &ws, at).map(|h| Hover {
+        let found = if millpath_ide::is_toml(&a.path) {
+            millpath_ide::settings_hover(&a, &ws, at)
+        } else {
+            millpath_ide::hover(&a, &ws, at)
+        };
+        found.map(|h| Hover {
             contents: HoverContents::Markup(MarkupContent {
                 kind: MarkupKind::Markdown,
                 value: h.markdown,

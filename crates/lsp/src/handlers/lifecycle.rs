@@ -90,7 +90,8 @@ pub(crate) async fn initialize(b: &Backend, params: InitializeParams) -> Result<
             }),
             hover_provider: Some(HoverProviderCapability::Simple(true)),
             completion_provider: Some(CompletionOptions {
-                trigger_characters: Some(vec![">".into(), " ".into()]),
+                // `"`: a post name in millpath.toml
+                trigger_characters: Some(vec![">".into(), " ".into(), "\"".into()]),
                 ..Default::default()
             }),
             definition_provider: Some(OneOf::Left(true)),
@@ -154,7 +155,8 @@ pub(crate) async fn initialized(b: &Backend) {
     let client = b.client.clone();
     // not awaited here: the client answers while we go on
     tokio::spawn(async move {
-        let watchers = ["**/*.{mpath,dxf,DXF}", "**/millpath.toml"]
+        // `*.toml`: millpath.toml and the post files it names
+        let watchers = ["**/*.{mpath,dxf,DXF}", "**/*.toml"]
             .iter()
             .map(|g| FileSystemWatcher {
                 glob_pattern: GlobPattern::String(g.to_string()),

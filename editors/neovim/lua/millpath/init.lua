@@ -19,6 +19,19 @@ local function root_dir(fname)
   return vim.fn.fnamemodify(fname, ':p:h')
 end
 
+--- Whether the server serves a buffer: MillPath text, millpath.toml (completion and hover of
+--- post names) and the post files of a posts/ folder (the post loader's errors as diagnostics);
+--- no other TOML file (a Cargo.toml starts no millpath server).
+local function serves(name, filetype)
+  if filetype == 'millpath' then
+    return true
+  end
+  local base = vim.fn.fnamemodify(name, ':t')
+  local folder = vim.fn.fnamemodify(name, ':h:t')
+  return base == 'millpath.toml' or (folder == 'posts' and base:match('%.toml$') ~= nil)
+end
+M._serves = serves
+
 --- The language clients attached to a buffer (get_clients: 0.10; get_active_clients takes a
 --- filter from 0.8; 0.7 has buf_get_clients).
 local function clients_of(bufnr)
@@ -57,7 +70,7 @@ end
 --- The oldest Neovim the plugin works with (nvim_create_autocmd and vim.lsp.commands are 0.7's).
 M.min_version = '0.7'
 
---- Sets up the language server for *.mpath buffers (Neovim 0.11: vim.lsp.config/enable;
+--- Sets up the language server for *.mpath buffers, millpath.toml and posts/*.toml (Neovim 0.11: vim.lsp.config/enable;
 --- 0.8-0.10: vim.lsp.start; 0.7: vim.lsp.start_client and buf_attach_client).
 function M.setup(opts)
   if vim.fn.has('nvim-' .. M.min_version) == 0 then
@@ -83,17 +96,26 @@ function M.setup(opts)
   if vim.lsp.config and vim.lsp.enable then
     vim.lsp.config('millpath', {
       cmd = cfg.cmd,
-      filetypes = { 'millpath' },
-      root_markers = { 'millpath.toml', '.git' },
+      filetypes = { 'millpath', 'toml' },
+      -- not called for a TOML file the server does not serve: no client for it
+      root_dir = function(bufnr, on_dir)
+        local name = vim.api.nvim_buf_get_name(bufnr)
+        if serves(name, vim.bo[bufnr].filetype) then
+          on_dir(root_dir(name))
+        end
+      end,
       init_options = cfg.settings,
     })
     vim.lsp.enable('millpath')
     return true
   end
   vim.api.nvim_create_autocmd('FileType', {
-    pattern = 'millpath',
+    pattern = { 'millpath', 'toml' },
     callback = function(ev)
       local name = vim.api.nvim_buf_get_name(ev.buf)
+      if not serves(name, vim.bo[ev.buf].filetype) then
+        return
+      end
       local conf = { name = 'millpath', cmd = cfg.cmd, root_dir = root_dir(name), init_options = cfg.settings }
       if vim.lsp.start then
         vim.lsp.start(conf, { bufnr = ev.buf })
