@@ -77,7 +77,8 @@ pub use toolpath::{toolpath, toolpath_html, toolpath_svg, toolpath_until};
 use millpath_core::build::traverse_memo::TraversalMemo;
 use millpath_core::diag::{Diagnostic, FileRef, Origin};
 use millpath_core::front::drawing::{DrawnObject, RawPath};
-use millpath_core::front::text::objects_of;
+use millpath_core::front::text::{objects_of, TextDrawing};
+use millpath_core::front::text_edit::{objects_after_edit, LineEdit};
 use millpath_core::load::config::{self, FileConfig, Have};
 use millpath_core::load::fs::{is_text_file, FileSystem};
 use millpath_core::{compile_file, Diags, Session, Settings};
@@ -343,6 +344,11 @@ pub struct Analysis {
     /// `millpath check` reports for the file.
     pub diagnostics: Vec<Diagnostic>,
     pub objects: Vec<DrawnObject>,
+    /// Which circles of `objects` were written as `drill` (`true`) or `helix`.
+    pub(crate) declared: Vec<(usize, bool)>,
+    /// `objects` came without a diagnostic, one per element: the next version may reuse them
+    /// (`core/front/text_edit.rs`).
+    pub(crate) objects_clean: bool,
     /// The document's paths as the compiler read them (shared with its session).
     pub paths: Vec<Arc<RawPath>>,
     pub settings: DocSettings,
@@ -439,22 +445,29 @@ pub fn analyze_from(
             .unwrap_or_default()
     };
     let settings = ws.settings_for(path);
-    let (ast, syntax_errors) = if is_text {
-        let prev = prev
-            .filter(|p| p.syntax_ok && p.path == path)
-            .map(|p| reparse::Previous {
-                src: &p.src,
-                ast: &p.ast,
-            });
-        reparse::reparse(prev, &src)
+    let prev = prev.filter(|p| p.path == path);
+    let (ast, syntax_errors, splice) = if is_text {
+        let prev = prev.filter(|p| p.syntax_ok).map(|p| reparse::Previous {
+            src: &p.src,
+            ast: &p.ast,
+        });
+        reparse::reparse_spliced(prev, &src)
     } else {
-        parse("")
+        let (ast, errors) = parse("");
+        (ast, errors, None)
     };
     let syntax_ok = syntax_errors.is_empty();
     if cancelled() {
         return None;
     }
-    let file = FileRef::new(path.to_path_buf());
+    // the previous version's file, whose objects may be reused
+    let file = prev
+        .and_then(|p| p.objects.first())
+        .and_then(|o| match &o.origin {
+            Origin::Span { file, .. } if file.path == path => Some(file.clone()),
+            _ => None,
+        })
+        .unwrap_or_else(|| FileRef::new(path.to_path_buf()));
     let fs = Recorder {
         inner: ws.fs(),
         files: Mutex::default(),
@@ -466,6 +479,8 @@ pub fn analyze_from(
     // answered while typing: no second opinion (its stock simulation is `millpath check`'s)
     check.quick_check = true;
     let mut objects = Vec::new();
+    let mut declared = Vec::new();
+    let mut objects_clean = false;
     let mut paths = Vec::new();
     let mut diagnostics;
     match Session::new(check, &fs) {
@@ -475,9 +490,38 @@ pub fn analyze_from(
             session.traversals = Some(&traversals);
             if is_text {
                 let mut local = Diags::default();
-                match session.text_paths(&ast, syntax_errors, &src, &file, &mut local) {
+                // `Session::text_paths`, its objects made from the previous version's where
+                // one element line changed
+                let broken = Session::broken_paths(&ast, &syntax_errors);
+                let reused = splice
+                    .zip(prev.filter(|p| p.objects_clean))
+                    .and_then(|(sp, p)| {
+                        let edit = LineEdit {
+                            item: sp.item,
+                            element: sp.element,
+                            line_start: sp.line_start,
+                            old_line_end: sp.old_line_end,
+                            delta: sp.delta,
+                        };
+                        let prev = TextDrawing {
+                            objects: p.objects.clone(),
+                            declared: p.declared.clone(),
+                        };
+                        objects_after_edit(&prev, &ast, &edit, &src, &file, &mut local)
+                    });
+                let made = match reused {
+                    Some(made) => made,
+                    None => objects_of(&ast, syntax_errors, &src, &file, &mut local),
+                };
+                objects_clean = syntax_ok && made.is_ok() && local.list.is_empty();
+                let made = made.and_then(|text| {
+                    let p = session.paths_of_text(&text, &broken, &file, &mut local)?;
+                    Ok((text, p))
+                });
+                match made {
                     Ok((text, p)) => {
                         objects = text.objects;
+                        declared = text.declared;
                         paths = p.into_iter().map(Arc::new).collect::<Vec<_>>();
                         local.list.into_iter().for_each(|d| session.diags.push(d));
                         session.add_shared_paths(path, paths.clone());
@@ -518,7 +562,13 @@ pub fn analyze_from(
             millpath_core::args![cfg.display(), e],
         ));
     }
-    let index = ws.line_index(&src);
+    // an edit inside one line moves the previous index (same encoding) instead of a scan
+    let index = match (splice, prev) {
+        (Some(sp), Some(p)) if p.index.is_utf8() == ws.utf8 => {
+            LineIndex::after_edit(&p.index, &src, sp.old_line_end, sp.delta)
+        }
+        _ => ws.line_index(&src),
+    };
     let mut deps = fs.files.into_inner().unwrap_or_default();
     deps.remove(path);
     // the settings: any `millpath.toml` above the file
@@ -531,6 +581,8 @@ pub fn analyze_from(
         ast,
         diagnostics,
         objects,
+        declared,
+        objects_clean,
         paths,
         settings,
         deps,
