@@ -14,6 +14,9 @@
 //! `core/tests/quick_check.rs`; a long chain's order was half of its answer): 1–2 ms at 2,000 and
 //! 17–26 ms at 20,000 on a loaded machine, `bench lsp_latency`; a path's walk is taken from the
 //! previous analysis when the edit cannot change it (`traversals`, `core/build/traverse_memo.rs`),
+//! an edit inside one element line parses that line alone (`reparse`) and takes the other
+//! elements' drawn objects and the line index from the previous analysis, offsets moved
+//! (`core/front/text_edit.rs`: only when those objects came without a diagnostic),
 //! the object-by-offset table is made on first use, the raw paths are shared with the session
 //! (`Session::add_shared_paths`), not copied: 8–10 ms at 20,000), the tree and drawn objects for
 //! the features, the files and folders the analysis read (its dependencies, recorded by a wrapping
@@ -77,8 +80,8 @@ pub use toolpath::{toolpath, toolpath_html, toolpath_svg, toolpath_until};
 use millpath_core::build::traverse_memo::TraversalMemo;
 use millpath_core::diag::{Diagnostic, FileRef, Origin};
 use millpath_core::front::drawing::{DrawnObject, RawPath};
-use millpath_core::front::text::{objects_of, TextDrawing};
-use millpath_core::front::text_edit::{objects_after_edit, LineEdit};
+use millpath_core::front::text::objects_of;
+use millpath_core::front::text_edit::{objects_after_edit, LineEdit, PrevObjects};
 use millpath_core::load::config::{self, FileConfig, Have};
 use millpath_core::load::fs::{is_text_file, FileSystem};
 use millpath_core::{compile_file, Diags, Session, Settings};
@@ -503,11 +506,11 @@ pub fn analyze_from(
                             old_line_end: sp.old_line_end,
                             delta: sp.delta,
                         };
-                        let prev = TextDrawing {
-                            objects: p.objects.clone(),
-                            declared: p.declared.clone(),
+                        let prev = PrevObjects {
+                            objects: &p.objects,
+                            declared: &p.declared,
                         };
-                        objects_after_edit(&prev, &ast, &edit, &src, &file, &mut local)
+                        objects_after_edit(prev, &ast, &edit, &src, &file, &mut local)
                     });
                 let made = match reused {
                     Some(made) => made,

@@ -11,7 +11,8 @@
 //! string a line) or handed to a `LineSink` (check's checker: no text kept), the element of each
 //! line (an index, 4 bytes), the moves without comments (statistics, times, toolpath, with their
 //! lines) — or, where only the statistics read them (no planner, no height map: `fold_moves`),
-//! their sums as each becomes final, bit for bit those of the list; the peephole optimizer
+//! their sums as each becomes final, bit for bit those of the list (`count_moves`: only counted,
+//! for the editor's quick check, which reads none); the peephole optimizer
 //! (reference-output.md §13) as the lines come: a horizontal sweep held back with the comments
 //! after it until the next move decides.
 

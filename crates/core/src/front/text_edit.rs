@@ -11,6 +11,7 @@
 //! abort included (test below, on random edits of every kind of element).
 
 use crate::diag::{Diagnostic, Diags, FileRef, Origin};
+use crate::front::drawing::DrawnObject;
 use crate::front::text::{declared_drill, element_object, span_of, ElementNames, TextDrawing};
 use millpath_syntax::{File, Item, PathItem, Span};
 use std::sync::Arc;
@@ -38,11 +39,18 @@ impl LineEdit {
     }
 }
 
+/// The previous version's drawn objects and declared kinds (a [`TextDrawing`]'s, borrowed).
+#[derive(Clone, Copy)]
+pub struct PrevObjects<'a> {
+    pub objects: &'a [DrawnObject],
+    pub declared: &'a [(usize, bool)],
+}
+
 /// The objects of `ast` (the new tree, without syntax errors) after `edit`, made from
 /// `prev` (the objects of the previous tree, which gave no diagnostic: one per element).
 /// `None` when the previous objects do not fit the tree (the caller makes them all).
 pub fn objects_after_edit(
-    prev: &TextDrawing,
+    prev: PrevObjects<'_>,
     ast: &File,
     edit: &LineEdit,
     src: &str,
@@ -229,7 +237,12 @@ mod tests {
             };
             let (mut d1, mut d2) = (Diags::default(), Diags::default());
             let full = objects_of(&ast, Vec::new(), &new, &file, &mut d1);
-            let Some(reused) = objects_after_edit(&prev, &ast, &edit, &new, &file, &mut d2) else {
+            let prev_objects = PrevObjects {
+                objects: &prev.objects,
+                declared: &prev.declared,
+            };
+            let Some(reused) = objects_after_edit(prev_objects, &ast, &edit, &new, &file, &mut d2)
+            else {
                 continue;
             };
             let (a, b) = (as_text(&full, &d1), as_text(&reused, &d2));
