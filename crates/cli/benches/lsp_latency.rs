@@ -26,7 +26,8 @@
 //! `crates/ide/examples/latency_profile.rs` makes the same edits in process (under `perf`, or
 //! `valgrind --tool=callgrind --toggle-collect=millpath_ide::analyze_from`: instructions per
 //! analysis, stable on a loaded machine). Issue 31 (20k elements, one edit of the start line):
-//! 131.5 M → 99.4 M instructions (short chains), 109.3 M → 80.6 M (one long chain).
+//! 131.5 M → 97.1 M instructions (short chains), 109.3 M → 78.2 M (one long chain); the
+//! bench at load 5: 14–18 ms (short chains), 11–12 ms (one long chain), from 52.5 and 19.9 ms.
 #[path = "../tests/common/lsp_client.rs"]
 mod lsp_client;
 
