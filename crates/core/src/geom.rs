@@ -133,7 +133,8 @@ impl P2 {
         near_eps(self.dist2(o), 0.0, 8e-5)
     }
     pub fn rotate(self, a: f64) -> P2 {
-        let (s, c) = a.sin_cos();
+        // no rotation (every top-level frame): sin ±0 and cos 1 exactly, without `sin_cos`
+        let (s, c) = if a == 0.0 { (a, 1.0) } else { a.sin_cos() };
         P2::new(self.x * c - self.y * s, self.x * s + self.y * c)
     }
     pub fn with_z(self, z: f64) -> P3 {

@@ -14,6 +14,9 @@
 //! `core/tests/quick_check.rs`; a long chain's order was half of its answer): 1–2 ms at 2,000 and
 //! 17–26 ms at 20,000 on a loaded machine, `bench lsp_latency`; a path's walk is taken from the
 //! previous analysis when the edit cannot change it (`traversals`, `core/build/traverse_memo.rs`),
+//! an edit inside one element line parses that line alone (`reparse`) and takes the other
+//! elements' drawn objects and the line index from the previous analysis, offsets moved
+//! (`core/front/text_edit.rs`: only when those objects came without a diagnostic),
 //! the object-by-offset table is made on first use, the raw paths are shared with the session
 //! (`Session::add_shared_paths`), not copied: 8–10 ms at 20,000), the tree and drawn objects for
 //! the features, the files and folders the analysis read (its dependencies, recorded by a wrapping
@@ -88,6 +91,7 @@ use millpath_core::build::traverse_memo::TraversalMemo;
 use millpath_core::diag::{Diagnostic, FileRef, Origin};
 use millpath_core::front::drawing::{DrawnObject, RawPath};
 use millpath_core::front::text::objects_of;
+use millpath_core::front::text_edit::{objects_after_edit, LineEdit, PrevObjects};
 use millpath_core::load::config::{self, FileConfig, Have};
 use millpath_core::load::fs::{is_text_file, FileSystem};
 use millpath_core::{compile_file, Diags, Session, Settings};
@@ -416,6 +420,11 @@ pub struct Analysis {
     /// `millpath check` reports for the file.
     pub diagnostics: Vec<Diagnostic>,
     pub objects: Vec<DrawnObject>,
+    /// Which circles of `objects` were written as `drill` (`true`) or `helix`.
+    pub(crate) declared: Vec<(usize, bool)>,
+    /// `objects` came without a diagnostic, one per element: the next version may reuse them
+    /// (`core/front/text_edit.rs`).
+    pub(crate) objects_clean: bool,
     /// The document's paths as the compiler read them (shared with its session).
     pub paths: Vec<Arc<RawPath>>,
     pub settings: DocSettings,
@@ -512,22 +521,29 @@ pub fn analyze_from(
             .unwrap_or_default()
     };
     let settings = ws.settings_for(path);
-    let (ast, syntax_errors) = if is_text {
-        let prev = prev
-            .filter(|p| p.syntax_ok && p.path == path)
-            .map(|p| reparse::Previous {
-                src: &p.src,
-                ast: &p.ast,
-            });
-        reparse::reparse(prev, &src)
+    let prev = prev.filter(|p| p.path == path);
+    let (ast, syntax_errors, splice) = if is_text {
+        let prev = prev.filter(|p| p.syntax_ok).map(|p| reparse::Previous {
+            src: &p.src,
+            ast: &p.ast,
+        });
+        reparse::reparse_spliced(prev, &src)
     } else {
-        parse("")
+        let (ast, errors) = parse("");
+        (ast, errors, None)
     };
     let syntax_ok = syntax_errors.is_empty();
     if cancelled() {
         return None;
     }
-    let file = FileRef::new(path.to_path_buf());
+    // the previous version's file, whose objects may be reused
+    let file = prev
+        .and_then(|p| p.objects.first())
+        .and_then(|o| match &o.origin {
+            Origin::Span { file, .. } if file.path == path => Some(file.clone()),
+            _ => None,
+        })
+        .unwrap_or_else(|| FileRef::new(path.to_path_buf()));
     let fs = Recorder {
         inner: ws.fs(),
         files: Mutex::default(),
@@ -539,6 +555,8 @@ pub fn analyze_from(
     // answered while typing: no second opinion (its stock simulation is `millpath check`'s)
     check.quick_check = true;
     let mut objects = Vec::new();
+    let mut declared = Vec::new();
+    let mut objects_clean = false;
     let mut paths = Vec::new();
     let mut diagnostics;
     match Session::new(check, &fs) {
@@ -548,9 +566,38 @@ pub fn analyze_from(
             session.traversals = Some(&traversals);
             if is_text {
                 let mut local = Diags::default();
-                match session.text_paths(&ast, syntax_errors, &src, &file, &mut local) {
+                // `Session::text_paths`, its objects made from the previous version's where
+                // one element line changed
+                let broken = Session::broken_paths(&ast, &syntax_errors);
+                let reused = splice
+                    .zip(prev.filter(|p| p.objects_clean))
+                    .and_then(|(sp, p)| {
+                        let edit = LineEdit {
+                            item: sp.item,
+                            element: sp.element,
+                            line_start: sp.line_start,
+                            old_line_end: sp.old_line_end,
+                            delta: sp.delta,
+                        };
+                        let prev = PrevObjects {
+                            objects: &p.objects,
+                            declared: &p.declared,
+                        };
+                        objects_after_edit(prev, &ast, &edit, &src, &file, &mut local)
+                    });
+                let made = match reused {
+                    Some(made) => made,
+                    None => objects_of(&ast, syntax_errors, &src, &file, &mut local),
+                };
+                objects_clean = syntax_ok && made.is_ok() && local.list.is_empty();
+                let made = made.and_then(|text| {
+                    let p = session.paths_of_text(&text, &broken, &file, &mut local)?;
+                    Ok((text, p))
+                });
+                match made {
                     Ok((text, p)) => {
                         objects = text.objects;
+                        declared = text.declared;
                         paths = p.into_iter().map(Arc::new).collect::<Vec<_>>();
                         local.list.into_iter().for_each(|d| session.diags.push(d));
                         session.add_shared_paths(path, paths.clone());
@@ -599,7 +646,13 @@ pub fn analyze_from(
             millpath_core::args![format!("{}: post: {e}", from.display())],
         ));
     }
-    let index = ws.line_index(&src);
+    // an edit inside one line moves the previous index (same encoding) instead of a scan
+    let index = match (splice, prev) {
+        (Some(sp), Some(p)) if p.index.is_utf8() == ws.utf8 => {
+            LineIndex::after_edit(&p.index, &src, sp.old_line_end, sp.delta)
+        }
+        _ => ws.line_index(&src),
+    };
     let mut deps = fs.files.into_inner().unwrap_or_default();
     // the post file writes this document's programs: editing it re-checks the document
     deps.extend(settings.post_file.clone());
@@ -614,6 +667,8 @@ pub fn analyze_from(
         ast,
         diagnostics,
         objects,
+        declared,
+        objects_clean,
         paths,
         settings,
         deps,

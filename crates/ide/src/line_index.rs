@@ -31,6 +31,38 @@ impl LineIndex {
         }
     }
 
+    /// The index of `text`, the previous version's (`prev`) after an edit that added or
+    /// removed no line break: the same lines, those after the edited one (which ended at
+    /// `old_line_end`) moved by `delta`. Not a scan of the whole text again.
+    pub fn after_edit(
+        prev: &LineIndex,
+        text: &str,
+        old_line_end: usize,
+        delta: isize,
+    ) -> LineIndex {
+        let starts = prev
+            .starts
+            .iter()
+            .map(|&s| {
+                if s > old_line_end {
+                    s.saturating_add_signed(delta)
+                } else {
+                    s
+                }
+            })
+            .collect();
+        LineIndex {
+            starts,
+            text: text.to_string(),
+            utf8: prev.utf8,
+        }
+    }
+
+    /// Columns count UTF-8 bytes.
+    pub fn is_utf8(&self) -> bool {
+        self.utf8
+    }
+
     pub fn text(&self) -> &str {
         &self.text
     }
@@ -96,6 +128,32 @@ mod tests {
         assert_eq!(idx.offset(Pos { line: 1, col: 1 }), 5);
         assert_eq!(idx.offset(Pos { line: 9, col: 0 }), 12);
         assert_eq!(idx.offset(Pos { line: 0, col: 99 }), 2);
+    }
+
+    /// An edit inside one line: the index moved from the previous one is the text's own.
+    #[test]
+    fn an_index_after_an_edit_equals_a_new_one() {
+        let old = "ab\nüx𝄞y\n\nlast";
+        for (at, end, ins) in [
+            (5, 6, "zz"),
+            (3, 5, ""),
+            (0, 1, "😀"),
+            (12, 12, "x"),
+            (13, 17, ""),
+        ] {
+            let mut new = old.to_string();
+            new.replace_range(at..end, ins);
+            let old_line_end = old[at..].find('\n').map_or(old.len(), |i| at + i);
+            let delta = new.len() as isize - old.len() as isize;
+            for utf8 in [false, true] {
+                let prev = LineIndex::with_encoding(old, utf8);
+                let moved = LineIndex::after_edit(&prev, &new, old_line_end, delta);
+                let fresh = LineIndex::with_encoding(&new, utf8);
+                assert_eq!(moved.starts, fresh.starts, "{new:?}");
+                assert_eq!(moved.text, fresh.text);
+                assert_eq!(moved.utf8, fresh.utf8);
+            }
+        }
     }
 
     #[test]

@@ -12,19 +12,56 @@ pub struct Previous<'a> {
     pub ast: &'a File,
 }
 
-/// Parses `new`, reusing `prev` when the change is confined to one element line.
-pub fn reparse(prev: Option<Previous<'_>>, new: &str) -> (File, Vec<SyntaxError>) {
-    if let Some(p) = prev {
-        if let Some(ast) = one_line(&p, new) {
-            return (ast, Vec::new());
+/// Where an incremental parse changed the previous tree: one element line, the rest kept
+/// (the editor reuses what it made of the other elements, see `incremental.rs`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Splice {
+    /// The path: its index in [`File::items`].
+    pub item: usize,
+    /// The element: its index in the path's items.
+    pub element: usize,
+    /// The start of the edited line (the same in both texts).
+    pub line_start: usize,
+    /// The end of the edited line in the previous text (its `\n`): every offset from here on
+    /// moved by `delta`.
+    pub old_line_end: usize,
+    pub delta: isize,
+}
+
+impl Splice {
+    /// Where a previous offset is now (offsets inside the edited line are not asked).
+    pub fn moved(&self, offset: usize) -> usize {
+        if offset >= self.old_line_end {
+            offset.saturating_add_signed(self.delta)
+        } else {
+            offset
         }
     }
-    parse(new)
+}
+
+/// Parses `new`, reusing `prev` when the change is confined to one element line.
+pub fn reparse(prev: Option<Previous<'_>>, new: &str) -> (File, Vec<SyntaxError>) {
+    let (ast, errors, _) = reparse_spliced(prev, new);
+    (ast, errors)
+}
+
+/// [`reparse`] that says which element it parsed again (`None`: the whole text was parsed).
+pub fn reparse_spliced(
+    prev: Option<Previous<'_>>,
+    new: &str,
+) -> (File, Vec<SyntaxError>, Option<Splice>) {
+    if let Some(p) = prev {
+        if let Some((ast, splice)) = one_line(&p, new) {
+            return (ast, Vec::new(), Some(splice));
+        }
+    }
+    let (ast, errors) = parse(new);
+    (ast, errors, None)
 }
 
 const MINI_HEAD: &str = "path 0000.0P {\n";
 
-fn one_line(prev: &Previous<'_>, new: &str) -> Option<File> {
+fn one_line(prev: &Previous<'_>, new: &str) -> Option<(File, Splice)> {
     let old = prev.src;
     // the changed region: common prefix and suffix
     let mut pre = common_prefix(old.as_bytes(), new.as_bytes());
@@ -119,7 +156,14 @@ fn one_line(prev: &Previous<'_>, new: &str) -> Option<File> {
     if let Item::Path(p) = &mut ast.items[pi] {
         p.items[ei] = PathItem::Element(el);
     }
-    Some(ast)
+    let splice = Splice {
+        item: pi,
+        element: ei,
+        line_start,
+        old_line_end,
+        delta,
+    };
+    Some((ast, splice))
 }
 
 /// Bytes compared at once when looking for the changed region: equal blocks are compared

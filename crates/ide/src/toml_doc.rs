@@ -220,6 +220,9 @@ pub fn analyze(ws: &Workspace, path: &Path) -> Analysis {
         dirs: BTreeSet::new(),
         // not MillPath text: no tree to reuse, no formatting
         syntax_ok: false,
+        declared: Vec::new(),
+        // no objects to reuse after an edit
+        objects_clean: false,
         object_at: OnceLock::new(),
         chain_first: Mutex::default(),
         previews: Mutex::default(),

@@ -390,7 +390,13 @@ pub(crate) fn emit_quick(
     stop: Option<&dyn Fn() -> bool>,
 ) -> Result<Emitted, Vec<Diagnostic>> {
     let no_prefix: &[&str] = &[];
-    match emit_with(model, true, ctl, stop, no_prefix, true, None, None) {
+    // nothing reads the moves but a height map's grid: without one they are only counted
+    let moves = if ctl.heightmap.is_some() {
+        Moves::Kept
+    } else {
+        Moves::Counted
+    };
+    match emit_with(model, true, ctl, stop, no_prefix, true, None, moves) {
         Ok(e)
             if e.quick_steps.saturating_mul(SWEEP_LINES)
                 < MAX_ITEMS - e.rec.move_count().min(MAX_ITEMS) =>
@@ -402,7 +408,7 @@ pub(crate) fn emit_quick(
         Err(errs) if errs.iter().any(|d| d.msg == Msg::TooManyMoves) => {}
         Err(errs) => return Err(errs),
     }
-    emit_with(model, true, ctl, stop, no_prefix, false, None, None)
+    emit_with(model, true, ctl, stop, no_prefix, false, None, moves)
 }
 
 /// Lines one sweep between two passes can take at most (`safe_sweep`: its comment, two
@@ -417,7 +423,7 @@ pub(crate) fn emit_after<S: AsRef<str>>(
     stop: Option<&dyn Fn() -> bool>,
     prefix: &[S],
 ) -> Result<Emitted, Vec<Diagnostic>> {
-    emit_with(model, dry, ctl, stop, prefix, false, None, None)
+    emit_with(model, dry, ctl, stop, prefix, false, None, Moves::Kept)
 }
 
 /// [`emit_after`] whose lines go to `sink` instead of a text (it comes back in the record).
@@ -431,7 +437,19 @@ pub(crate) fn emit_into<S: AsRef<str>>(
     sink: Option<Box<dyn LineSink>>,
     fold: Option<f64>,
 ) -> Result<Emitted, Vec<Diagnostic>> {
-    emit_with(model, false, ctl, stop, prefix, false, sink, fold)
+    let moves = fold.map_or(Moves::Kept, Moves::Folded);
+    emit_with(model, false, ctl, stop, prefix, false, sink, moves)
+}
+
+/// What the record keeps of the moves.
+#[derive(Clone, Copy)]
+enum Moves {
+    /// Every move (statistics, times, toolpath, height map).
+    Kept,
+    /// Summed for the statistics at this sweep speed ([`Record::fold_moves`]).
+    Folded(f64),
+    /// Counted only ([`Record::count_moves`]): nothing reads them.
+    Counted,
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -443,7 +461,7 @@ fn emit_with<S: AsRef<str>>(
     prefix: &[S],
     quick_order: bool,
     sink: Option<Box<dyn LineSink>>,
-    fold: Option<f64>,
+    moves: Moves,
 ) -> Result<Emitted, Vec<Diagnostic>> {
     if model.elements.is_empty() {
         return Err(vec![Diagnostic::error(
@@ -471,9 +489,16 @@ fn emit_with<S: AsRef<str>>(
         })
         .collect();
     let sx = start_height(model);
-    let mut rec = Record::new(dry, prefix, expected_moves(model), sink, ctl.post);
-    if let Some(sweep_speed) = fold {
-        rec.fold_moves(sweep_speed);
+    // (a folded record's guess also sizes its text)
+    let expected = match moves {
+        Moves::Kept | Moves::Folded(_) => expected_moves(model),
+        Moves::Counted => 2,
+    };
+    let mut rec = Record::new(dry, prefix, expected, sink, ctl.post);
+    match moves {
+        Moves::Kept => {}
+        Moves::Folded(sweep_speed) => rec.fold_moves(sweep_speed),
+        Moves::Counted => rec.count_moves(),
     }
     let mut em = Emitter {
         rec,
@@ -488,7 +513,8 @@ fn emit_with<S: AsRef<str>>(
         lost: false,
         full: false,
         dry,
-        sources: Vec::new(),
+        // one per element and one per chain segment: a long chain's list not copied as it grows
+        sources: Vec::with_capacity(model.elements.len() + segments(model)),
         source: None,
         shape: Shape::Mill,
         ctl: *ctl,
@@ -571,15 +597,19 @@ fn expected_moves(model: &Model) -> usize {
     } else {
         (12, 1 << 21)
     };
-    let segments: usize = model
+    segments(model).saturating_mul(per_segment).min(most)
+}
+
+/// A model's chain segments and other elements (subpaths' not counted).
+fn segments(model: &Model) -> usize {
+    model
         .elements
         .iter()
         .map(|e| match e {
             Element::Chain(c) => c.segs.len(),
             _ => 1,
         })
-        .sum();
-    segments.saturating_mul(per_segment).min(most)
+        .sum()
 }
 
 pub(crate) struct Emitted {

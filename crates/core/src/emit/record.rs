@@ -11,7 +11,8 @@
 //! string a line) or handed to a `LineSink` (check's checker: no text kept), the element of each
 //! line (an index, 4 bytes), the moves without comments (statistics, times, toolpath, with their
 //! lines) — or, where only the statistics read them (no planner, no height map: `fold_moves`),
-//! their sums as each becomes final, bit for bit those of the list; the peephole optimizer
+//! their sums as each becomes final, bit for bit those of the list (`count_moves`: only counted,
+//! for the editor's quick check, which reads none); the peephole optimizer
 //! (reference-output.md §13) as the lines come: a horizontal sweep held back with the comments
 //! after it until the next move decides.
 
@@ -50,7 +51,7 @@ pub(crate) struct Record {
     held: Option<Held>,
     /// Moves not kept but summed for the statistics as they become final (all but the last,
     /// which a following sweep may still comment out): a long program's statistics without
-    /// its moves. Set by [`Record::fold_moves`].
+    /// its moves. Set by [`Record::fold_moves`], or by [`Record::count_moves`] (counted only).
     fold: Option<Fold>,
     /// The post: its `disabled` template, and its line writer (numbers, modal words, line
     /// ends) where it changes lines.
@@ -60,8 +61,19 @@ pub(crate) struct Record {
 
 struct Fold {
     sweep_speed: f64,
-    sums: Stats,
+    /// `None`: the moves are only counted (nothing reads their statistics).
+    sums: Option<Stats>,
     moves: usize,
+}
+
+impl Fold {
+    /// A move that is final now.
+    fn add(&mut self, it: &Item) {
+        if let Some(sums) = &mut self.sums {
+            sums.add(it, self.sweep_speed);
+        }
+        self.moves += 1;
+    }
 }
 
 struct Held {
@@ -109,15 +121,26 @@ impl Record {
     /// kept; only the last stays in `items`. For a program whose statistics are all that is
     /// asked of its moves (no planner, no height map, no toolpath).
     pub(crate) fn fold_moves(&mut self, sweep_speed: f64) {
+        self.fold_into(Some(Stats::default()), sweep_speed);
+    }
+
+    /// From now on the moves are only counted, not kept (only the last stays in `items`, for
+    /// its target): for a dry run whose moves nothing reads (the editor's quick check without
+    /// a height map), the list of a long program is neither written nor its pages touched.
+    /// [`Record::stats`] is not asked of such a record.
+    pub(crate) fn count_moves(&mut self) {
+        self.fold_into(None, 0.0);
+    }
+
+    fn fold_into(&mut self, sums: Option<Stats>, sweep_speed: f64) {
         let mut fold = Fold {
             sweep_speed,
-            sums: Stats::default(),
+            sums,
             moves: 0,
         };
         // the room reserved for a list is given back, not kept
         for it in std::mem::replace(&mut self.items, Vec::with_capacity(2)) {
-            fold.sums.add(&it, sweep_speed);
-            fold.moves += 1;
+            fold.add(&it);
         }
         self.item_lines = Vec::with_capacity(2);
         self.fold = Some(fold);
@@ -131,20 +154,29 @@ impl Record {
     /// The statistics of the moves (reference model): the folded sums and the moves kept.
     pub(crate) fn stats(&self, sweep_speed: f64) -> Stats {
         match &self.fold {
-            Some(f) => {
-                let mut s = f.sums.clone();
+            Some(Fold {
+                sums: Some(sums),
+                sweep_speed: folded_at,
+                ..
+            }) => {
+                let mut s = sums.clone();
                 for it in &self.items {
-                    s.add(it, f.sweep_speed);
+                    s.add(it, *folded_at);
                 }
                 s.scaled()
             }
-            None => Stats::of(&self.items, sweep_speed),
+            // counted moves have no statistics: only the kept ones count
+            Some(Fold { sums: None, .. }) | None => Stats::of(&self.items, sweep_speed),
         }
     }
 
     /// Records a comment line.
     pub(crate) fn comment(&mut self, text: String, source: u32) {
         self.lines += 1;
+        // a dry run writes no line: nothing to hold behind a sweep either
+        if self.dry {
+            return;
+        }
         match &mut self.held {
             Some(h) => h.comments.push((text, source)),
             None => self.write(&text, source),
@@ -171,8 +203,7 @@ impl Record {
         if let Some(f) = &mut self.fold {
             // the last move is final now: a sweep that could comment it out was handled above
             if let Some(done) = self.items.pop() {
-                f.sums.add(&done, f.sweep_speed);
-                f.moves += 1;
+                f.add(&done);
                 self.item_lines.pop();
             }
         }

@@ -315,7 +315,7 @@ pub struct DrawnObject {
 /// One shared copy of each of a drawing's few names (layers' paths, line types) for its
 /// many objects.
 #[derive(Default)]
-pub struct SharedNames(HashMap<Arc<str>, ()>);
+pub struct SharedNames(HashMap<Arc<str>, (), foldhash::fast::RandomState>);
 
 impl SharedNames {
     pub fn get(&mut self, name: &str) -> Arc<str> {

@@ -9,3 +9,4 @@ pub mod linetype_alias;
 pub mod mtext;
 pub mod options;
 pub mod text;
+pub mod text_edit;

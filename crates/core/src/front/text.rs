@@ -82,7 +82,7 @@ pub fn span_origin(src: &str, file: &Arc<FileRef>, span: &Span) -> Origin {
 
 /// An origin's 32-bit positions (a file is at most 1 GiB; an editor's larger buffer ends at
 /// the last position).
-fn span_of(file: &Arc<FileRef>, span: &Span, line: usize, col: usize) -> Origin {
+pub(crate) fn span_of(file: &Arc<FileRef>, span: &Span, line: usize, col: usize) -> Origin {
     let at = |v: usize| u32::try_from(v).unwrap_or(u32::MAX);
     Origin::Span {
         file: file.clone(),
@@ -177,75 +177,128 @@ pub fn objects_of(
         diags.push(syntax_diagnostic(e, origin));
     }
     let mut out = Vec::with_capacity(ast.paths().map(|p| p.items.len()).sum());
-    let mut names = crate::front::drawing::SharedNames::default();
+    let mut names = ElementNames::default();
     let mut declared = Vec::new();
     for path in ast.paths() {
+        // one look-up a path, not one an element
+        let path_name = names.shared.get(&path.name.value);
         for el in path.elements() {
-            // the element without its trailing comment: what a diagnostic points at
-            let end = el
-                .params
-                .last()
-                .map_or(el.geometry.span.end, |p| p.span.end);
-            let origin = lines.origin(file, &(el.span.start..end.max(el.geometry.span.end)));
-            let linetype = el.kind.value.linetype().to_string();
-            let shape = match el.geometry.value {
-                Geometry::Point(p) => Shape::Circle {
-                    c: p2(p),
-                    r: el.kind.value.marker_diameter().unwrap_or(1.0) / 2.0,
-                },
-                Geometry::Circle { c, d } => Shape::Circle {
-                    c: p2(c),
-                    r: d / 2.0,
-                },
-                Geometry::Line(a, b) => Shape::Path(Geom::Line { a: p2(a), b: p2(b) }),
-                Geometry::Arc { c, r, a0, a1 } => Shape::Path(Geom::Arc {
-                    c: p2(c),
-                    r,
-                    a0: normalize_angle(a0),
-                    a1: normalize_angle(a1),
-                    ccw: true,
-                }),
-            };
-            if let Shape::Circle { r, .. } | Shape::Path(Geom::Arc { r, .. }) = shape {
-                if r <= 0.0 {
-                    return Err(Diagnostic::error(Msg::BadRadius, origin, args![r]));
-                }
+            let object = element_object(
+                el,
+                &path_name,
+                &mut names,
+                &|s| lines.origin(file, s),
+                diags,
+            )?;
+            if let Some(drill) = declared_drill(el) {
+                declared.push((out.len(), drill));
             }
-            let text = if el.params.is_empty() {
-                None
-            } else if !takes_text(&linetype, &shape) {
-                // the DXF of this text could not attach it: refused, never silently dropped
-                let span = el.params[0].span.start..el.params[el.params.len() - 1].span.end;
-                let joined: Vec<&str> = el.params.iter().map(|p| p.value.as_str()).collect();
-                diags.error(
-                    Msg::NoTextHere,
-                    lines.origin(file, &span),
-                    args![el.kind.value.words(), joined.join(" ")],
-                );
-                None
-            } else {
-                let span = el.params[0].span.start..el.params[el.params.len() - 1].span.end;
-                let joined: Vec<&str> = el.params.iter().map(|p| p.value.as_str()).collect();
-                Some(Box::new(ParamText::parse(
-                    &joined.join(" "),
-                    lines.origin(file, &span),
-                )?))
-            };
-            if let Kind::Drill(_) | Kind::Helix(_) = el.kind.value {
-                declared.push((out.len(), matches!(el.kind.value, Kind::Drill(_))));
-            }
-            out.push(DrawnObject {
-                path: names.get(&path.name.value),
-                linetype: names.get(&linetype),
-                shape,
-                text,
-                origin,
-            });
+            out.push(object);
         }
     }
     Ok(TextDrawing {
         objects: out,
         declared,
+    })
+}
+
+/// The shared names of a text's objects; its handful of line types found by a comparison
+/// or two instead of a hash.
+#[derive(Default)]
+pub(crate) struct ElementNames {
+    pub(crate) shared: crate::front::drawing::SharedNames,
+    linetypes: Vec<Arc<str>>,
+}
+
+impl ElementNames {
+    fn linetype(&mut self, kind: &Kind) -> Arc<str> {
+        let name = kind.linetype();
+        if let Some(a) = self.linetypes.iter().find(|a| ***a == *name) {
+            return a.clone();
+        }
+        let a = self.shared.get(name);
+        // a hostile text's thousands of raw line types are hashed, not searched
+        if self.linetypes.len() < 16 {
+            self.linetypes.push(a.clone());
+        }
+        a
+    }
+}
+
+/// For a circle written as `drill`/`helix`: whether it said drill.
+pub(crate) fn declared_drill(el: &millpath_syntax::Element) -> Option<bool> {
+    match el.kind.value {
+        Kind::Drill(_) => Some(true),
+        Kind::Helix(_) => Some(false),
+        _ => None,
+    }
+}
+
+/// The drawn object of one element of the path `path_name`; `origin` locates a span of it.
+/// What it reads: the element, the path's name and where the element is (line, column).
+pub(crate) fn element_object(
+    el: &millpath_syntax::Element,
+    path_name: &Arc<str>,
+    names: &mut ElementNames,
+    origin_of: &dyn Fn(&Span) -> Origin,
+    diags: &mut Diags,
+) -> Result<DrawnObject, Diagnostic> {
+    // the element without its trailing comment: what a diagnostic points at
+    let end = el
+        .params
+        .last()
+        .map_or(el.geometry.span.end, |p| p.span.end);
+    let origin = origin_of(&(el.span.start..end.max(el.geometry.span.end)));
+    let linetype = names.linetype(&el.kind.value);
+    let shape = match el.geometry.value {
+        Geometry::Point(p) => Shape::Circle {
+            c: p2(p),
+            r: el.kind.value.marker_diameter().unwrap_or(1.0) / 2.0,
+        },
+        Geometry::Circle { c, d } => Shape::Circle {
+            c: p2(c),
+            r: d / 2.0,
+        },
+        Geometry::Line(a, b) => Shape::Path(Geom::Line { a: p2(a), b: p2(b) }),
+        Geometry::Arc { c, r, a0, a1 } => Shape::Path(Geom::Arc {
+            c: p2(c),
+            r,
+            a0: normalize_angle(a0),
+            a1: normalize_angle(a1),
+            ccw: true,
+        }),
+    };
+    if let Shape::Circle { r, .. } | Shape::Path(Geom::Arc { r, .. }) = shape {
+        if r <= 0.0 {
+            return Err(Diagnostic::error(Msg::BadRadius, origin, args![r]));
+        }
+    }
+    let text = if el.params.is_empty() {
+        None
+    } else if !takes_text(&linetype, &shape) {
+        // the DXF of this text could not attach it: refused, never silently dropped
+        let span = el.params[0].span.start..el.params[el.params.len() - 1].span.end;
+        let joined: Vec<&str> = el.params.iter().map(|p| p.value.as_str()).collect();
+        diags.error(
+            Msg::NoTextHere,
+            origin_of(&span),
+            args![el.kind.value.words(), joined.join(" ")],
+        );
+        None
+    } else {
+        let span = el.params[0].span.start..el.params[el.params.len() - 1].span.end;
+        let joined: Vec<&str> = el.params.iter().map(|p| p.value.as_str()).collect();
+        Some(Box::new(ParamText::parse(
+            &joined.join(" "),
+            origin_of(&span),
+        )?))
+    };
+    Ok(DrawnObject {
+        path: path_name.clone(),
+        linetype,
+        shape,
+        text,
+        origin,
     })
 }
 

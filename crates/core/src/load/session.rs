@@ -296,21 +296,30 @@ impl<'a> Session<'a> {
         file: &Arc<FileRef>,
         diags: &mut Diags,
     ) -> Result<(crate::front::text::TextDrawing, Vec<String>), Diagnostic> {
-        let broken: Vec<String> = ast
-            .paths()
+        let broken = Self::broken_paths(ast, &errors);
+        let text = crate::front::text::objects_of(ast, errors, src, file, diags)?;
+        Ok((text, broken))
+    }
+
+    /// The names of the paths of a text holding a line that did not parse.
+    pub fn broken_paths(
+        ast: &millpath_syntax::File,
+        errors: &[millpath_syntax::SyntaxError],
+    ) -> Vec<String> {
+        ast.paths()
             .filter(|b| {
                 errors
                     .iter()
                     .any(|e| b.span.start <= e.span.start && e.span.start < b.span.end)
             })
             .map(|b| b.name.value.clone())
-            .collect();
-        let text = crate::front::text::objects_of(ast, errors, src, file, diags)?;
-        Ok((text, broken))
+            .collect()
     }
 
-    /// The second half of [`Session::text_paths`]: the paths of the objects.
-    fn paths_of_text(
+    /// The second half of [`Session::text_paths`]: the paths of the objects (made here or by
+    /// the editor from its previous version, `front/text_edit.rs`); `broken`: the names of
+    /// [`Session::broken_paths`].
+    pub fn paths_of_text(
         &self,
         text: &crate::front::text::TextDrawing,
         broken: &[String],
