@@ -170,6 +170,18 @@ open("part.dxf", "w").write(d[:i] + line + d[i:])
 EOF
       rm part.mpath
       git init -q . && git add part.dxf && git commit -qm "part" ;;
+    version-control)
+      # a drawing in git, its mill line deepened one way on `theirs` and another on ours
+      cp "$examples/text/2001.mpath" part.mpath
+      millpath text2dxf part.mpath -o part.dxf
+      git init -q . && git add part.dxf && git commit -qm "part"
+      git checkout -q -b theirs
+      sed -i 's/mill (5, 0) -> (25, 0).*/mill (5, 0) -> (25, 0)  B-0,3/' part.mpath
+      millpath text2dxf part.mpath --into part.dxf && git commit -qam "theirs: B-0,3"
+      git checkout -q -
+      sed -i 's/B-0,3/B-0,1/' part.mpath
+      millpath text2dxf part.mpath --into part.dxf && git commit -qam "ours: B-0,1"
+      rm part.mpath ;;
     probes)
       # the NAME of the page: a compiled height-map set, its _Z.txt filled in, the logs
       heightmap_set
