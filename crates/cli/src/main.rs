@@ -251,6 +251,52 @@ enum Command {
         #[arg(long, value_name = "MM", value_parser = numbers::decimal)]
         cut_cell: Option<f64>,
     },
+    /// What changed between two versions of drawings and what it does to the part: OLD NEW,
+    /// REV -- FILE… or REV..REV (exit 0: no change, 1: changed, 2: error)
+    Diff {
+        #[command(flatten)]
+        machine: MachineArgs,
+        /// Report format: human text, json, markdown (a pull-request comment)
+        #[arg(long, value_enum, default_value = "human")]
+        format: commands::diff::DiffFormat,
+        /// Compare the drawings as written only: do not compile them
+        #[arg(long)]
+        no_compile: bool,
+        /// OLD NEW (two drawings), or a git revision REV or REV..REV (default HEAD)
+        #[arg(value_name = "OLD NEW | REV")]
+        revs: Vec<String>,
+        /// With a revision: the drawings to compare (default: those git lists as changed)
+        #[arg(last = true, value_name = "FILE")]
+        files: Vec<PathBuf>,
+        /// Write the visual diff as an HTML page here (removed red, added green, other depth
+        /// blue; before/after toggle; click a move for its element)
+        #[arg(long)]
+        html: Option<PathBuf>,
+        /// Write the visual diff as an SVG here
+        #[arg(long)]
+        svg: Option<PathBuf>,
+        /// Write the visual diff as a PNG here (no browser needed)
+        #[arg(long)]
+        png: Option<PathBuf>,
+    },
+    /// The visual diff for `git difftool -t millpath`: LOCAL REMOTE [MERGED] as an HTML page
+    /// (its path printed)
+    Difftool {
+        #[command(flatten)]
+        machine: MachineArgs,
+        /// The old version (git's $LOCAL)
+        local: PathBuf,
+        /// The new version (git's $REMOTE)
+        remote: PathBuf,
+        /// The drawing in the work tree (git's $MERGED): where subpaths and millpath.toml are
+        merged: Option<PathBuf>,
+        /// Write the page here (default: millpath-diff-NAME.html in the temporary folder)
+        #[arg(long)]
+        html: Option<PathBuf>,
+        /// Open the page in the browser
+        #[arg(long)]
+        open: bool,
+    },
     /// The post-processors: list the built-in ones, print one as a post file to adapt
     Post {
         #[command(subcommand)]
@@ -461,6 +507,31 @@ fn main() -> ExitCode {
                 (cut, cut_cell),
             )
         }
+        Command::Diff {
+            machine,
+            format,
+            no_compile,
+            revs,
+            files,
+            html,
+            svg,
+            png,
+        } => commands::diff::run(&commands::diff::Args {
+            machine,
+            format,
+            compile: !no_compile,
+            revs,
+            files,
+            pictures: commands::diff::Pictures { html, svg, png },
+        }),
+        Command::Difftool {
+            machine,
+            local,
+            remote,
+            merged,
+            html,
+            open,
+        } => commands::diff::difftool(&machine, &local, &remote, merged.as_deref(), html, open),
         Command::Lsp { .. } => millpath_lsp::run_stdio(),
         Command::Pathdxf2gcode { args } => commands::pathdxf2gcode::run(&args),
         Command::Pathgcodeadjustz { args } => commands::pathgcodeadjustz::run(&args),

@@ -1,0 +1,465 @@
+//! `millpath diff`: what changed between two versions of drawings, and what it does to the
+//! part (`millpath-history`). Versions come from files (`diff OLD NEW`) or from git
+//! (`diff REV -- FILE…`, `diff REV..REV [-- FILE…]`; without files, the drawings git lists
+//! as changed), read with the `git` binary (`git show REV:./NAME`). Exit 0: no change, 1:
+//! changed, 2: an error.
+
+use crate::args::{lang_of, settings_for, MachineArgs};
+use crate::report;
+use millpath_core::diag::{Diagnostic, FileRef, Msg, Origin};
+use millpath_core::Lang;
+use millpath_history::{report as out, Side, Version};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+#[derive(Clone, Copy, clap::ValueEnum, Default, PartialEq)]
+pub enum DiffFormat {
+    #[default]
+    Human,
+    Json,
+    Markdown,
+}
+
+/// Where one version of a file comes from.
+struct Source {
+    /// The label in the report (`part.dxf`, `HEAD:part.dxf`).
+    label: String,
+    /// The file it stands for on disk (subpaths and millpath.toml are found beside it).
+    file: PathBuf,
+    /// Its bytes; `None`: the file does not exist in this version.
+    bytes: Option<Vec<u8>>,
+}
+
+pub struct Args {
+    pub machine: MachineArgs,
+    pub format: DiffFormat,
+    pub compile: bool,
+    pub revs: Vec<String>,
+    pub files: Vec<PathBuf>,
+    /// The visual diff: HTML page, SVG, PNG.
+    pub pictures: Pictures,
+}
+
+#[derive(Default)]
+pub struct Pictures {
+    pub html: Option<PathBuf>,
+    pub svg: Option<PathBuf>,
+    pub png: Option<PathBuf>,
+}
+
+impl Pictures {
+    fn any(&self) -> bool {
+        self.html.is_some() || self.svg.is_some() || self.png.is_some()
+    }
+}
+
+pub fn run(a: &Args) -> u8 {
+    let first = a
+        .files
+        .first()
+        .cloned()
+        .or_else(|| a.revs.last().map(PathBuf::from));
+    let lang = lang_of(&a.machine, first.as_deref());
+    let pairs = match sources(a, lang) {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("{e}");
+            return 2;
+        }
+    };
+    if a.pictures.any() && pairs.len() != 1 {
+        eprintln!(
+            "{}",
+            match lang {
+                Lang::En => "error: --html, --svg and --png draw one drawing: name one file",
+                Lang::De =>
+                    "Fehler: --html, --svg und --png zeichnen eine Zeichnung: eine Datei angeben",
+            }
+        );
+        return 2;
+    }
+    let mut changed = false;
+    let mut status = 0;
+    let mut texts = Vec::new();
+    let mut jsons = Vec::new();
+    for (old, new) in &pairs {
+        let (o, n) = match (
+            version(old, &a.machine, lang),
+            version(new, &a.machine, lang),
+        ) {
+            (Ok(o), Ok(n)) => (o, n),
+            (Err(e), _) | (_, Err(e)) => {
+                eprintln!("{e}");
+                return 2;
+            }
+        };
+        let d = millpath_history::diff(
+            Side {
+                version: &o,
+                file: &old.file,
+            },
+            Side {
+                version: &n,
+                file: &new.file,
+            },
+            a.compile,
+        );
+        changed |= d.changed();
+        let title = format!("{} → {}", old.label, new.label);
+        let texts_of = (
+            (old.label.as_str(), o.text.as_str()),
+            (new.label.as_str(), n.text.as_str()),
+        );
+        status |= pictures(&a.pictures, &d, &title, texts_of, lang);
+        match a.format {
+            DiffFormat::Human => texts.push(out::human(&d, &title, lang)),
+            DiffFormat::Markdown => texts.push(out::markdown(&d, &title, lang)),
+            DiffFormat::Json => jsons.push(out::json(&d, &old.label, &new.label)),
+        }
+    }
+    let text = match a.format {
+        DiffFormat::Json => {
+            let v = serde_json::json!({ "changed": changed, "files": jsons });
+            format!("{}\n", serde_json::to_string_pretty(&v).unwrap_or_default())
+        }
+        _ if pairs.is_empty() => match lang {
+            Lang::En => "No drawing changed.\n".to_string(),
+            Lang::De => "Keine Zeichnung geändert.\n".to_string(),
+        },
+        _ => texts.join("\n"),
+    };
+    if crate::output::emit(None, &text, lang) != 0 || status != 0 {
+        return 2;
+    }
+    u8::from(changed)
+}
+
+/// Writes the visual diff; 0, or 1 when a file could not be written (said on stderr).
+fn pictures(
+    p: &Pictures,
+    d: &millpath_history::Diff,
+    title: &str,
+    (old, new): ((&str, &str), (&str, &str)),
+    lang: Lang,
+) -> u8 {
+    use millpath_history::picture;
+    let writing = match lang {
+        Lang::En => "Writing",
+        Lang::De => "Schreiben von",
+    };
+    let mut status = 0;
+    if let Some(out) = &p.html {
+        eprintln!("---- {writing} {}", out.display());
+        let page = picture::html(d, title, old, new, lang == Lang::De);
+        status |= crate::output::emit(Some(out), &page, lang);
+    }
+    if let Some(out) = &p.svg {
+        eprintln!("---- {writing} {}", out.display());
+        status |= crate::output::emit(Some(out), &picture::svg(d), lang);
+    }
+    if let Some(out) = &p.png {
+        eprintln!("---- {writing} {}", out.display());
+        let written = crate::png::svg_to_png(&picture::svg(d)).and_then(|bytes| {
+            crate::write::write_atomic_bytes(out, &bytes).map_err(|e| e.to_string())
+        });
+        if let Err(e) = written {
+            eprintln!(
+                "{}: {}: {e}",
+                report::severity_word(millpath_core::diag::Severity::Error, lang),
+                out.display()
+            );
+            status |= 1;
+        }
+    }
+    status
+}
+
+/// `millpath difftool LOCAL REMOTE [MERGED]` (git difftool): the visual diff of two versions
+/// as an HTML page, located at MERGED (the drawing in the work tree: its subpaths and
+/// millpath.toml); the page's path is printed, and opened with `--open`.
+pub fn difftool(
+    machine: &MachineArgs,
+    local: &Path,
+    remote: &Path,
+    merged: Option<&Path>,
+    html: Option<PathBuf>,
+    open: bool,
+) -> u8 {
+    let lang = lang_of(machine, merged.or(Some(remote)));
+    let source = |p: &Path| -> Result<Source, String> {
+        let bytes = std::fs::read(p).map_err(|e| cannot_read(p, e, lang))?;
+        // git's temporary copies have the drawing's extension; the drawing itself is MERGED
+        Ok(Source {
+            label: merged.unwrap_or(p).display().to_string(),
+            file: absolute(merged.unwrap_or(p)),
+            bytes: Some(bytes),
+        })
+    };
+    let (old, new) = match (source(local), source(remote)) {
+        (Ok(o), Ok(n)) => (o, n),
+        (Err(e), _) | (_, Err(e)) => {
+            eprintln!("{e}");
+            return 2;
+        }
+    };
+    let (o, n) = match (version(&old, machine, lang), version(&new, machine, lang)) {
+        (Ok(o), Ok(n)) => (o, n),
+        (Err(e), _) | (_, Err(e)) => {
+            eprintln!("{e}");
+            return 2;
+        }
+    };
+    let d = millpath_history::diff(
+        Side {
+            version: &o,
+            file: &old.file,
+        },
+        Side {
+            version: &n,
+            file: &new.file,
+        },
+        true,
+    );
+    let name = new
+        .file
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let out =
+        html.unwrap_or_else(|| std::env::temp_dir().join(format!("millpath-diff-{name}.html")));
+    let title = format!("{} ({} → {})", old.label, local.display(), remote.display());
+    let page = millpath_history::picture::html(
+        &d,
+        &title,
+        (&local.display().to_string(), &o.text),
+        (&remote.display().to_string(), &n.text),
+        lang == Lang::De,
+    );
+    if crate::output::emit(Some(&out), &page, lang) != 0 {
+        return 2;
+    }
+    print!("{}", out::human(&d, &title, lang));
+    println!("{}", out.display());
+    if open {
+        let opener = if cfg!(target_os = "macos") {
+            "open"
+        } else if cfg!(windows) {
+            "explorer"
+        } else {
+            "xdg-open"
+        };
+        if let Err(e) = Command::new(opener).arg(&out).spawn() {
+            eprintln!("{opener}: {e}");
+        }
+    }
+    0
+}
+
+/// A version from its source (an absent file: no paths).
+fn version(s: &Source, m: &MachineArgs, lang: Lang) -> Result<Version, String> {
+    let Some(bytes) = &s.bytes else {
+        return Ok(Version::of_text(String::new()));
+    };
+    let settings = settings_for(m, Some(&s.file), false)?;
+    let patterns = millpath_core::load::names::Patterns::shared(
+        &settings.path_pattern,
+        &settings.file_pattern,
+    )
+    .map_err(|(c, p, e)| format!("/{c} '{p}': {e}"))?;
+    // messages name what the user gave (the label), not the file it stands for
+    Version::read(&PathBuf::from(&s.label), bytes, &patterns, settings.input).map_err(|diags| {
+        diags
+            .iter()
+            .map(|d| report::human(d, lang))
+            .collect::<Vec<_>>()
+            .join("\n")
+    })
+}
+
+fn cannot_read(path: &Path, e: impl std::fmt::Display, lang: Lang) -> String {
+    let d = Diagnostic::error(
+        Msg::CannotRead,
+        Origin::File(FileRef::new(path.to_path_buf())),
+        millpath_core::args![path.display(), e],
+    );
+    report::human(&d, lang)
+}
+
+/// The pairs of versions to compare.
+fn sources(a: &Args, lang: Lang) -> Result<Vec<(Source, Source)>, String> {
+    let de = lang == Lang::De;
+    if a.files.is_empty() && a.revs.len() == 2 {
+        // diff OLD NEW
+        let read = |p: &str| -> Result<Source, String> {
+            let path = PathBuf::from(p);
+            let bytes = std::fs::read(&path).map_err(|e| cannot_read(&path, e, lang))?;
+            Ok(Source {
+                label: p.to_string(),
+                file: dunce::canonicalize(&path).unwrap_or(path),
+                bytes: Some(bytes),
+            })
+        };
+        return Ok(vec![(read(&a.revs[0])?, read(&a.revs[1])?)]);
+    }
+    if a.revs.len() > 1 {
+        return Err(if de {
+            "Fehler: `millpath diff` braucht ALT NEU, REV -- DATEI… oder REV..REV".into()
+        } else {
+            "error: `millpath diff` takes OLD NEW, REV -- FILE… or REV..REV".into()
+        });
+    }
+    let rev = a.revs.first().map_or("HEAD", String::as_str);
+    let (from, to) = match rev.split_once("..") {
+        Some((f, t)) => (
+            if f.is_empty() { "HEAD" } else { f },
+            Some(if t.is_empty() { "HEAD" } else { t }),
+        ),
+        None => (rev, None),
+    };
+    let files: Vec<(PathBuf, PathBuf)> = if a.files.is_empty() {
+        changed_drawings(from, to, lang)?
+    } else {
+        a.files.iter().map(|f| (f.clone(), f.clone())).collect()
+    };
+    // repository paths shown from the current folder
+    let cwd = std::env::current_dir().unwrap_or_default();
+    let short = |p: PathBuf| p.strip_prefix(&cwd).map(Path::to_path_buf).unwrap_or(p);
+    let mut out = Vec::new();
+    for (old_file, new_file) in files {
+        let (old_file, new_file) = (short(old_file), short(new_file));
+        let old = git_source(from, &old_file, lang)?;
+        let new = match to {
+            Some(t) => git_source(t, &new_file, lang)?,
+            None => Source {
+                label: new_file.display().to_string(),
+                file: absolute(&new_file),
+                bytes: match std::fs::read(&new_file) {
+                    Ok(b) => Some(b),
+                    Err(e) if e.kind() == std::io::ErrorKind::NotFound => None,
+                    Err(e) => return Err(cannot_read(&new_file, e, lang)),
+                },
+            },
+        };
+        if old.bytes.is_none() && new.bytes.is_none() {
+            return Err(cannot_read(
+                &new_file,
+                if de {
+                    format!("weder in {from} noch danach vorhanden")
+                } else {
+                    format!("in neither {from} nor after it")
+                },
+                lang,
+            ));
+        }
+        out.push((old, new));
+    }
+    Ok(out)
+}
+
+fn absolute(p: &Path) -> PathBuf {
+    dunce::canonicalize(p).unwrap_or_else(|_| {
+        std::env::current_dir()
+            .map(|d| d.join(p))
+            .unwrap_or_else(|_| p.to_path_buf())
+    })
+}
+
+/// A file as it was in a git revision (`git show REV:./NAME` in its folder).
+fn git_source(rev: &str, file: &Path, lang: Lang) -> Result<Source, String> {
+    let abs = absolute(file);
+    let dir = abs.parent().unwrap_or(Path::new("."));
+    let name = abs
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    // the folder may be gone in the working tree: ask from the repository's top
+    let (cwd, spec) = if dir.is_dir() {
+        (dir.to_path_buf(), format!("{rev}:./{name}"))
+    } else {
+        (
+            std::env::current_dir().unwrap_or_default(),
+            format!("{rev}:./{}", file.display()),
+        )
+    };
+    let o = Command::new("git")
+        .arg("-C")
+        .arg(&cwd)
+        .args(["show", &spec])
+        .output()
+        .map_err(|e| cannot_read(Path::new("git"), e, lang))?;
+    let bytes = if o.status.success() {
+        Some(o.stdout)
+    } else {
+        let err = String::from_utf8_lossy(&o.stderr);
+        // a file the revision does not have is an added (or removed) drawing
+        if err.contains("does not exist") || err.contains("exists on disk, but not in") {
+            None
+        } else {
+            return Err(cannot_read(
+                file,
+                format!("git show {spec}: {}", err.trim()),
+                lang,
+            ));
+        }
+    };
+    Ok(Source {
+        label: format!("{rev}:{}", file.display()),
+        file: abs,
+        bytes,
+    })
+}
+
+/// The drawings (`*.dxf`, `*.mpath`) git lists as changed between the revisions (or the
+/// revision and the working tree), renames paired: (old file, new file).
+fn changed_drawings(
+    from: &str,
+    to: Option<&str>,
+    lang: Lang,
+) -> Result<Vec<(PathBuf, PathBuf)>, String> {
+    let top = git(&["rev-parse", "--show-toplevel"], lang)?;
+    let top = PathBuf::from(String::from_utf8_lossy(&top).trim().to_string());
+    let mut args = vec!["diff", "--name-status", "-M", "-z", from];
+    args.extend(to);
+    args.extend(["--", "*.dxf", "*.DXF", "*.mpath"]);
+    let listed = git(&args, lang)?;
+    let fields: Vec<String> = listed
+        .split(|&b| b == 0)
+        .map(|f| String::from_utf8_lossy(f).into_owned())
+        .collect();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < fields.len() {
+        let status = &fields[i];
+        if status.is_empty() {
+            break;
+        }
+        if status.starts_with('R') || status.starts_with('C') {
+            if let (Some(a), Some(b)) = (fields.get(i + 1), fields.get(i + 2)) {
+                out.push((top.join(a), top.join(b)));
+            }
+            i += 3;
+        } else {
+            if let Some(a) = fields.get(i + 1) {
+                out.push((top.join(a), top.join(a)));
+            }
+            i += 2;
+        }
+    }
+    Ok(out)
+}
+
+fn git(args: &[&str], lang: Lang) -> Result<Vec<u8>, String> {
+    let o = Command::new("git")
+        .args(args)
+        .output()
+        .map_err(|e| cannot_read(Path::new("git"), e, lang))?;
+    if !o.status.success() {
+        return Err(format!(
+            "{}: git {}: {}",
+            report::severity_word(millpath_core::diag::Severity::Error, lang),
+            args.join(" "),
+            String::from_utf8_lossy(&o.stderr).trim()
+        ));
+    }
+    Ok(o.stdout)
+}

@@ -1,0 +1,239 @@
+//! `millpath diff` end to end: files and git revisions, exit statuses, the three formats,
+//! German, and hostile input (binary, truncated, unrelated files, renames, a CAD re-save
+//! that only reorders the entities).
+
+mod common;
+use common::{copy_text_examples, status_and_text};
+use std::path::Path;
+use std::process::Command;
+
+fn write(dir: &Path, name: &str, text: &str) {
+    std::fs::write(dir.join(name), text).unwrap();
+}
+
+fn git(dir: &Path, args: &[&str]) {
+    let ok = Command::new("git")
+        .args(["-c", "user.email=t@t", "-c", "user.name=t"])
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap()
+        .status
+        .success();
+    assert!(ok, "git {args:?}");
+}
+
+/// 2001.mpath with its start's depth changed (the slot inherits it).
+fn deeper_2001(dir: &Path) -> String {
+    std::fs::read_to_string(dir.join("2001.mpath"))
+        .unwrap()
+        .replace("B-0,2", "B-0,5")
+}
+
+#[test]
+fn files_exit_statuses_and_the_effect() {
+    let d = tempfile::tempdir().unwrap();
+    copy_text_examples(d.path());
+    let (code, text) = status_and_text(d.path(), &["diff", "2001.mpath", "2001.mpath"]);
+    assert_eq!(code, 0, "{text}");
+    assert!(text.contains("No change."), "{text}");
+    std::fs::create_dir(d.path().join("new")).unwrap();
+    std::fs::copy(
+        d.path().join("millpath.toml"),
+        d.path().join("new/millpath.toml"),
+    )
+    .unwrap();
+    write(d.path(), "new/2001.mpath", &deeper_2001(d.path()));
+    let (code, text) = status_and_text(d.path(), &["diff", "2001.mpath", "new/2001.mpath"]);
+    assert_eq!(code, 1, "{text}");
+    // the written change, the element it reaches, the group, the compiled figures
+    assert!(text.contains("parameters (line 4)"), "{text}");
+    assert!(
+        text.contains("effect (line 7): mill (5, 0) -> (25, 0)"),
+        "{text}"
+    );
+    assert!(
+        text.contains("B -0,2 → -0,5 on 1 element, from path start (line 4)"),
+        "{text}"
+    );
+    assert!(text.contains("lowest Z -0.2 → -0.5"), "{text}");
+    assert!(text.contains("G-code changed"), "{text}");
+    // German
+    let (code, text) = status_and_text(
+        d.path(),
+        &["diff", "--lang", "de", "2001.mpath", "new/2001.mpath"],
+    );
+    assert_eq!(code, 1);
+    assert!(text.contains("tiefstes Z -0,2 → -0,5"), "{text}");
+    assert!(text.contains("G-Code geändert"), "{text}");
+    // JSON
+    let (code, text) = status_and_text(
+        d.path(),
+        &["diff", "--format", "json", "2001.mpath", "new/2001.mpath"],
+    );
+    assert_eq!(code, 1);
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let p = &v["files"][0]["paths"][0];
+    assert_eq!(p["status"], "changed");
+    assert_eq!(p["effects"][0]["count"], 1);
+    assert_eq!(p["before"]["lowest_z"], -0.2);
+    assert_eq!(p["after"]["lowest_z"], -0.5);
+    assert_eq!(p["gcode_changed"], true);
+    // markdown: a table of the figures, the change in bold
+    let (_, text) = status_and_text(
+        d.path(),
+        &[
+            "diff",
+            "--format",
+            "markdown",
+            "2001.mpath",
+            "new/2001.mpath",
+        ],
+    );
+    assert!(text.contains("| lowest Z | -0.2 | **-0.5** |"), "{text}");
+    // the embedding drawing: the change reaches it through the subpath
+    std::fs::copy(d.path().join("2010.mpath"), d.path().join("new/2010.mpath")).unwrap();
+    let (code, text) = status_and_text(d.path(), &["diff", "2010.mpath", "new/2010.mpath"]);
+    assert_eq!(code, 1, "{text}");
+    assert!(
+        text.contains("moves of the embedded element 2001.mpath:7 changed"),
+        "{text}"
+    );
+}
+
+#[test]
+fn a_change_without_effect_says_so() {
+    let d = tempfile::tempdir().unwrap();
+    copy_text_examples(d.path());
+    // 2010's start depth: no element of 2010.1P mills down to it (the G-code stays the same)
+    let t = std::fs::read_to_string(d.path().join("2010.mpath")).unwrap();
+    std::fs::create_dir(d.path().join("new")).unwrap();
+    for f in ["2001.mpath", "millpath.toml"] {
+        std::fs::copy(d.path().join(f), d.path().join("new").join(f)).unwrap();
+    }
+    write(
+        d.path(),
+        "new/2010.mpath",
+        &t.replace("B-0,2 D2,5", "B-0,5 D2,5"),
+    );
+    let (code, text) = status_and_text(d.path(), &["diff", "2010.mpath", "new/2010.mpath"]);
+    assert_eq!(code, 1, "{text}");
+    assert!(text.contains("G-code unchanged"), "{text}");
+    assert!(!text.contains("effect"), "{text}");
+}
+
+#[test]
+fn reordered_and_converted_drawings_are_no_change() {
+    let d = tempfile::tempdir().unwrap();
+    let plate = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/plate");
+    for f in ["1234.1P.dxf", "millpath.toml"] {
+        std::fs::copy(plate.join(f), d.path().join(f)).unwrap();
+    }
+    let (code, text) = status_and_text(d.path(), &["dxf2text", "1234.1P.dxf", "-o", "text.mpath"]);
+    assert_eq!(code, 0, "{text}");
+    // a DXF against its own text
+    let (code, text) = status_and_text(d.path(), &["diff", "1234.1P.dxf", "text.mpath"]);
+    assert_eq!(code, 0, "{text}");
+    // the entities in reverse order (a CAD re-save) with the paths written as a DXF again
+    let t = std::fs::read_to_string(d.path().join("text.mpath")).unwrap();
+    let mut lines: Vec<&str> = t.lines().collect();
+    let (first, last) = (1, lines.len() - 1);
+    lines[first..last].reverse();
+    write(d.path(), "reordered.mpath", &(lines.join("\n") + "\n"));
+    let (code, text) = status_and_text(
+        d.path(),
+        &["text2dxf", "reordered.mpath", "-o", "reordered.dxf"],
+    );
+    assert_eq!(code, 0, "{text}");
+    let (code, text) = status_and_text(d.path(), &["diff", "1234.1P.dxf", "reordered.dxf"]);
+    assert_eq!(code, 0, "{text}");
+    assert!(text.contains("No change."), "{text}");
+}
+
+#[test]
+fn git_revisions() {
+    let d = tempfile::tempdir().unwrap();
+    copy_text_examples(d.path());
+    git(d.path(), &["init", "-q"]);
+    git(d.path(), &["add", "."]);
+    git(d.path(), &["commit", "-qm", "one"]);
+    let (code, text) = status_and_text(d.path(), &["diff"]);
+    assert_eq!(code, 0, "{text}");
+    assert!(text.contains("No drawing changed."), "{text}");
+    write(d.path(), "2001.mpath", &deeper_2001(d.path()));
+    let (code, text) = status_and_text(d.path(), &["diff", "HEAD", "--", "2001.mpath"]);
+    assert_eq!(code, 1, "{text}");
+    assert!(text.contains("HEAD:2001.mpath → 2001.mpath"), "{text}");
+    assert!(text.contains("lowest Z -0.2 → -0.5"), "{text}");
+    // without files: what git lists as changed
+    let (code, text) = status_and_text(d.path(), &["diff"]);
+    assert_eq!(code, 1, "{text}");
+    assert!(text.contains("2001.1P: changed"), "{text}");
+    git(d.path(), &["commit", "-qam", "two"]);
+    let (code, text) = status_and_text(d.path(), &["diff", "HEAD~1..HEAD", "--format", "markdown"]);
+    assert_eq!(code, 1, "{text}");
+    assert!(text.contains("#### `2001.1P`: changed"), "{text}");
+    let (code, _) = status_and_text(d.path(), &["diff", "HEAD..HEAD"]);
+    assert_eq!(code, 0);
+    // a renamed file with the same paths: no change
+    git(d.path(), &["mv", "2020.mpath", "2021.mpath"]);
+    let (code, text) = status_and_text(d.path(), &["diff"]);
+    assert_eq!(code, 0, "{text}");
+    assert!(text.contains("HEAD:2020.mpath → 2021.mpath"), "{text}");
+    // a file new since the revision: every path added
+    write(
+        d.path(),
+        "2030.mpath",
+        "path 2030.1P {\n  start (0, 0)  T1 O2 B-1\n  end (5, 0)\n  mill (0, 0) -> (5, 0)\n}\n",
+    );
+    let (code, text) = status_and_text(d.path(), &["diff", "HEAD", "--", "2030.mpath"]);
+    assert_eq!(code, 1, "{text}");
+    assert!(text.contains("2030.1P: added"), "{text}");
+    // a revision git does not know
+    let (code, text) = status_and_text(d.path(), &["diff", "nosuchrev", "--", "2001.mpath"]);
+    assert_eq!(code, 2, "{text}");
+}
+
+#[test]
+fn hostile_inputs() {
+    let d = tempfile::tempdir().unwrap();
+    copy_text_examples(d.path());
+    let plate = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/plate/1234.1P.dxf");
+    let dxf = std::fs::read(plate).unwrap();
+    std::fs::write(d.path().join("whole.dxf"), &dxf).unwrap();
+    std::fs::write(d.path().join("truncated.dxf"), &dxf[..dxf.len() / 2]).unwrap();
+    let binary: Vec<u8> = (0..4096u32).map(|i| (i * 7919 % 251) as u8).collect();
+    std::fs::write(d.path().join("binary.dxf"), &binary).unwrap();
+    std::fs::write(d.path().join("binary.mpath"), &binary).unwrap();
+    for (a, b) in [
+        ("whole.dxf", "truncated.dxf"),
+        ("binary.dxf", "whole.dxf"),
+        ("2001.mpath", "binary.mpath"),
+        ("2001.mpath", "missing.mpath"),
+    ] {
+        let (code, text) = status_and_text(d.path(), &["diff", a, b]);
+        assert_eq!(code, 2, "{a} {b}: {text}");
+        assert!(text.contains("error"), "{a} {b}: {text}");
+        assert!(!text.contains("panicked"), "{text}");
+    }
+    // unrelated drawings: one path removed, another added
+    let (code, text) = status_and_text(d.path(), &["diff", "2001.mpath", "2020.mpath"]);
+    assert_eq!(code, 1, "{text}");
+    assert!(
+        text.contains("2001.1P: removed") && text.contains("2020.1P: added"),
+        "{text}"
+    );
+    // a path renamed inside a file: paired by its elements
+    let t = std::fs::read_to_string(d.path().join("2001.mpath")).unwrap();
+    write(
+        d.path(),
+        "renamed.mpath",
+        &t.replace("path 2001.1P", "path 2001.2P"),
+    );
+    let (code, text) = status_and_text(
+        d.path(),
+        &["diff", "--no-compile", "2001.mpath", "renamed.mpath"],
+    );
+    assert_eq!(code, 1, "{text}");
+    assert!(text.contains("2001.2P: renamed from 2001.1P"), "{text}");
+}

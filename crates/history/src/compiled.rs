@@ -1,0 +1,187 @@
+//! One version of a drawing compiled as the editor and `render` compile it: its canonical
+//! text stands in memory at `DIR/STEM.mpath` beside the real file, so subpaths and
+//! `millpath.toml` are found where the drawing is; per path the moves of the written program
+//! (each with the element it comes from), the figures of the result, and the effective
+//! parameters of elements with their origins.
+
+use crate::version::Version;
+use millpath_ide::{Analysis, Effective, Workspace};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+/// A move as the diff compares it: kind, end points, arc centre and feed, rounded to the
+/// output precision (3 decimals) as integers.
+pub type MoveKey = (String, [i64; 6], Option<(i64, i64, bool)>, i64);
+
+/// The compiled result of one path.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Outcome {
+    /// Why the path did not compile (the compiler's messages).
+    pub error: Option<String>,
+    /// The lowest Z of a cutting move.
+    pub lowest_z: f64,
+    /// The length of the cutting moves (mm).
+    pub milling_length: f64,
+    /// The estimated time (s).
+    pub seconds: f64,
+    /// Moves of the written program.
+    pub moves: usize,
+    /// The program's move lines (their G-code) in order, hashed: equal ⇔ same G-code moves.
+    pub gcode_digest: u64,
+    /// Every move in program order with its element's line in the canonical text (0: an
+    /// element of another file, or none); the pictures draw them.
+    pub sequence: Vec<(MoveKey, usize)>,
+    /// Moves by the line of their element in the canonical text (1-based).
+    pub by_line: HashMap<usize, Vec<MoveKey>>,
+    /// Moves from elements of other files (embedded subpaths), by their element's label
+    /// (`2001.mpath:7`); moves without an element under "".
+    pub elsewhere: std::collections::BTreeMap<String, Vec<MoveKey>>,
+}
+
+/// One version ready to compile.
+pub struct Compiled {
+    ws: Workspace,
+    /// Where the canonical text stands (in memory).
+    pub at: PathBuf,
+    analysis: Option<Analysis>,
+}
+
+impl Compiled {
+    /// The version's text in memory at `DIR/STEM.mpath` for a drawing at `file`.
+    pub fn new(version: &Version, file: &Path) -> Compiled {
+        let at = file.with_extension("mpath");
+        let mut ws = Workspace::default();
+        ws.overlays.insert(at.clone(), version.text.clone());
+        Compiled {
+            ws,
+            at,
+            analysis: None,
+        }
+    }
+
+    /// Compiles one path of the version (its moves and figures).
+    pub fn outcome(&self, path: &str) -> Outcome {
+        match millpath_ide::toolpath(&self.ws, &self.at, Some(path)) {
+            Ok(data) => outcome_of(&data, &self.at),
+            Err(e) => Outcome {
+                error: Some(e),
+                ..Default::default()
+            },
+        }
+    }
+
+    /// The effective parameters of the elements at these offsets of the text.
+    pub fn effective(&mut self, offsets: &[usize]) -> Vec<Vec<Effective>> {
+        if offsets.is_empty() {
+            return Vec::new();
+        }
+        let a = self
+            .analysis
+            .get_or_insert_with(|| millpath_ide::analyze(&self.ws, &self.at));
+        millpath_ide::effective_values(a, offsets)
+    }
+}
+
+fn r3(v: f64) -> i64 {
+    if v.is_finite() {
+        (v * 1000.0).round() as i64
+    } else {
+        i64::MIN
+    }
+}
+
+/// The figures and moves of a toolpath (the JSON of `millpath_ide::toolpath`).
+fn outcome_of(data: &serde_json::Value, at: &Path) -> Outcome {
+    use std::hash::{Hash, Hasher};
+    let empty = Vec::new();
+    let moves = data["moves"].as_array().unwrap_or(&empty);
+    let sources = data["sources"].as_array().unwrap_or(&empty);
+    let own = at.display().to_string();
+    // by source index: the element's line in our text, or the label of another file's
+    let lines: Vec<Result<usize, String>> = sources
+        .iter()
+        .map(|s| {
+            if s["file"].as_str() == Some(own.as_str()) {
+                Ok(s["line"].as_u64().map_or(0, |l| l as usize + 1))
+            } else {
+                Err(s["label"].as_str().unwrap_or("").to_string())
+            }
+        })
+        .collect();
+    let mut out = Outcome {
+        lowest_z: f64::INFINITY,
+        moves: moves.len(),
+        seconds: data["seconds"].as_f64().unwrap_or(0.0),
+        ..Default::default()
+    };
+    let mut hasher = std::collections::hash_map::DefaultHasher::new();
+    for m in moves {
+        let kind = m["kind"].as_str().unwrap_or("").to_string();
+        let p = |k: &str, i: usize| m[k][i].as_f64().unwrap_or(0.0);
+        let (from, to) = (
+            [p("from", 0), p("from", 1), p("from", 2)],
+            [p("to", 0), p("to", 1), p("to", 2)],
+        );
+        let arc = m["arc"].as_object().map(|a| {
+            (
+                a["cx"].as_f64().unwrap_or(0.0),
+                a["cy"].as_f64().unwrap_or(0.0),
+                a["ccw"].as_bool().unwrap_or(true),
+            )
+        });
+        if kind != "rapid" {
+            out.lowest_z = out.lowest_z.min(from[2]).min(to[2]);
+            out.milling_length += length(from, to, arc);
+        }
+        m["gcode"].as_str().unwrap_or("").hash(&mut hasher);
+        let key: MoveKey = (
+            kind,
+            [
+                r3(from[0]),
+                r3(from[1]),
+                r3(from[2]),
+                r3(to[0]),
+                r3(to[1]),
+                r3(to[2]),
+            ],
+            arc.map(|(x, y, ccw)| (r3(x), r3(y), ccw)),
+            r3(m["feed"].as_f64().unwrap_or(0.0)),
+        );
+        let source = m["source"].as_u64().and_then(|i| lines.get(i as usize));
+        out.sequence.push((
+            key.clone(),
+            match source {
+                Some(Ok(line)) => *line,
+                _ => 0,
+            },
+        ));
+        match source {
+            Some(Ok(line)) => out.by_line.entry(*line).or_default().push(key),
+            Some(Err(label)) => out.elsewhere.entry(label.clone()).or_default().push(key),
+            None => out.elsewhere.entry(String::new()).or_default().push(key),
+        }
+    }
+    if !out.lowest_z.is_finite() {
+        out.lowest_z = 0.0;
+    }
+    out.gcode_digest = hasher.finish();
+    out
+}
+
+/// The length of a move: a straight line, or a helical arc around its centre.
+fn length(from: [f64; 3], to: [f64; 3], arc: Option<(f64, f64, bool)>) -> f64 {
+    let dz = to[2] - from[2];
+    match arc {
+        None => ((to[0] - from[0]).powi(2) + (to[1] - from[1]).powi(2) + dz * dz).sqrt(),
+        Some((cx, cy, ccw)) => {
+            let r = (from[0] - cx).hypot(from[1] - cy);
+            let a0 = (from[1] - cy).atan2(from[0] - cx);
+            let a1 = (to[1] - cy).atan2(to[0] - cx);
+            let mut sweep = if ccw { a1 - a0 } else { a0 - a1 };
+            if sweep <= 1e-12 {
+                sweep += std::f64::consts::TAU;
+            }
+            (r * sweep).hypot(dz)
+        }
+    }
+}
