@@ -136,12 +136,16 @@ fn other_changes(
         *changes.entry((layer.clone(), kind.clone())).or_default() -= 1;
     }
     // the same count of another content: changed in place
-    let changed_in_place: Vec<(String, String)> = {
-        let (mut tb, mut bb) = (t.clone(), b.clone());
-        tb.retain(|e| !b.contains(e));
-        bb.retain(|e| !t.contains(e));
-        tb.into_iter().chain(bb).map(|(l, k, _)| (l, k)).collect()
-    };
+    // a multiset difference by counts: linear in the drawing's entities
+    let mut count: std::collections::HashMap<&(String, String, String), i64> =
+        std::collections::HashMap::new();
+    t.iter().for_each(|e| *count.entry(e).or_default() += 1);
+    b.iter().for_each(|e| *count.entry(e).or_default() -= 1);
+    let changed_in_place: Vec<(String, String)> = count
+        .into_iter()
+        .filter(|(_, n)| *n != 0)
+        .map(|((l, k, _), _)| (l.clone(), k.clone()))
+        .collect();
     changes.retain(|_, n| *n != 0);
     for key in changed_in_place {
         changes.entry(key).or_insert(0);
