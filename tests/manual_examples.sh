@@ -171,12 +171,18 @@ EOF
       rm part.mpath
       git init -q . && git add part.dxf && git commit -qm "part" ;;
     version-control)
-      # the text examples and a DXF drawing in git, two commits (the second deepens part.dxf)
+      # the text examples and a drawing in git; on `theirs` the drawing's mill line is
+      # deepened one way, on ours (the last commit, HEAD~1..HEAD) another
       cp "$examples/text/2001.mpath" "$examples/text/2010.mpath" "$examples/text/millpath.toml" .
-      cp 2001.mpath part.mpath && millpath text2dxf part.mpath -o part.dxf && rm part.mpath
-      git init -q . && git add . && git commit -qm "parts"
-      sed 's/B-0,2/B-0,4/' 2001.mpath >part.mpath && millpath text2dxf part.mpath -o part.dxf && rm part.mpath
-      git commit -qam "deeper part" ;;
+      cp 2001.mpath part.mpath && millpath text2dxf part.mpath -o part.dxf
+      git init -q . && git add 2001.mpath 2010.mpath millpath.toml part.dxf && git commit -qm "parts"
+      git checkout -q -b theirs
+      sed -i 's/mill (5, 0) -> (25, 0).*/mill (5, 0) -> (25, 0)  B-0,3/' part.mpath
+      millpath text2dxf part.mpath --into part.dxf && git commit -qam "theirs: B-0,3"
+      git checkout -q -
+      sed -i 's/B-0,3/B-0,1/' part.mpath
+      millpath text2dxf part.mpath --into part.dxf && git commit -qam "ours: B-0,1"
+      rm part.mpath ;;
     probes)
       # the NAME of the page: a compiled height-map set, its _Z.txt filled in, the logs
       heightmap_set

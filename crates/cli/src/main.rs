@@ -193,6 +193,24 @@ enum Command {
         #[command(flatten)]
         names: NameArgs,
     },
+    /// git's merge driver for drawings and MillPath texts: `millpath merge %O %A %B %P`
+    ///
+    /// Merges OURS and THEIRS with their common BASE by path and element; the result replaces
+    /// OURS. A conflict exits 1: a .mpath gets git's conflict markers, a drawing stays as it
+    /// was and the merged text with the markers is written beside it (NAME.merge.mpath).
+    Merge {
+        /// The common ancestor (git's %O; empty or missing: both sides added the file)
+        base: PathBuf,
+        /// Our version (git's %A), replaced by the merge
+        ours: PathBuf,
+        /// Their version (git's %B)
+        theirs: PathBuf,
+        /// The file's name in the repository (git's %P): its extension says .dxf or .mpath,
+        /// and a drawing's conflict is written beside it
+        path: Option<PathBuf>,
+        #[command(flatten)]
+        names: NameArgs,
+    },
     /// Format MillPath files in place (directories: all *.mpath below)
     Fmt {
         /// Only check: exit 1 and list the files that are not formatted
@@ -465,6 +483,13 @@ fn main() -> ExitCode {
             delete_missing_paths,
             &names.machine(),
         ),
+        Command::Merge {
+            base,
+            ours,
+            theirs,
+            path,
+            names,
+        } => commands::merge::run(&base, &ours, &theirs, path.as_deref(), &names.machine()),
         Command::Post { action, lang } => {
             let lang = lang_for(lang, None, None);
             match action {

@@ -417,6 +417,10 @@ messages! {
     PostCannot = "The post {0} cannot write {1}: it has no `{2}` (in [capabilities] or [templates]); choose a post that can, or leave {1} out", "Der Post {0} kann {1} nicht schreiben: ihm fehlt `{2}` (in [capabilities] oder [templates]); einen Post wählen, der es kann, oder {1} weglassen";
     // every post's output is checked (issue 32, item 4): a family the checker cannot read is refused
     PostNotVerifiable = "The post {0} writes programs of the {1} family, which the second opinion (verify) cannot read yet: nothing is written unchecked; choose a post of the rs274, grbl or marlin family", "Der Post {0} schreibt Programme der Familie {1}, die die Zweitprüfung (verify) noch nicht lesen kann: ungeprüft wird nichts geschrieben; einen Post der Familie rs274, grbl oder marlin wählen";
+    // the merge driver (issue 34): a conflict keeps our file and writes the merge beside it
+    MergeConflicts = "{0}: {1} conflict(s) in the paths, written with git's conflict markers to {2}: {3}", "{0}: {1} Konflikt(e) in den Pfaden, mit den Konfliktmarken von git nach {2} geschrieben: {3}";
+    MergeOtherContent = "{0}: their side changed the drawing outside the paths ({1}); this is a conflict, nothing of it is merged: carry the change over in CAD (the merged paths are in {2})", "{0}: ihre Seite hat die Zeichnung außerhalb der Pfade geändert ({1}); das ist ein Konflikt, davon wird nichts zusammengeführt: die Änderung im CAD übernehmen (die zusammengeführten Pfade stehen in {2})";
+    MergeBreaksCompile = "{0}: the merged path(s) {1} do not compile, while both sides did: a conflict; the merged text is in {2}", "{0}: die zusammengeführten Pfade {1} lassen sich nicht übersetzen, obwohl beide Seiten es taten: ein Konflikt; der zusammengeführte Text steht in {2}";
 }
 
 impl Msg {

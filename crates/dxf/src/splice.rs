@@ -399,6 +399,11 @@ impl<'a> Target<'a> {
         &self.entities
     }
 
+    /// The bytes of one entity as the file holds them (its `0` group up to the next one).
+    pub fn bytes_of(&self, r: &Record) -> &'a [u8] {
+        &self.bytes[r.bytes.clone()]
+    }
+
     /// The layer names of the LAYER table.
     pub fn layer_names(&self) -> Vec<&str> {
         self.layers

@@ -7,7 +7,7 @@
 //! `adjust_z.rs` (`--probe-log`: the log read bounded, one program), `dxf2text.rs`, `text2dxf.rs`
 //! (its own options; refuses to overwrite a drawing it would damage, `--into`, `--force`), `fmt.rs`
 //! (keeps line ends and a BOM, writes UTF-16 as UTF-8, names mixed line ends), `render.rs`, `diff.rs` (versions from files or git, the report of
-//! `millpath-history`),
+//! `millpath-history`), `merge.rs` (git's merge driver; the merge is `millpath_history::merge`),
 //! `pathdxf2gcode.rs`, `pathgcodeadjustz.rs`.
 
 pub mod adjust_z;
@@ -16,6 +16,7 @@ pub mod compile;
 pub mod diff;
 pub mod dxf2text;
 pub mod fmt;
+pub mod merge;
 pub mod pathdxf2gcode;
 pub mod pathgcodeadjustz;
 pub mod post;

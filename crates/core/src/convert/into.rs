@@ -164,6 +164,23 @@ fn same_path_objects(a: &[u8], b: &[u8], patterns: &Patterns, input: InputMode) 
         })
 }
 
+/// The entities `--into` keeps in `target` when writing the paths named `paths` (the
+/// drawing's other content): layer, type and the entity's bytes. `Err` when it is no DXF.
+pub fn kept_entities(
+    target: &[u8],
+    paths: &[String],
+    patterns: &Patterns,
+    input: InputMode,
+) -> Result<Vec<(String, String, Vec<u8>)>, DxfError> {
+    let t = scan(target)?;
+    let layers = PathLayers::new(patterns, paths);
+    Ok(t.entities()
+        .iter()
+        .filter(|r| !layers.replaces(r, input))
+        .map(|r| (r.layer.clone(), r.kind.clone(), t.bytes_of(r).to_vec()))
+        .collect())
+}
+
 /// What `--into` without the extended mode keeps on the path layers of `target` that the
 /// extended mode replaces: polylines and block references. A text from `dxf2text
 /// --extended` holds them as elements, so kept they would be drawn twice.

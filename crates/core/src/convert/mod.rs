@@ -9,7 +9,9 @@
 //! elsewhere to `PATH~A` layers.
 
 mod into;
-pub use into::{kept_extended_geometry, overwrite_losses, text_into_dxf, IntoOutcome, Losses};
+pub use into::{
+    kept_entities, kept_extended_geometry, overwrite_losses, text_into_dxf, IntoOutcome, Losses,
+};
 
 use crate::build::walk::walk;
 use crate::diag::{Diags, FileRef};
