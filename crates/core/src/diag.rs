@@ -417,6 +417,8 @@ messages! {
     PostCannot = "The post {0} cannot write {1}: it has no `{2}` (in [capabilities] or [templates]); choose a post that can, or leave {1} out", "Der Post {0} kann {1} nicht schreiben: ihm fehlt `{2}` (in [capabilities] oder [templates]); einen Post wählen, der es kann, oder {1} weglassen";
     // every post's output is checked (issue 32, item 4): a family the checker cannot read is refused
     PostNotVerifiable = "The post {0} writes programs of the {1} family, which the second opinion (verify) cannot read yet: nothing is written unchecked; choose a post of the rs274, grbl or marlin family", "Der Post {0} schreibt Programme der Familie {1}, die die Zweitprüfung (verify) noch nicht lesen kann: ungeprüft wird nichts geschrieben; einen Post der Familie rs274, grbl oder marlin wählen";
+    // the operator's feed override in the time estimate (issue 33)
+    FeedOverrideRange = "feed_override={0} must be a percentage from {1} to {2}", "feed_override={0} muss ein Prozentwert von {1} bis {2} sein";
 }
 
 impl Msg {
