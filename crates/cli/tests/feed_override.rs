@@ -112,7 +112,10 @@ fn an_override_out_of_bounds_is_a_located_error() {
     assert!(!ok && err.contains("feed_override=1200"), "{err}");
     assert!(err.contains("millpath.toml"), "{err}");
     let (_, de) = compiled(dir.path(), &["--lang", "de"]);
-    assert!(de.contains("muss ein Prozentwert von 1 bis 1000 sein"), "{de}");
+    assert!(
+        de.contains("muss ein Prozentwert von 1 bis 1000 sein"),
+        "{de}"
+    );
     let o = millpath(dir.path(), &["check", "1234.1P.dxf"]);
     assert!(!o.status.success());
 }
@@ -139,6 +142,9 @@ fn a_bad_dollar_value_is_a_located_error() {
             assert!(err.contains("millpath.toml"), "{value}: {err}");
         }
         // nothing was written
-        assert!(!dir.path().join("1234.1P_Milling.gcode").exists(), "{value}");
+        assert!(
+            !dir.path().join("1234.1P_Milling.gcode").exists(),
+            "{value}"
+        );
     }
 }
