@@ -17,9 +17,11 @@ position (to within the report interval), minus the dwells (`G4 P…`) the progr
 after its first move, which an estimate counts separately.
 
   sender.py --sim grbl_sim [--speedup K] [--setting '$110=5000' ...] PROGRAM
-prints `SECONDS<TAB>STALLS<TAB>STALLED`: the shortest motion time of the runs, how often in
+prints `SECONDS<TAB>STALLS<TAB>STALLED`: the shortest motion time of the clean runs, how often in
 that run the steppers stood still from speed because the simulator's GRBL thread fell behind
-its clock (0: clean), and the seconds those stalls took; the errors GRBL answered go to stderr (exit 1 when there were any).
+its clock (0: clean; with the simulator of tests/grbl/build_sim.sh, which holds its clock for
+that thread, none were seen; a run with stalls is repeated, at most 3 times), and the seconds
+those stalls took; the errors GRBL answered go to stderr (exit 1 when there were any).
 """
 import argparse
 import os
@@ -158,9 +160,12 @@ def run(sim, speedup, settings, program, report=0.001):
     with tempfile.TemporaryDirectory() as tmp:
         steps = os.path.join(tmp, "steps.txt")
         blocks = os.path.join(tmp, "blocks.txt")
+        # the simulator's own word on its clock (tests/grbl/build_sim.sh: `starved N`)
+        sim_log = os.path.join(tmp, "sim.log")
+        sim_err = open(sim_log, "w")
         p = subprocess.Popen(
             ["stdbuf", "-i0", "-o0", sim, "-t", str(speedup), "-r", str(report), "-s", steps, "-b", blocks],
-            stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+            stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=sim_err,
             cwd=tmp, bufsize=0)
         try:
             answers = queue.Queue()
@@ -249,8 +254,11 @@ def run(sim, speedup, settings, program, report=0.001):
         if os.environ.get("GRBL_SENDER_KEEP"):
             import shutil
             shutil.copy(steps, os.environ["GRBL_SENDER_KEEP"])
+        sim_err.close()
         t = motion_time(steps, report)
         stutter, lost = starved(steps, report)
+        with open(sim_log) as f:
+            stutter += sum(1 for l in f if l.startswith("starved"))
     return t - program_dwells(lines), stutter, lost, errors
 
 
@@ -264,18 +272,26 @@ def main():
                     "simulator's steppers only ever lose time when its threads race)")
     ap.add_argument("program")
     a = ap.parse_args()
-    times = []
+    # clean runs (no stall) and the others; a run with stalls is repeated
+    clean, stalled_runs = [], []
+    errors = []
     for attempt in range(a.runs + 3):
         try:
             t, stutter, lost, errors = run(a.sim, a.speedup, a.setting, a.program)
-            times.append((t, stutter, lost))
-            if errors or len(times) == a.runs:
-                break
         except Stalled:
             print(f"{a.program}: the simulator stalled; again", file=sys.stderr)
-    if not times:
+            continue
+        (clean if stutter == 0 else stalled_runs).append((t, stutter, lost))
+        if stutter:
+            print(f"{a.program}: {stutter} stalls in that run; again", file=sys.stderr)
+        if errors or len(clean) == a.runs:
+            break
+    if not clean and not stalled_runs:
         sys.exit(f"{a.program}: the simulator stalled every time")
-    t, stutter, lost = min(times)
+    if len(clean) > 1:
+        spread = (max(clean)[0] - min(clean)[0]) / min(clean)[0]
+        print(f"{a.program}: {len(clean)} clean runs, spread {100 * spread:.2f} %", file=sys.stderr)
+    t, stutter, lost = min(clean or stalled_runs)
     for e in errors:
         print(f"{a.program}: GRBL answered {e}", file=sys.stderr)
     # the time, how often GRBL's thread left the steppers without steps (0: a clean run), and

@@ -59,6 +59,10 @@ pub struct MachineArgs {
     /// Seconds to wait after the spindle start (or `spindle_dwell`; default 2)
     #[arg(long, value_parser = crate::numbers::decimal)]
     pub spindle_dwell: Option<f64>,
+    /// Feed override (percent, 1–1000) the time estimate assumes: the feeds scale, the
+    /// rapids and the acceleration phases do not (or `feed_override`; default 100)
+    #[arg(long, value_name = "PERCENT", value_parser = crate::numbers::decimal)]
+    pub feed_override: Option<f64>,
     /// Read polylines, blocks, line-type names of other CAD programs and $INSUNITS (or
     /// `input = "extended"`; default: as PathDxf2GCode, with a warning for what it ignores)
     #[arg(long)]
@@ -205,6 +209,7 @@ pub fn settings_for(
         ("plunge_feed", m.plunge_feed.is_some()),
         ("spindle_rpm", m.spindle_rpm.is_some()),
         ("spindle_dwell", m.spindle_dwell.is_some()),
+        ("feed_override", m.feed_override.is_some()),
     ] {
         if given {
             s.option_keys.push(key);
@@ -264,6 +269,9 @@ pub fn settings_for(
     }
     if let Some(v) = m.spindle_dwell {
         s.spindle_dwell = v;
+    }
+    if let Some(v) = m.feed_override {
+        s.feed_override = v;
     }
     if let Some(l) = m.lang {
         s.lang = to_lang(l);

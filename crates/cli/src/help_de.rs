@@ -98,6 +98,7 @@ fn arg(cmd: &str, id: &str) -> Option<&'static str> {
         "plunge_feed" => Some("Eintauchvorschub in linuxcnc/grbl, mm/min (oder `plunge_feed`; Standard der halbe Vorschub)"),
         "spindle_rpm" => Some("Spindeldrehzahl in linuxcnc/grbl: M3 S… am Anfang, M5 am Ende (oder `spindle_rpm`)"),
         "spindle_dwell" => Some("Sekunden Wartezeit nach dem Spindelstart (oder `spindle_dwell`; Standard 2)"),
+        "feed_override" => Some("Vorschub-Override (Prozent, 1–1000), mit dem die Zeitschätzung rechnet: die Vorschübe skalieren, Eilgänge und Beschleunigungsphasen nicht (oder `feed_override`; Standard 100)"),
         "heightmap_step" => Some("Ein Raster über den Fräsbewegungen antasten, Punkte alle STEP mm (oder `step` in `[heightmap]`; linuxcnc und grbl)"),
         "heightmap_margin" => Some("Rand um die Fräsbewegungen für die Höhenkarte, mm (oder `margin` in `[heightmap]`; Standard 0)"),
         "probe_split" => Some("Bei gezeichneten Messpunkten Bewegungen länger als L mm in Teilstücken fräsen, jedes an seinem eigenen Anfang korrigiert (oder `probe_split`; linuxcnc und grbl)"),

@@ -421,6 +421,8 @@ messages! {
     MergeConflicts = "{0}: {1} conflict(s) in the paths, written with git's conflict markers to {2}: {3}", "{0}: {1} Konflikt(e) in den Pfaden, mit den Konfliktmarken von git nach {2} geschrieben: {3}";
     MergeOtherContent = "{0}: their side changed the drawing outside the paths ({1}); this is a conflict, nothing of it is merged: carry the change over in CAD (the merged paths are in {2})", "{0}: ihre Seite hat die Zeichnung außerhalb der Pfade geändert ({1}); das ist ein Konflikt, davon wird nichts zusammengeführt: die Änderung im CAD übernehmen (die zusammengeführten Pfade stehen in {2})";
     MergeBreaksCompile = "{0}: the merged path(s) {1} do not compile, while both sides did: a conflict; the merged text is in {2}", "{0}: die zusammengeführten Pfade {1} lassen sich nicht übersetzen, obwohl beide Seiten es taten: ein Konflikt; der zusammengeführte Text steht in {2}";
+    // the operator's feed override in the time estimate (issue 33)
+    FeedOverrideRange = "feed_override={0} must be a percentage from {1} to {2}", "feed_override={0} muss ein Prozentwert von {1} bis {2} sein";
 }
 
 impl Msg {

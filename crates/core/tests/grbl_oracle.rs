@@ -1,14 +1,13 @@
 //! The GRBL time model against GRBL 1.1h's own firmware on its simulator: every program of
 //! the GRBL oracle (`tests/grbl_oracle.sh`) under each of its machines (`tests/grbl/machines`:
 //! a slow stiff router, a fast light machine, GRBL's defaults) is estimated here and held
-//! within 2 % of the motion time recorded in `fixtures/grbl_times.tsv` — every run the
-//! recording marks clean. The simulator runs GRBL's main loop and its clock in two threads;
-//! on a busy computer the main loop can fall behind and leave the steppers without steps, so
-//! they stop dead from speed, which no real controller does: the sender counts those stalls
-//! (the fourth column), and a run with any is shown in the table but not held to 2 %. The synthetic
-//! programs are read from `tests/planner/programs`; the examples and shared drawings are
-//! compiled as the script compiles them (the shared ones are skipped, with a note, when
-//! `../shared` is absent).
+//! within 2 % of the motion time recorded in `fixtures/grbl_times.tsv`, every row. The
+//! simulator the oracle builds (`tests/grbl/build_sim.sh`) holds its clock while GRBL's main
+//! loop is behind, so a busy computer no longer stalls its steppers; the sender still counts
+//! stalls (the fourth column) and a recorded row with any fails here. The synthetic programs
+//! are read from `tests/planner/programs`; the examples and shared drawings are compiled as
+//! the script compiles them (the shared ones are skipped, with a note, when `../shared` is
+//! absent).
 
 mod support;
 
@@ -123,30 +122,28 @@ fn the_model_keeps_within_two_percent_of_grbls_planner() {
             None => skipped += 1,
         }
     }
-    let mut table = String::from(
-        "machine\tprogram\tGRBL s\tmillpath s\tratio\tstalls\tGRBL s without them\tratio\n",
-    );
-    for (m, name, e, g, stalls, stalled) in &rows {
+    let mut table = String::from("machine\tprogram\tGRBL s\tmillpath s\tratio\tstalls\n");
+    for (m, name, e, g, stalls, _) in &rows {
         let stalls = match *stalls {
             usize::MAX => "?".to_string(),
             n => n.to_string(),
         };
-        let without = g - stalled;
-        table += &format!(
-            "{m}\t{name}\t{g:.3}\t{e:.3}\t{:.4}\t{stalls}\t{without:.3}\t{:.4}\n",
-            e / g,
-            e / without
-        );
+        table += &format!("{m}\t{name}\t{g:.3}\t{e:.3}\t{:.4}\t{stalls}\n", e / g);
     }
     println!("{table}");
     if skipped > 0 {
         println!("note: {skipped} shared drawings skipped (../shared is absent)");
     }
-    let clean = rows.iter().filter(|r| r.4 == 0).count();
-    assert!(clean >= 3, "too few clean runs recorded: {clean}\n{table}");
+    // the examples alone (without ../shared) are still rows under every machine
+    assert!(rows.len() >= 9, "too few rows: {}\n{table}", rows.len());
+    let unclean: Vec<_> = rows.iter().filter(|r| r.4 != 0).collect();
+    assert!(
+        unclean.is_empty(),
+        "recorded with stalls: {unclean:?}\n{table}"
+    );
     let off: Vec<_> = rows
         .iter()
-        .filter(|(_, _, e, g, stalls, _)| *stalls == 0 && ((e / g) - 1.0).abs() > TOLERANCE)
+        .filter(|(_, _, e, g, _, _)| ((e / g) - 1.0).abs() > TOLERANCE)
         .collect();
     assert!(off.is_empty(), "beyond 2 %: {off:?}\n{table}");
 }

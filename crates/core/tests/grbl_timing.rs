@@ -22,6 +22,7 @@ fn grbl(g: Grbl) -> TimeModel {
     TimeModel::Grbl {
         settings: g,
         start_dwell: 0.0,
+        feed_override: 100.0,
     }
 }
 
@@ -219,14 +220,15 @@ fn the_controller_follows_the_dialect_unless_given() {
     let s = settings_from(
         "dialect = \"linuxcnc\"\n[machine]\nmax_velocity = 3000\nmax_acceleration = 200\n",
     );
-    assert!(matches!(s.time_model(), Some(TimeModel::LinuxCnc(_))));
+    assert!(matches!(s.time_model(), Some(TimeModel::LinuxCnc { .. })));
     // controller = "grbl" alone: GRBL's defaults, whatever the dialect
     let s = settings_from("[machine]\ncontroller = \"grbl\"\n");
     assert_eq!(
         s.time_model(),
         Some(TimeModel::Grbl {
             settings: Grbl::default(),
-            start_dwell: 0.0
+            start_dwell: 0.0,
+            feed_override: 100.0,
         })
     );
     // grbl without any machine value: the reference's model, as before
@@ -281,4 +283,119 @@ fn bad_grbl_values_are_located_errors() {
     // an unknown key: the parser names it and its line
     let err = parse("[machine]\n\"$999\" = 1\n", Path::new(".")).unwrap_err();
     assert!(err.contains("$999") && err.contains("line 2"), "{err}");
+}
+
+/// A sweep (rapid) in the XY plane at Z0 to (x, y).
+fn sweep(x: f64, y: f64) -> Item {
+    Item {
+        kind: Kind::HSweep,
+        ..cut(x, y, 0.0)
+    }
+}
+
+#[test]
+fn the_feed_override_scales_the_feeds_not_the_rapids_nor_the_ramps() {
+    let g = Grbl {
+        max_rate: Axes::all(6000.0),
+        acceleration: Axes::all(100.0),
+        ..Grbl::default()
+    };
+    let at = |percent: f64, items: &[Item]| {
+        let m = TimeModel::Grbl {
+            settings: g,
+            start_dwell: 0.0,
+            feed_override: percent,
+        };
+        seconds(&m, items)
+    };
+    // 100 mm at F600 (10 mm/s), a = 100 mm/s²: 0.1 s and 0.5 mm to reach it, the same to
+    // stop; 99 mm at 10 mm/s: 10.1 s
+    let line = [cut(100.0, 0.0, 600.0)];
+    assert!(
+        (at(100.0, &line) - 10.1).abs() < 1e-6,
+        "{}",
+        at(100.0, &line)
+    );
+    // at 200 %: 20 mm/s, 0.2 s and 2 mm each way, 96 mm at 20 mm/s: 5.2 s (not 10.1 / 2:
+    // the ramps do not get shorter)
+    assert!(
+        (at(200.0, &line) - 5.2).abs() < 1e-6,
+        "{}",
+        at(200.0, &line)
+    );
+    // at 50 %: 5 mm/s, 0.05 s and 0.125 mm each way, 99.75 mm at 5 mm/s: 20.05 s
+    assert!(
+        (at(50.0, &line) - 20.05).abs() < 1e-6,
+        "{}",
+        at(50.0, &line)
+    );
+    // the axes' rate caps an override: F3000 at 1000 % would be 500 mm/s, $110 allows 100
+    let fast = [cut(100.0, 0.0, 3000.0)];
+    assert_eq!(at(1000.0, &fast), at(200.0, &fast));
+    // a rapid does not follow the feed override: 100 mm at $110 = 100 mm/s, a = 100: 1 s
+    // and 50 mm to reach it, the same to stop (a triangle: 2 s)
+    let rapid = [sweep(100.0, 0.0)];
+    for percent in [1.0, 50.0, 100.0, 1000.0] {
+        assert!((at(percent, &rapid) - 2.0).abs() < 1e-6, "{percent}");
+    }
+    // the line of the statistics names the override, in both languages; none at 100 %
+    let m = TimeModel::Grbl {
+        settings: g,
+        start_dwell: 0.0,
+        feed_override: 120.0,
+    };
+    assert!(
+        m.line(Lang::En).ends_with(", feed override 120 %"),
+        "{}",
+        m.line(Lang::En)
+    );
+    assert!(
+        m.line(Lang::De).ends_with(", Vorschub-Override 120 %"),
+        "{}",
+        m.line(Lang::De)
+    );
+    assert!(!grbl(g).line(Lang::En).contains("override"));
+}
+
+#[test]
+fn the_feed_override_comes_from_millpath_toml_within_its_bounds() {
+    let s = settings_from(
+        "dialect = \"grbl\"\nfeed_override = 120\n[machine]\ncontroller = \"grbl\"\n",
+    );
+    assert!(s.number_errors().is_empty(), "{:?}", s.number_errors());
+    assert_eq!(s.time_model().unwrap().feed_override(), 120.0);
+    // and reaches LinuxCNC's planner the same way
+    let s = settings_from("feed_override = 80\n[machine]\nmax_acceleration = 200\n");
+    assert!(matches!(
+        s.time_model(),
+        Some(TimeModel::LinuxCnc { feed_override, .. }) if feed_override == 80.0
+    ));
+    for (value, msg) in [
+        ("0", Msg::FeedOverrideRange),
+        ("0.5", Msg::FeedOverrideRange),
+        ("-20", Msg::FeedOverrideRange),
+        ("1000.5", Msg::FeedOverrideRange),
+        ("nan", Msg::SettingNotFinite),
+        ("inf", Msg::SettingNotFinite),
+        ("1e300", Msg::SettingNotFinite),
+    ] {
+        let s = settings_from(&format!("feed_override = {value}\n"));
+        let errors = s.number_errors();
+        assert_eq!(errors.len(), 1, "{value}: {errors:?}");
+        let e = &errors[0];
+        assert_eq!(e.msg, msg, "{value}");
+        assert!(
+            matches!(&e.origin, Origin::File(f) if f.path.ends_with("millpath.toml")),
+            "{value}: {:?}",
+            e.origin
+        );
+        assert!(e.message(Lang::En).contains("feed_override"));
+        assert!(e.message(Lang::De).contains("feed_override"));
+        assert_ne!(e.message(Lang::En), e.message(Lang::De));
+    }
+    // the bounds themselves are fine
+    for value in ["1", "1000"] {
+        let s = settings_from(&format!("feed_override = {value}\n"));
+        assert!(s.number_errors().is_empty(), "{value}");
+    }
 }

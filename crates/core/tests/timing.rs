@@ -520,3 +520,44 @@ fn random_programs_get_sane_times() {
         );
     }
 }
+
+#[test]
+fn the_feed_override_is_the_feeds_scaled_in_linuxcncs_planner() {
+    // LinuxCNC's feed override scales the requested speed of the feed moves (within the
+    // axes' limits) and leaves the traverses alone: a program at 150 % is planned as the same
+    // program with 1.5 × its feeds, and its rapids take the same time at any override
+    let program = |scale: f64| {
+        vec![
+            item(Kind::HSweep, 30.0, 0.0, xy(0.0, 30.0)),
+            cut(40.0, 30.0, 40.0, 1200.0 * scale),
+            cut(40.0, 0.0, 30.0, 900.0 * scale),
+            cut(0.0, 0.0, 40.0, 3000.0 * scale),
+            item(Kind::HSweep, 30.0, 0.0, xy(0.0, 30.0)),
+        ]
+    };
+    let at = |percent: f64, items: &[Item]| {
+        let m = TimeModel::LinuxCnc {
+            machine: machine(),
+            feed_override: percent,
+        };
+        m.plan(items, ORIGIN)
+    };
+    for percent in [1.0, 50.0, 150.0, 1000.0] {
+        let over = at(percent, &program(1.0));
+        let scaled = at(100.0, &program(percent / 100.0));
+        assert!(
+            (over.mill - scaled.mill).abs() < 1e-9,
+            "{percent}: {over:?} {scaled:?}"
+        );
+        assert!((over.sweep - scaled.sweep).abs() < 1e-9, "{percent}");
+        // the cuts speed up (until the axes' 100 mm/s cap), the sweeps do not
+        let plain = at(100.0, &program(1.0));
+        if percent > 100.0 {
+            assert!(over.mill < plain.mill, "{percent}");
+        }
+        assert!((over.sweep - plain.sweep).abs() < 1e-9, "{percent}");
+    }
+    // at 1000 % every feed is above the axes' 100 mm/s: what 2000 % gives as well
+    let capped = at(1000.0, &program(1.0)).mill;
+    assert!((capped - at(2000.0, &program(1.0)).mill).abs() < 1e-9);
+}

@@ -19,6 +19,7 @@ function settings(): MachineSettings {
     sweepSpeed: c.get<number | null>('machine.sweepSpeed'),
     sweepHeight: c.get<number | null>('machine.sweepHeight'),
     probeFeed: c.get<number | null>('machine.probeFeed'),
+    feedOverride: c.get<number | null>('feedOverride'),
     language: c.get<string>('language'),
   };
 }
@@ -135,7 +136,7 @@ export async function activate(ctx: vscode.ExtensionContext): Promise<void> {
           status.text = `$(error) ${r.path || name || 'millpath'}: no G-code`;
           status.tooltip = r.errors.join('\n');
         } else {
-          status.text = `$(tools) ${statusText(r.path, r.stats, r.time)}`;
+          status.text = `$(tools) ${statusText(r.path, r.stats, r.time, settings().feedOverride)}`;
           status.tooltip = r.stats.join('\n');
         }
       } catch {

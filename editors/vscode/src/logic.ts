@@ -7,6 +7,8 @@ export interface MachineSettings {
   sweepSpeed?: number | null;
   sweepHeight?: number | null;
   probeFeed?: number | null;
+  /** The operator's feed override (percent) the time estimate assumes. */
+  feedOverride?: number | null;
   language?: string;
 }
 
@@ -21,6 +23,7 @@ export function initializationOptions(s: MachineSettings): Record<string, unknow
   put('sweep_speed', s.sweepSpeed);
   put('sweep_height', s.sweepHeight);
   put('probe_feed', s.probeFeed);
+  put('feed_override', s.feedOverride);
   if (s.language === 'en' || s.language === 'de') out.lang = s.language;
   return out;
 }
@@ -115,9 +118,10 @@ function unquote(s: string): string {
 /**
  * Status-bar text from the five statistics lines and the exact time (`h:mm:ss`, from a server
  * that sends it): `path · 115 mm · 0:01:47 · 8 commands`; without the exact time the
- * statistics' whole minutes, `≈2 min`.
+ * statistics' whole minutes, `≈2 min`. A feed override other than 100 % (the setting the
+ * server estimated with) follows the time: `0:01:31 at 120 %`.
  */
-export function statusText(path: string, stats: string[], time?: string): string {
+export function statusText(path: string, stats: string[], time?: string, feedOverride?: number | null): string {
   const num = (line: string | undefined, re: RegExp) => (line ? re.exec(line)?.[1] : undefined);
   const total = stats[3];
   const mm = num(total, /(\d+)\s*mm/);
@@ -125,8 +129,9 @@ export function statusText(path: string, stats: string[], time?: string): string
   const count = num(stats[4], /(\d+)\s*$/);
   const parts = [path];
   if (mm) parts.push(`${mm} mm`);
-  if (time && /^\d+:\d\d:\d\d$/.test(time)) parts.push(time);
-  else if (min) parts.push(`≈${min} min`);
+  const override = typeof feedOverride === 'number' && Number.isFinite(feedOverride) && feedOverride !== 100 ? ` at ${feedOverride} %` : '';
+  if (time && /^\d+:\d\d:\d\d$/.test(time)) parts.push(time + override);
+  else if (min) parts.push(`≈${min} min${override}`);
   if (count) parts.push(`${count} commands`);
   return parts.join(' · ');
 }

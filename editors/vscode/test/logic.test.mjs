@@ -12,6 +12,9 @@ test('initialization options carry only the settings that are set', () => {
     lang: 'de',
   });
   assert.deepEqual(logic.initializationOptions({ feed: Number.NaN, language: 'fr' }), {});
+  // the feed override as millpath.toml's key
+  assert.deepEqual(logic.initializationOptions({ feedOverride: 120 }), { feed_override: 120 });
+  assert.deepEqual(logic.initializationOptions({ feedOverride: null }), {});
 });
 
 test('server command: setting, bundled binary, PATH', () => {
@@ -57,6 +60,11 @@ test('status text from statistics lines (English and German)', () => {
   assert.equal(logic.statusText('8999.1P', en, '0:01:47'), '8999.1P · 185 mm · 0:01:47 · 8 commands');
   assert.equal(logic.statusText('8999.1P', en, ''), '8999.1P · 185 mm · ≈2 min · 8 commands');
   assert.equal(logic.statusText('8999.1P', en, 'soon'), '8999.1P · 185 mm · ≈2 min · 8 commands');
+  // the feed override the estimate assumes follows the time (none at 100 %)
+  assert.equal(logic.statusText('8999.1P', en, '0:01:31', 120), '8999.1P · 185 mm · 0:01:31 at 120 % · 8 commands');
+  assert.equal(logic.statusText('8999.1P', en, '', 80), '8999.1P · 185 mm · ≈2 min at 80 % · 8 commands');
+  assert.equal(logic.statusText('8999.1P', en, '0:01:47', 100), '8999.1P · 185 mm · 0:01:47 · 8 commands');
+  assert.equal(logic.statusText('8999.1P', en, '0:01:47', null), '8999.1P · 185 mm · 0:01:47 · 8 commands');
 });
 
 test('preview text: the G-code, or the errors instead of it', () => {

@@ -137,3 +137,50 @@ test('a post file: the extension serves it, its errors are diagnostics, the prev
   conn.dispose();
   proc.kill();
 });
+
+test('the feed override setting reaches the server: the estimate at that override', async () => {
+  // a machine model (LinuxCNC's planner from [machine]): the estimate follows the override
+  const dir = mkdtempSync(join(tmpdir(), 'millpath-vscode-'));
+  const text = readFileSync(join(repo, 'examples/text/2020.mpath'), 'utf8');
+  const file = join(dir, '2020.mpath');
+  writeFileSync(file, text);
+  writeFileSync(join(dir, 'millpath.toml'), '[machine]\nmax_velocity = 4000\nmax_acceleration = 200\n');
+  const seconds = (hms) => hms.split(':').reduce((a, v) => a * 60 + Number(v), 0);
+  const preview = async (feedOverride) => {
+    const proc = spawn(bin, ['lsp'], { stdio: ['pipe', 'pipe', 'ignore'] });
+    const conn = rpc.createMessageConnection(new rpc.StreamMessageReader(proc.stdout), new rpc.StreamMessageWriter(proc.stdin));
+    conn.listen();
+    const settings = { feed: 300, sweepSpeed: 1000, sweepHeight: 10, probeFeed: 50, feedOverride, language: 'en' };
+    await conn.sendRequest('initialize', {
+      processId: process.pid,
+      rootUri: fileUri(dir),
+      capabilities: {},
+      initializationOptions: logic.initializationOptions(settings),
+      workspaceFolders: [{ uri: fileUri(dir), name: 'ws' }],
+    });
+    await conn.sendNotification('initialized', {});
+    const uri = fileUri(file);
+    await conn.sendNotification('textDocument/didOpen', { textDocument: { uri, languageId: 'millpath', version: 1, text } });
+    const pv = await conn.sendRequest('millpath/gcodePreview', { textDocument: { uri }, path: '2020.1P' });
+    await conn.sendRequest('shutdown');
+    await conn.sendNotification('exit');
+    conn.dispose();
+    proc.kill();
+    return pv;
+  };
+  const plain = await preview(null);
+  const faster = await preview(300);
+  // the same moves (the statistics in the program's comments name the override), a shorter
+  // estimate (but more than a third: rapids and ramps stay)
+  const moves = (gcode) => gcode.split('\n').filter((l) => !l.trim().startsWith('('));
+  assert.deepEqual(moves(faster.gcode), moves(plain.gcode));
+  assert.match(faster.gcode, /feed override 300 %/);
+  assert.doesNotMatch(plain.gcode, /override/);
+  assert.ok(seconds(faster.time) < seconds(plain.time), `${faster.time} ${plain.time}`);
+  assert.ok(seconds(faster.time) > seconds(plain.time) / 3, `${faster.time} ${plain.time}`);
+  // what `millpath compile --feed-override 300` says, and the status bar names it
+  const summary = spawnSync(bin, ['compile', '-f', '300', '-v', '1000', '-s', '10', '-z', '50', '--feed-override', '300', '--lang', 'en', file], { encoding: 'utf8' }).stderr;
+  assert.match(summary, new RegExp(`Estimated time: ${faster.time}\\n`));
+  assert.match(summary, /feed override 300 %/);
+  assert.match(logic.statusText(faster.path, faster.stats, faster.time, 300), new RegExp(`· ${faster.time} at 300 % ·`));
+});

@@ -39,6 +39,8 @@ pub struct FileConfig {
     pub plunge_feed: Option<f64>,
     pub spindle_rpm: Option<f64>,
     pub spindle_dwell: Option<f64>,
+    /// The operator's feed override (percent) the time estimates assume.
+    pub feed_override: Option<f64>,
     /// `[machine]`: limits for the time estimates.
     pub machine: Option<MachineConfig>,
     /// `reference` (default) or `extended`: polylines, blocks, line-type aliases, units.
@@ -210,6 +212,9 @@ impl FileConfig {
         }
         if let Some(v) = self.spindle_dwell {
             s.spindle_dwell = v;
+        }
+        if let Some(v) = self.feed_override {
+            s.feed_override = v;
         }
         if let Some(i) = self.input {
             s.input = i;

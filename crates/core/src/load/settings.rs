@@ -9,7 +9,7 @@ use crate::diag::Lang;
 use crate::diag::{Diagnostic, Msg, Origin};
 use crate::machine::{
     Axes, Dialect, GrblValues, Machine, Planner, TimeModel, DEFAULT_PATH_TOLERANCE,
-    DEFAULT_SPINDLE_DWELL,
+    DEFAULT_SPINDLE_DWELL, FEED_OVERRIDE_RANGE, NO_FEED_OVERRIDE,
 };
 use crate::params::MAX_MAGNITUDE;
 use crate::probe::heightmap::Heightmap;
@@ -70,6 +70,9 @@ pub struct Settings {
     pub spindle_rpm: Option<f64>,
     /// Seconds to wait after the spindle start (`G4 P…`; 0: no wait).
     pub spindle_dwell: f64,
+    /// The operator's feed override (percent) the time estimates assume
+    /// (`--feed-override`, `feed_override`; 100: none).
+    pub feed_override: f64,
     /// Maximum velocity per axis (mm/min) for the time estimates; `None`: `/v` on every axis.
     pub max_velocity: Option<Axes>,
     /// MAX_ACCELERATION per axis (mm/s²). Set: the statistics use the LinuxCNC planner time model
@@ -134,6 +137,7 @@ impl Default for Settings {
             plunge_feed: None,
             spindle_rpm: None,
             spindle_dwell: DEFAULT_SPINDLE_DWELL,
+            feed_override: NO_FEED_OVERRIDE,
             max_velocity: None,
             max_acceleration: None,
             path_tolerance: DEFAULT_PATH_TOLERANCE,
@@ -178,6 +182,7 @@ impl Settings {
         values.extend(self.plunge_feed.map(|v| ("plunge_feed", v)));
         values.extend(self.spindle_rpm.map(|v| ("spindle_rpm", v)));
         values.push(("spindle_dwell", self.spindle_dwell));
+        values.push(("feed_override", self.feed_override));
         values.extend(self.cut_cell.map(|v| ("cut_cell", v)));
         let machine = self.machine_values();
         values.extend(machine.iter().cloned());
@@ -229,6 +234,18 @@ impl Settings {
                 Msg::OptionNegative,
                 self.origin_of("spindle_dwell"),
                 args!["spindle_dwell", crate::params::fmt_num(self.spindle_dwell)],
+            ));
+        }
+        let (least, most) = FEED_OVERRIDE_RANGE;
+        if finite(self.feed_override) && !(least..=most).contains(&self.feed_override) {
+            errors.push(Diagnostic::error(
+                Msg::FeedOverrideRange,
+                self.origin_of("feed_override"),
+                args![
+                    crate::params::fmt_num(self.feed_override),
+                    crate::params::fmt_num(least),
+                    crate::params::fmt_num(most)
+                ],
             ));
         }
         errors.extend(self.heightmap_errors());
@@ -423,7 +440,10 @@ impl Settings {
     /// `None`: the reference's model.
     pub fn time_model(&self) -> Option<TimeModel> {
         match self.planner() {
-            Planner::LinuxCnc => self.machine().map(TimeModel::LinuxCnc),
+            Planner::LinuxCnc => self.machine().map(|machine| TimeModel::LinuxCnc {
+                machine,
+                feed_override: self.feed_override,
+            }),
             Planner::Grbl => {
                 let given = self.planner.is_some()
                     || self.grbl.any()
@@ -438,6 +458,7 @@ impl Settings {
                     } else {
                         0.0
                     },
+                    feed_override: self.feed_override,
                 })
             }
         }

@@ -12,4 +12,4 @@ pub use checked::{NotRead, Reading};
 pub use dialect::{Dialect, DEFAULT_SPINDLE_DWELL};
 pub use grbl::{Grbl, GrblValues};
 pub use limits::{Axes, Machine, DEFAULT_PATH_TOLERANCE};
-pub use time_model::{Planner, TimeModel};
+pub use time_model::{Planner, TimeModel, FEED_OVERRIDE_RANGE, NO_FEED_OVERRIDE};

@@ -17,19 +17,38 @@ pub enum Planner {
     Grbl,
 }
 
-/// A time model with its machine.
+/// The operator's feed override (percent) the estimates assume when none is given.
+pub const NO_FEED_OVERRIDE: f64 = 100.0;
+
+/// The bounds of the feed override (percent): GRBL's own are 10–200, LinuxCNC's up to its
+/// MAX_FEED_OVERRIDE; these keep the estimate meaningful for any of them.
+pub const FEED_OVERRIDE_RANGE: (f64, f64) = (1.0, 1000.0);
+
+/// A time model with its machine. `feed_override` (percent; 100: none) is the operator's
+/// override the estimate assumes: it scales the feeds of the cuts within the machine's
+/// limits, not the rapids, and the planner keeps its acceleration phases.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum TimeModel {
     /// LinuxCNC 2.9's trajectory planner.
-    LinuxCnc(Machine),
+    LinuxCnc {
+        machine: Machine,
+        feed_override: f64,
+    },
     /// GRBL 1.1's planner; `start_dwell`: the seconds the program waits after starting the
     /// spindle (`G4`, counted with the moves).
-    Grbl { settings: Grbl, start_dwell: f64 },
+    Grbl {
+        settings: Grbl,
+        start_dwell: f64,
+        feed_override: f64,
+    },
 }
 
 impl From<Machine> for TimeModel {
-    fn from(m: Machine) -> TimeModel {
-        TimeModel::LinuxCnc(m)
+    fn from(machine: Machine) -> TimeModel {
+        TimeModel::LinuxCnc {
+            machine,
+            feed_override: NO_FEED_OVERRIDE,
+        }
     }
 }
 
@@ -37,17 +56,39 @@ impl TimeModel {
     /// Seconds the program waits beside its moves (the spindle's start dwell).
     pub fn dwell(&self) -> f64 {
         match self {
-            TimeModel::LinuxCnc(_) => 0.0,
+            TimeModel::LinuxCnc { .. } => 0.0,
             TimeModel::Grbl { start_dwell, .. } => *start_dwell,
         }
     }
 
+    /// The operator's feed override (percent) the estimate assumes.
+    pub fn feed_override(&self) -> f64 {
+        match self {
+            TimeModel::LinuxCnc { feed_override, .. } | TimeModel::Grbl { feed_override, .. } => {
+                *feed_override
+            }
+        }
+    }
+
     /// The statistics line naming the model, e.g. `Time model: GRBL planner, $110–$112
-    /// X5000/Y5000/Z1000 mm/min, $120–$122 X500/Y500/Z200 mm/s^2, $11 0.01, $12 0.002`.
+    /// X5000/Y5000/Z1000 mm/min, $120–$122 X500/Y500/Z200 mm/s^2, $11 0.01, $12 0.002`, and
+    /// the feed override when there is one (`, feed override 120 %`).
     pub fn line(&self, lang: Lang) -> String {
+        let line = self.model_line(lang);
+        let f = self.feed_override();
+        if f == NO_FEED_OVERRIDE {
+            return line;
+        }
+        match lang {
+            Lang::En => format!("{line}, feed override {} %", fmt_num(f)),
+            Lang::De => format!("{line}, Vorschub-Override {} %", fmt_num(f)),
+        }
+    }
+
+    fn model_line(&self, lang: Lang) -> String {
         let axes = |a: &Axes| format!("X{}/Y{}/Z{}", fmt_num(a.x), fmt_num(a.y), fmt_num(a.z));
         match self {
-            TimeModel::LinuxCnc(m) => {
+            TimeModel::LinuxCnc { machine: m, .. } => {
                 let label = match lang {
                     Lang::En => "Time model: LinuxCNC planner",
                     Lang::De => "Zeitmodell: LinuxCNC-Planer",

@@ -12,8 +12,15 @@ pub use crate::machine::{Planner, TimeModel};
 impl TimeModel {
     fn planned(&self, items: &[Item], start: P3) -> Vec<(usize, Bucket, f64)> {
         match self {
-            TimeModel::LinuxCnc(m) => planned(items, start, m),
-            TimeModel::Grbl { settings, .. } => grbl::planned(items, start, settings, 1.0),
+            TimeModel::LinuxCnc {
+                machine,
+                feed_override,
+            } => planned(items, start, machine, feed_override / 100.0),
+            TimeModel::Grbl {
+                settings,
+                feed_override,
+                ..
+            } => grbl::planned(items, start, settings, feed_override / 100.0),
         }
     }
 

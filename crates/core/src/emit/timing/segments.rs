@@ -70,8 +70,9 @@ fn axis_time(d: [f64; 3], limit: &Axes) -> f64 {
 const MIN_MOVE: f64 = 5e-4;
 
 /// The moves of `items` (starting at `start`); moves without length or with a degenerate
-/// speed are left out (they take no time and do not break a blend).
-pub(super) fn segments(items: &[Item], start: P3, m: &Machine) -> Vec<Seg> {
+/// speed are left out (they take no time and do not break a blend). `feed_override` scales the
+/// feeds of the cuts (not the sweeps) within the axes' limits, as LinuxCNC's override does.
+pub(super) fn segments(items: &[Item], start: P3, m: &Machine, feed_override: f64) -> Vec<Seg> {
     let vel = per_second(&m.max_velocity);
     let acc = m.max_acceleration;
     let mut pos = start;
@@ -95,7 +96,7 @@ pub(super) fn segments(items: &[Item], start: P3, m: &Machine) -> Vec<Seg> {
         let req = if rapid {
             seg.vmax
         } else {
-            seg.vmax.min(it.feed / 60.0)
+            seg.vmax.min(it.feed * feed_override / 60.0)
         };
         let ok = |v: f64| v > 0.0 && v.is_finite();
         if seg.len > MIN_MOVE && ok(req) && ok(seg.vmax) && ok(seg.acc) {
