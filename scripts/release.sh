@@ -4,6 +4,8 @@
 #   millpath.exe                Windows x64 (x86_64-pc-windows-gnu, MinGW-w64)
 #   millpath-linux-x64.vsix     VS Code extension with the Linux server
 #   millpath-win32-x64.vsix     VS Code extension with server/millpath.exe
+#   millpath-*-cp39-abi3-*.whl  the Python package (crates/python), Linux x64 and Windows x64:
+#                               one wheel each for every CPython from 3.9 on (maturin, in a venv)
 #   SHA256SUMS                  sha256sum of all of them
 # Installs what it needs when missing (Debian: musl-tools, gcc-mingw-w64-x86-64; the rustup
 # targets; the extension's npm packages). macOS builds come from the GitHub workflow
@@ -45,5 +47,15 @@ x86_64-w64-mingw32-strip --strip-debug "$out/millpath.exe"
   rm -rf server millpath.vsix
 )
 mv editors/vscode/millpath-linux-x64.vsix editors/vscode/millpath-win32-x64.vsix "$out/"
-(cd "$out" && sha256sum millpath-linux-x64 millpath.exe millpath-linux-x64.vsix millpath-win32-x64.vsix >SHA256SUMS)
+# the Python wheels: maturin from PyPI in a venv of its own; the Windows one cross-built with
+# the same MinGW-w64 (PyO3 makes python3.dll's import library itself)
+venv=target/release-venv
+[ -x "$venv/bin/maturin" ] || { python3 -m venv "$venv" && "$venv/bin/pip" install -q 'maturin>=1.9.4,<2'; }
+for t in x86_64-unknown-linux-gnu x86_64-pc-windows-gnu; do
+  t0=$SECONDS
+  "$venv/bin/maturin" build --quiet --release --locked --target "$t" \
+    -m crates/python/Cargo.toml --out "$out"
+  echo "release: the Python wheel for $t built in $((SECONDS - t0)) s"
+done
+(cd "$out" && sha256sum millpath-linux-x64 millpath.exe millpath-linux-x64.vsix millpath-win32-x64.vsix millpath-*.whl >SHA256SUMS)
 ls -l "$out"

@@ -134,6 +134,7 @@ SKIPPED=(
   "docs/src/editors.md|cargo build --release|builds the VS Code extension (npm, VS Code): tests/vscode_e2e.sh"
   "docs/src/install.md|cargo install --path crates/cli|a second full release build into ~/.cargo (minutes); CI builds the same binary"
   "docs/src/playground.md|bash editors/playground/build.sh|the wasm build: .ci/run builds and tests the playground itself"
+  "docs/src/python.md|python3 -m venv|the package's release build: tests/python.sh installs it so and runs the page's Python examples"
 )
 export EDITOR="$work/editor.sh" PATH="$(dirname "$bin"):$PATH"
 home="$work/home" # the blocks' HOME (install.md's ~/.local/bin), not cargo's

@@ -2,7 +2,8 @@
 # Builds the release artefacts (scripts/release.sh) and checks them as a user gets them: the
 # Linux binary is static and passes the conformance cases and the README's command, the .exe
 # is a Windows x64 program and passes the conformance cases under Wine, each .vsix holds the
-# server of its platform, SHA256SUMS matches. Not part of .ci/run: two more release builds
+# server of its platform, the Python wheels install (Linux) and export their module (Windows),
+# SHA256SUMS matches. Not part of .ci/run: two more release builds
 # (musl, Windows) cost CI about 10 minutes on two cores; run it before a release.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -45,6 +46,26 @@ check "millpath-win32-x64.vsix: server/millpath.exe, a Windows x64 program" \
   vsix_server "$a/millpath-win32-x64.vsix" millpath.exe 'PE32+ executable.*x86-64'
 check "millpath-linux-x64.vsix: server/millpath, a static Linux program" \
   vsix_server "$a/millpath-linux-x64.vsix" millpath 'ELF 64-bit.*static'
+# the Python wheels: the Linux one installs in a fresh venv and compiles the example; the
+# Windows one holds a .pyd, a Windows x64 DLL exporting the module's entry (no Windows
+# CPython runs here: PyPI has none, and Debian's Wine has no Python of its own)
+wheel_linux() {
+  local d w
+  d=$(mktemp -d)
+  w=$(ls "$a"/millpath-*-cp39-abi3-*linux*_x86_64.whl)
+  python3 -m venv "$d/venv" && "$d/venv/bin/pip" install -q "$w" &&
+    "$d/venv/bin/python3" -c "import millpath, sys; r = millpath.compile(open(sys.argv[1], 'rb').read(), file_name='1234.1P.dxf', settings={'feed': 300, 'sweep_speed': 1000, 'sweep_height': 10}); assert r.files, r.diagnostics" examples/plate/1234.1P.dxf
+}
+wheel_windows() {
+  local d
+  d=$(mktemp -d)
+  python3 -c "import zipfile,sys; zipfile.ZipFile(sys.argv[1]).extractall(sys.argv[2])" "$(ls "$a"/millpath-*-cp39-abi3-win_amd64.whl)" "$d"
+  file "$d/millpath/_native.pyd" | grep -q 'PE32+ executable (DLL).*x86-64' &&
+    x86_64-w64-mingw32-objdump -p "$d/millpath/_native.pyd" | grep -q 'PyInit__native' &&
+    x86_64-w64-mingw32-objdump -p "$d/millpath/_native.pyd" | grep -q 'DLL Name: python3.dll'
+}
+check "the Linux wheel installs and compiles the example" wheel_linux
+check "the Windows wheel: _native.pyd exports PyInit__native and needs only python3.dll" wheel_windows
 # the .exe of the release under Wine: conformance, command line, language server
 check "the release millpath.exe under Wine (tests/windows.sh)" \
   env MILLPATH_WINE_EXE="$PWD/$a/millpath.exe" bash tests/windows.sh

@@ -9,7 +9,7 @@
 //! its drive (`C:/…`), SARIF URIs `file:///C:/…` (UNC shares as the host), canonical paths without
 //! `\\?\` (`dunce`).
 
-use millpath_core::diag::{Diagnostic, Msg, Origin, Severity};
+use millpath_core::diag::{Diagnostic, Origin, Severity};
 use millpath_core::Lang;
 use serde_json::json;
 use std::path::{Path, PathBuf};
@@ -604,29 +604,7 @@ pub fn github(d: &Diagnostic, lang: Lang) -> String {
 /// the parameter text (`Unsupported b value; 1004.mpath:4:17`, kept in its `****` lines)
 /// lose that second location here: the report locates the message itself.
 pub fn message(d: &Diagnostic, lang: Lang) -> String {
-    let text = d.message(lang);
-    let place = match (d.msg, d.args.get(1)) {
-        (Msg::Unsupported, Some(place)) if is_text_place(place) => place,
-        _ => return text,
-    };
-    match text
-        .strip_suffix(place.as_str())
-        .and_then(|t| t.strip_suffix("; "))
-    {
-        Some(t) => t.to_string(),
-        None => text,
-    }
-}
-
-/// `FILE:LINE:COL`, the place of a text file's parameter text.
-fn is_text_place(s: &str) -> bool {
-    let mut parts = s.rsplitn(3, ':');
-    let numbers = (parts.next(), parts.next());
-    matches!(numbers, (Some(col), Some(line))
-        if !col.is_empty() && !line.is_empty()
-            && col.bytes().all(|b| b.is_ascii_digit())
-            && line.bytes().all(|b| b.is_ascii_digit()))
-        && parts.next().is_some_and(|f| !f.is_empty())
+    d.located_message(lang)
 }
 
 fn escape_data(s: &str) -> String {

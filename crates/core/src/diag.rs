@@ -446,6 +446,17 @@ impl Msg {
 }
 
 /// Fills `{0}`, `{1}` … in a template.
+/// `FILE:LINE:COL`, the place of a text file's parameter text.
+fn is_text_place(s: &str) -> bool {
+    let mut parts = s.rsplitn(3, ':');
+    let numbers = (parts.next(), parts.next());
+    matches!(numbers, (Some(col), Some(line))
+        if !col.is_empty() && !line.is_empty()
+            && col.bytes().all(|b| b.is_ascii_digit())
+            && line.bytes().all(|b| b.is_ascii_digit()))
+        && parts.next().is_some_and(|f| !f.is_empty())
+}
+
 pub fn fill(template: &str, args: &[String]) -> String {
     let mut out = String::with_capacity(template.len() + 16);
     let mut rest = template;
@@ -595,6 +606,22 @@ impl Diagnostic {
             (Msg::CouldNotFind, true, Some(_), Lang::En) => "Could not find path {0}: no drawing in {2} has a file name that covers it (file-name pattern /{3}/)",
             (Msg::CouldNotFind, true, Some(_), Lang::De) => "Pfad {0} nicht gefunden: keine Zeichnung in {2} hat einen Dateinamen, der ihn abdeckt (Dateinamen-Muster /{3}/)",
             _ => self.msg.human_template(lang),
+        }
+    }
+    /// The message as the reports print it beside its location: an unsupported value's
+    /// message without its own `FILE:LINE:COL` suffix (the location says it already).
+    pub fn located_message(&self, lang: Lang) -> String {
+        let text = self.message(lang);
+        let place = match (self.msg, self.args.get(1)) {
+            (Msg::Unsupported, Some(place)) if is_text_place(place) => place,
+            _ => return text,
+        };
+        match text
+            .strip_suffix(place.as_str())
+            .and_then(|t| t.strip_suffix("; "))
+        {
+            Some(t) => t.to_string(),
+            None => text,
         }
     }
     /// The message exactly as the reference prints it in its `****` lines.
