@@ -5,7 +5,7 @@ use crate::Post;
 use std::sync::OnceLock;
 
 /// The built-in posts' names, in the order `millpath post list` shows them.
-pub const NAMES: [&str; 8] = [
+pub const NAMES: [&str; 9] = [
     "reference",
     "linuxcnc",
     "grbl",
@@ -14,9 +14,10 @@ pub const NAMES: [&str; 8] = [
     "centroid",
     "fluidnc",
     "grblhal",
+    "xcam",
 ];
 
-const SOURCES: [&str; 8] = [
+const SOURCES: [&str; 9] = [
     include_str!("../posts/reference.toml"),
     include_str!("../posts/linuxcnc.toml"),
     include_str!("../posts/grbl.toml"),
@@ -25,6 +26,7 @@ const SOURCES: [&str; 8] = [
     include_str!("../posts/centroid.toml"),
     include_str!("../posts/fluidnc.toml"),
     include_str!("../posts/grblhal.toml"),
+    include_str!("../posts/xcam.toml"),
 ];
 
 /// The text of a built-in post.

@@ -38,6 +38,8 @@ mod finding;
 mod grbl;
 mod machine;
 mod magnitude;
+mod ncc;
+mod ncc_problem;
 mod options;
 mod parse;
 mod report;
@@ -58,6 +60,8 @@ pub use finding::{
 };
 pub use machine::SHORT_SPINDLE_DWELL;
 pub use magnitude::MAX_MAGNITUDE;
+pub use ncc::{MAX_REPLAYED, RAPID_CLEARANCE};
+pub use ncc_problem::NccProblem;
 pub use options::{Limits, Options, XY_TOLERANCE, Z_TOLERANCE};
 pub use parse::{only_a_comment, parse_line, Block, Word};
 pub use report::{Report, StockInfo};

@@ -273,6 +273,8 @@ impl Emitter<'_> {
                 (Var::I, i.clone()),
                 (Var::J, Value::Num(j)),
                 (Var::R, Value::Num(r_word)),
+                (Var::CenterX, Value::Num(c.x)),
+                (Var::CenterY, Value::Num(c.y)),
             ];
             e.text(if ccw { Event::ArcCcw } else { Event::ArcCw }, &vars)
         };

@@ -1,0 +1,89 @@
+//! The post's pass events, for a CAM format that names contours instead of moves
+//! (`posts/xcam.toml`): a pass is a run of cutting moves (lines and arcs) between other
+//! moves (rapids, plunges). `pass_start` comes before its first move, at that move's start
+//! point; `pass_end` before the next other move (or the program's last retract), with the
+//! pass's lowest Z. The G-code posts write nothing for them, and then nothing is tracked.
+
+use crate::emit::{Emitter, Kind, Target};
+use crate::geom::P3;
+use millpath_post::{Event, Value, Var};
+
+/// The pass being written, and how many there were.
+#[derive(Debug, Default)]
+pub(crate) struct Passes {
+    open: Option<Open>,
+    count: i64,
+}
+
+#[derive(Debug)]
+struct Open {
+    number: i64,
+    lowest: f64,
+    feed: f64,
+}
+
+impl Emitter<'_> {
+    fn writes_passes(&self) -> bool {
+        self.ctl.post.has(Event::PassStart) || self.ctl.post.has(Event::PassEnd)
+    }
+
+    /// Before a move of `kind` at `feed` is recorded (the tool at `self.at`): opens a pass
+    /// at a cutting move, closes one at any other move.
+    pub(crate) fn pass_before(&mut self, kind: Kind, feed: f64) {
+        if !self.writes_passes() {
+            return;
+        }
+        let cutting = kind == Kind::Mill;
+        match (&self.passes.open, cutting) {
+            (None, true) => {
+                self.passes.count += 1;
+                let number = self.passes.count;
+                let at = self.at;
+                self.passes.open = Some(Open {
+                    number,
+                    lowest: at.z,
+                    feed,
+                });
+                let vars = [
+                    (Var::X, Value::Num(at.x)),
+                    (Var::Y, Value::Num(at.y)),
+                    (Var::Z, Value::Num(at.z)),
+                    (Var::Pass, Value::Int(number)),
+                    (Var::Feed, Value::Num(feed)),
+                ];
+                self.event_line(Event::PassStart, &vars);
+            }
+            (Some(_), false) if kind != Kind::Comment => {
+                let Some(open) = self.passes.open.take() else {
+                    return;
+                };
+                let top = self.globals.stock_top;
+                let vars = [
+                    (Var::Pass, Value::Int(open.number)),
+                    (Var::Depth, Value::Num(open.lowest)),
+                    (Var::CutDepth, Value::Num(top - open.lowest)),
+                    (Var::Feed, Value::Num(open.feed)),
+                ];
+                self.event_line(Event::PassEnd, &vars);
+            }
+            _ => {}
+        }
+    }
+
+    /// Where the last move took the tool: the position a pass starts at, its lowest Z.
+    pub(crate) fn pass_moved(&mut self, t: Target) {
+        self.at = t.end(self.at);
+        if let Some(open) = &mut self.passes.open {
+            open.lowest = open.lowest.min(self.at.z);
+        }
+    }
+}
+
+/// Where the tool is before the first move: above the origin at the start height.
+pub(crate) fn start_position(sx: f64) -> P3 {
+    P3 {
+        x: 0.0,
+        y: 0.0,
+        z: sx,
+    }
+}
