@@ -156,7 +156,7 @@ impl Event {
             Event::Statistics => &[Text],
             Event::RapidXy => &[X, Y],
             Event::RapidZ | Event::Retract => &[Z, ZProbe],
-            Event::Plunge => &[Z, ZProbe, Feed],
+            Event::Plunge => &[X, Y, Z, ZProbe, Feed],
             Event::Linear => &[X, Y, Z, ZProbe, Feed],
             Event::ArcCw | Event::ArcCcw => &[X, Y, Z, ZProbe, Feed, I, J, R, CenterX, CenterY],
             Event::Probe | Event::GridProbe => &[X, Y, Z, Feed],

@@ -1,10 +1,11 @@
 //! The post's pass events, for a CAM format that names contours instead of moves
-//! (`posts/xcam.toml`): a pass is a run of cutting moves (lines and arcs) between other
-//! moves (rapids, plunges). `pass_start` comes before its first move, at that move's start
-//! point; `pass_end` before the next other move (or the program's last retract), with the
-//! pass's lowest Z. The G-code posts write nothing for them, and then nothing is tracked.
+//! (`posts/xcam.toml`): a pass is a run of feed moves (plunges, lines and arcs) between
+//! rapids; a drill element's plunges are not in one where the post writes drills whole
+//! (`drill`). `pass_start` comes before its first move, at that move's start point;
+//! `pass_end` before the next rapid (or the program's last retract), with the pass's lowest
+//! Z. The G-code posts write nothing for them, and then nothing is tracked.
 
-use crate::emit::{Emitter, Kind, Target};
+use crate::emit::{Emitter, Kind, Shape, Target};
 use crate::geom::P3;
 use millpath_post::{Event, Value, Var};
 
@@ -33,7 +34,9 @@ impl Emitter<'_> {
         if !self.writes_passes() {
             return;
         }
-        let cutting = kind == Kind::Mill;
+        // plunges are cut too, but not a drill element's where the post writes drills whole
+        let whole_drill = self.shape == Shape::Drill && self.ctl.post.has(Event::Drill);
+        let cutting = kind == Kind::Mill || (kind == Kind::Drill && !whole_drill);
         match (&self.passes.open, cutting) {
             (None, true) => {
                 self.passes.count += 1;
