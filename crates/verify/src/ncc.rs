@@ -28,9 +28,10 @@ use std::collections::HashMap;
 
 /// Rapids run this far (mm) above the part's top or the highest Z read.
 pub const RAPID_CLEARANCE: f64 = 5.0;
-/// Contour elements the millings may replay in all (a file that mills one long contour
+/// Contour elements the millings may replay in all: each element of a file as long as the
+/// checker reads ([`crate::Limits::max_lines`]) once (a file that mills one long contour
 /// again and again would otherwise make moves without bound).
-pub const MAX_REPLAYED: usize = 4_000_000;
+pub const MAX_REPLAYED: usize = 1_000_000;
 
 /// One finding of a line: where, what and how bad.
 pub(crate) type Found = (usize, FindingKind, Severity);
