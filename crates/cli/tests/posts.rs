@@ -396,7 +396,7 @@ fn xcam_refuses_what_it_cannot_write_and_its_files_verify() {
         assert!(text.starts_with("H DX="), "{name}");
         assert!(text.ends_with("\r\n") && !text.replace("\r\n", "").contains('\n'));
         assert!(
-            text.contains("\r\nGIN T=") && text.contains(" DIR="),
+            text.contains("\r\nGIN T=") && text.contains("\r\nG1 X="),
             "{name}"
         );
         let out = millpath(dir.path(), &["verify", "--dialect", "xcam", name]);
