@@ -18,6 +18,9 @@
 //! * what the program's family ([`Dialect`], [`Dialect::rules`]) reads otherwise than
 //!   written: line numbers, comments, `%`, Marlin's one command a line, its dwell units.
 //!
+//! An xCAM `.NCC` file (the `xcam` family) is not G-code: `ncc.rs` rebuilds the moves of its
+//! contours, millings and drillings, and the same checks run on them.
+//!
 //! Every [`Finding`] carries the 1-based line and its text, so a caller that knows which
 //! source element wrote which line can map findings back to the drawing.
 //!
