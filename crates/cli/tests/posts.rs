@@ -400,7 +400,11 @@ fn xcam_refuses_what_it_cannot_write_and_its_files_verify() {
             "{name}"
         );
         let out = millpath(dir.path(), &["verify", "--dialect", "xcam", name]);
-        let said = String::from_utf8_lossy(&out.stdout);
+        let said = format!(
+            "{}{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        );
         assert!(out.status.success(), "{name}: {said}");
         assert!(said.contains("0 error(s), 0 warning(s)"), "{name}: {said}");
         // a file cut after a contour is found truncated

@@ -338,14 +338,12 @@ impl Ncc {
                 let to = self.point(p)?;
                 let arc = if command == "G5" {
                     let (cx, cy) = (p.need("I")?, p.need("J")?);
-                    let cw = match p.need("DIR")? {
-                        d if d == 1.0 => true,
-                        d if d == -1.0 => false,
-                        _ => {
-                            let t = p.text("DIR").unwrap_or("");
-                            return Err(NccProblem::BadDirection(shorten(t)));
-                        }
-                    };
+                    let dir = p.need("DIR")?;
+                    if dir != 1.0 && dir != -1.0 {
+                        let t = p.text("DIR").unwrap_or("");
+                        return Err(NccProblem::BadDirection(shorten(t)));
+                    }
+                    let cw = dir == 1.0;
                     Some((cx, cy, cw))
                 } else {
                     None
