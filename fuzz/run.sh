@@ -17,7 +17,7 @@ fi
 secs=${1:-600}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(dxf_read text_parse format_idempotent compile drawing post_load)
+[ ${#targets[@]} -gt 0 ] || targets=(dxf_read text_parse format_idempotent compile drawing post_load verify_ncc)
 export RUSTC_BOOTSTRAP=1
 command -v cargo-fuzz >/dev/null || cargo install cargo-fuzz --locked --quiet
 bash seed.sh

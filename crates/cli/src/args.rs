@@ -151,6 +151,8 @@ pub enum DialectArg {
     Rs274,
     // Marlin firmware on a router
     Marlin,
+    // xCAM's exchange format (.NCC files)
+    Xcam,
 }
 
 #[derive(Clone, Copy, ValueEnum, Default, PartialEq)]

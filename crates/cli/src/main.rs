@@ -425,6 +425,7 @@ fn main() -> ExitCode {
                 DialectArg::Linuxcnc | DialectArg::Rs274 => millpath_verify::Dialect::LinuxCnc,
                 DialectArg::Marlin => millpath_verify::Dialect::Marlin,
                 DialectArg::Grbl => millpath_verify::Dialect::Grbl,
+                DialectArg::Xcam => millpath_verify::Dialect::Xcam,
             },
             top,
             tool,

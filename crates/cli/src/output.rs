@@ -151,7 +151,12 @@ pub fn write_drawing_outputs(
             s.strip_suffix(end).map(PathBuf::from)
         })
     };
-    if let Some(prefix) = written(MILLING[0]) {
+    // a post's own extension: xcam's `_Milling.NCC`
+    let milling = outcome.outputs.iter().find_map(|o| {
+        let s = o.path.to_string_lossy();
+        s.rfind("_Milling.").map(|i| PathBuf::from(&s[..i]))
+    });
+    if let Some(prefix) = written(MILLING[0]).or(milling) {
         for end in ["_Probing.gcode", "_Clean.gcode"] {
             remove_stale(&with_end(&prefix, end), diags);
         }

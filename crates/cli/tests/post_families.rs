@@ -186,8 +186,11 @@ fn a_custom_posts_program_is_held_to_its_familys_rules() {
     );
 }
 
+/// Every family is read now (xcam by verify's NCC reader): a post that claims the xcam
+/// family but writes G-code is refused by the second opinion, located, in English and
+/// German, and writes nothing.
 #[test]
-fn a_family_the_checker_cannot_read_is_refused_located() {
+fn a_post_whose_text_is_not_its_family_is_refused_located() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     example(d);
@@ -199,24 +202,25 @@ fn a_family_the_checker_cannot_read_is_refused_located() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success(), "{err}");
     assert!(
-        err.contains("The post exchange writes programs of the xcam family")
-            && err.contains("Options"),
+        err.contains("NCC: the header H must be the first line") && err.contains("2001.mpath:"),
         "{err}"
     );
     assert!(gcode_files(d).is_empty());
-    // in millpath.toml: located there, and in German
-    let own = std::fs::read_to_string(d.join("millpath.toml")).unwrap();
-    std::fs::write(
-        d.join("millpath.toml"),
-        format!("post = \"xcam.toml\"\n{own}"),
-    )
-    .unwrap();
-    let out = millpath(d, &["compile", "--lang", "de", "2001.mpath"]);
+    let out = millpath(
+        d,
+        &[
+            "compile",
+            "--lang",
+            "de",
+            "--post",
+            "xcam.toml",
+            "2001.mpath",
+        ],
+    );
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success());
     assert!(
-        err.contains("millpath.toml")
-            && err.contains("Der Post exchange schreibt Programme der Familie xcam"),
+        err.contains("NCC: der Programmkopf H muss die erste Zeile sein"),
         "{err}"
     );
     assert!(gcode_files(d).is_empty());

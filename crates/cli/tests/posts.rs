@@ -16,7 +16,7 @@ fn outputs(dir: &Path) -> Vec<(String, Vec<u8>)> {
         .map(|e| e.unwrap().path())
         .filter(|p| {
             let n = p.file_name().unwrap().to_string_lossy();
-            n.ends_with(".gcode") || n.ends_with("_Z.txt")
+            n.ends_with(".gcode") || n.ends_with("_Z.txt") || n.ends_with(".NCC")
         })
         .map(|p| {
             let bytes = std::fs::read(&p).unwrap();
@@ -43,6 +43,7 @@ fn post_list_names_every_built_in_post() {
         "fluidnc",
         "grblhal",
         "marlin",
+        "xcam",
     ] {
         assert!(text.lines().any(|l| l.starts_with(name)), "{text}");
     }
@@ -70,6 +71,7 @@ fn a_shown_post_compiles_to_the_built_in_bytes() {
         ("grblhal", "[heightmap]\nstep = 6\nmargin = 1\n"),
         // Marlin's M3 S is PWM 0-255 by default
         ("marlin", "spindle_rpm = 255\nspindle_dwell = 1.5\n"),
+        ("xcam", "plunge_feed = 90\n"),
     ];
     for (name, extra) in settings {
         let built_in = tempfile::tempdir().unwrap();
@@ -92,7 +94,7 @@ fn a_shown_post_compiles_to_the_built_in_bytes() {
         assert_eq!(a.status.code(), b.status.code(), "{name} {extra}");
         let (a, b) = (outputs(built_in.path()), outputs(file.path()));
         // posts that cannot probe refuse the probed example (2020): two programs
-        let least = if ["centroid", "marlin"].contains(&name) {
+        let least = if ["centroid", "marlin", "xcam"].contains(&name) {
             2
         } else {
             3
@@ -433,5 +435,63 @@ fn controller_posts_refuse_what_they_cannot_write() {
             !probing.contains('%') && !probing.contains("PROBEOPEN"),
             "{name}"
         );
+    }
+}
+
+/// xcam (docs/src/controllers.md): probes, a height map and a spindle are refused at what
+/// asks for them (MP207); a milling program is `NAME_Milling.NCC` with CR LF line ends, the
+/// header first, and `millpath verify --dialect xcam` reads it clean.
+#[test]
+fn xcam_refuses_what_it_cannot_write_and_its_files_verify() {
+    let dir = tempfile::tempdir().unwrap();
+    example(dir.path());
+    let out = millpath(dir.path(), &["compile", "--post", "xcam", "2020.mpath"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_ne!(out.status.code(), Some(0));
+    assert!(
+        err.contains("MP207") && err.contains("2020.mpath:"),
+        "{err}"
+    );
+    let toml = dir.path().join("millpath.toml");
+    let own = std::fs::read_to_string(&toml).unwrap();
+    for extra in ["spindle_rpm = 12000\n", "[heightmap]\nstep = 5\n"] {
+        std::fs::write(&toml, format!("{own}{extra}")).unwrap();
+        let out = millpath(dir.path(), &["compile", "--post", "xcam", "2001.mpath"]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_ne!(out.status.code(), Some(0), "{extra}");
+        assert!(err.contains("MP207"), "{extra}: {err}");
+        assert!(!dir.path().join("2001_Milling.NCC").exists());
+    }
+    std::fs::write(&toml, &own).unwrap();
+    let out = millpath(
+        dir.path(),
+        &["compile", "--post", "xcam", "2001.mpath", "2010.mpath"],
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for name in ["2001_Milling.NCC", "2010_Milling.NCC"] {
+        let text = std::fs::read_to_string(dir.path().join(name)).unwrap();
+        assert!(text.starts_with("H DX="), "{name}");
+        assert!(text.ends_with("\r\n") && !text.replace("\r\n", "").contains('\n'));
+        assert!(
+            text.contains("\r\nGIN T=") && text.contains("\r\nG1 X="),
+            "{name}"
+        );
+        let out = millpath(dir.path(), &["verify", "--dialect", "xcam", name]);
+        let said = format!(
+            "{}{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(out.status.success(), "{name}: {said}");
+        assert!(said.contains("0 error(s), 0 warning(s)"), "{name}: {said}");
+        // a file cut after a contour is found truncated
+        let cut = &text[..text.find("\r\nGIN ").unwrap()];
+        std::fs::write(dir.path().join("cut.NCC"), cut).unwrap();
+        let out = millpath(dir.path(), &["verify", "--dialect", "xcam", "cut.NCC"]);
+        assert_eq!(out.status.code(), Some(1), "{name}");
     }
 }

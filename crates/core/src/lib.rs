@@ -218,10 +218,12 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
     }
     let prefix = output_prefix(input, &model.params.r);
     let with = |s: &str| PathBuf::from(format!("{}{s}", prefix.display()));
-    let stage_at = session
-        .settings
-        .stage_outputs
-        .then(|| with("_Milling.gcode"));
+    // the milling program's extension is its post's (`.gcode`, xcam's `.NCC`)
+    let milling = format!(
+        "_Milling.{}",
+        emit::Controller::of(&session.settings).post.extension
+    );
+    let stage_at = session.settings.stage_outputs.then(|| with(&milling));
     let Some(Reviewed {
         generated,
         removed_volume,
@@ -253,7 +255,7 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
     outcome.outputs = match (generated.output, staged) {
         (Output::Milling(g), staged) => vec![OutputFile {
             staged: staged.map(|s| s.path),
-            ..output(with("_Milling.gcode"), g)
+            ..output(with(&milling), g)
         }],
         (
             Output::Probing {

@@ -5,7 +5,7 @@ use crate::Post;
 use std::sync::OnceLock;
 
 /// The built-in posts' names, in the order `millpath post list` shows them.
-pub const NAMES: [&str; 9] = [
+pub const NAMES: [&str; 10] = [
     "reference",
     "linuxcnc",
     "grbl",
@@ -15,9 +15,10 @@ pub const NAMES: [&str; 9] = [
     "fluidnc",
     "grblhal",
     "marlin",
+    "xcam",
 ];
 
-const SOURCES: [&str; 9] = [
+const SOURCES: [&str; 10] = [
     include_str!("../posts/reference.toml"),
     include_str!("../posts/linuxcnc.toml"),
     include_str!("../posts/grbl.toml"),
@@ -27,6 +28,7 @@ const SOURCES: [&str; 9] = [
     include_str!("../posts/fluidnc.toml"),
     include_str!("../posts/grblhal.toml"),
     include_str!("../posts/marlin.toml"),
+    include_str!("../posts/xcam.toml"),
 ];
 
 /// The text of a built-in post.

@@ -3,7 +3,8 @@
 //! `reserved` characters → `_` (GRBL's real-time commands `!~?`); `ascii`: German letters
 //! transliterated (`ä` → `ae`, …), other non-ASCII characters → `_` (GRBL reads bytes from
 //! 0x80 as real-time commands); `active_words`: a comment starting with one of them (followed
-//! by `,`, a blank or nothing; LinuxCNC's `MSG`, `PROBEOPEN`, …) gets a `_` in front.
+//! by `,`, a blank or nothing; LinuxCNC's `MSG`, `PROBEOPEN`, …) gets a `_` in front;
+//! `line_break`: what a line break inside the text becomes (else a blank).
 
 /// The text of a comment (without its delimiters) under `rules`.
 pub fn safe_text(rules: &CommentRules, text: &str) -> String {
@@ -13,6 +14,7 @@ pub fn safe_text(rules: &CommentRules, text: &str) -> String {
             ')' => out.push(']'),
             '(' => out.push('['),
             '\\' => out.push('/'),
+            '\n' if !rules.line_break.is_empty() => out.push_str(&rules.line_break),
             c if c.is_control() => out.push(' '),
             c if rules.reserved.contains(c) => out.push('_'),
             c if rules.ascii && !c.is_ascii() => transliterate(c, &mut out),
@@ -71,4 +73,6 @@ pub struct CommentRules {
     pub ascii: bool,
     /// Comment words the controller executes.
     pub active_words: Vec<String>,
+    /// What a line break inside a comment becomes (xCAM's `_C_N_L_`); empty: a blank.
+    pub line_break: String,
 }

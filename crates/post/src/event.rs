@@ -43,10 +43,19 @@ pub enum Event {
     /// An element starts (a chain, drill, helix, sweep or subpath).
     ContourStart,
     ContourEnd,
+    /// The program's first line, before `%` and the banner (a CAM format's part header).
+    Header,
+    /// A pass starts: the first cutting move (line or arc) after anything else (a rapid, a
+    /// plunge); at the move's start point.
+    PassStart,
+    /// A pass ends: before the next move that is not a line or arc, or at the program end.
+    PassEnd,
+    /// A drill element, at its start (its plunges follow as moves).
+    Drill,
 }
 
 impl Event {
-    pub const ALL: [Event; 23] = [
+    pub const ALL: [Event; 27] = [
         Event::ProgramStart,
         Event::Stock,
         Event::Tool,
@@ -70,6 +79,10 @@ impl Event {
         Event::Disabled,
         Event::ContourStart,
         Event::ContourEnd,
+        Event::Header,
+        Event::PassStart,
+        Event::PassEnd,
+        Event::Drill,
     ];
 
     /// The template's key in `[templates]`.
@@ -98,6 +111,10 @@ impl Event {
             Event::Disabled => "disabled",
             Event::ContourStart => "contour_start",
             Event::ContourEnd => "contour_end",
+            Event::Header => "header",
+            Event::PassStart => "pass_start",
+            Event::PassEnd => "pass_end",
+            Event::Drill => "drill",
         }
     }
 
@@ -139,9 +156,9 @@ impl Event {
             Event::Statistics => &[Text],
             Event::RapidXy => &[X, Y],
             Event::RapidZ | Event::Retract => &[Z, ZProbe],
-            Event::Plunge => &[Z, ZProbe, Feed],
+            Event::Plunge => &[X, Y, Z, ZProbe, Feed],
             Event::Linear => &[X, Y, Z, ZProbe, Feed],
-            Event::ArcCw | Event::ArcCcw => &[X, Y, Z, ZProbe, Feed, I, J, R],
+            Event::ArcCw | Event::ArcCcw => &[X, Y, Z, ZProbe, Feed, I, J, R, CenterX, CenterY],
             Event::Probe | Event::GridProbe => &[X, Y, Z, Feed],
             Event::ProbeLogOpen => &[LogFile],
             Event::Disabled => &[Line],
@@ -159,6 +176,12 @@ impl Event {
                 LastY,
             ],
             Event::ContourEnd => &[Element, Name],
+            Event::Header => &[
+                FrameXMin, FrameYMin, FrameXMax, FrameYMax, FrameDx, FrameDy, FrameDz,
+            ],
+            Event::PassStart => &[X, Y, Z, Pass, Feed],
+            Event::PassEnd => &[Pass, Depth, CutDepth, Feed],
+            Event::Drill => &[X, Y, Z, Depth, CutDepth, Feed],
         }
     }
 
@@ -206,6 +229,17 @@ pub enum Var {
     FirstY,
     LastX,
     LastY,
+    CenterX,
+    CenterY,
+    FrameXMin,
+    FrameYMin,
+    FrameXMax,
+    FrameYMax,
+    FrameDx,
+    FrameDy,
+    FrameDz,
+    Pass,
+    CutDepth,
 }
 
 /// Variables every template may use: they hold for the whole program.
@@ -220,7 +254,7 @@ pub const GLOBALS: [Var; 7] = [
 ];
 
 impl Var {
-    pub const ALL: [Var; 32] = [
+    pub const ALL: [Var; 43] = [
         Var::FileName,
         Var::ProgramName,
         Var::ToolDiameter,
@@ -253,6 +287,17 @@ impl Var {
         Var::FirstY,
         Var::LastX,
         Var::LastY,
+        Var::CenterX,
+        Var::CenterY,
+        Var::FrameXMin,
+        Var::FrameYMin,
+        Var::FrameXMax,
+        Var::FrameYMax,
+        Var::FrameDx,
+        Var::FrameDy,
+        Var::FrameDz,
+        Var::Pass,
+        Var::CutDepth,
     ];
 
     /// The name in a template (`{name}`), after seed 004's variables where one fits
@@ -291,6 +336,17 @@ impl Var {
             Var::FirstY => "first_y",
             Var::LastX => "last_x",
             Var::LastY => "last_y",
+            Var::CenterX => "center_x",
+            Var::CenterY => "center_y",
+            Var::FrameXMin => "frame_x_min",
+            Var::FrameYMin => "frame_y_min",
+            Var::FrameXMax => "frame_x_max",
+            Var::FrameYMax => "frame_y_max",
+            Var::FrameDx => "frame_dx",
+            Var::FrameDy => "frame_dy",
+            Var::FrameDz => "frame_dz",
+            Var::Pass => "pass",
+            Var::CutDepth => "cut_depth",
         }
     }
 
@@ -302,9 +358,13 @@ impl Var {
     pub fn word(self) -> char {
         match self {
             Var::X | Var::FirstX | Var::LastX => 'X',
+            Var::FrameXMin | Var::FrameXMax | Var::FrameDx => 'X',
             Var::Y | Var::FirstY | Var::LastY => 'Y',
+            Var::FrameYMin | Var::FrameYMax | Var::FrameDy => 'Y',
             Var::Z | Var::Clearance | Var::StockTop | Var::StockBottom | Var::Depth => 'Z',
-            Var::InfeedDepth => 'Z',
+            Var::InfeedDepth | Var::FrameDz | Var::CutDepth => 'Z',
+            Var::CenterX => 'I',
+            Var::CenterY => 'J',
             Var::Feed | Var::ProgramFeed => 'F',
             Var::I => 'I',
             Var::J => 'J',
@@ -346,6 +406,13 @@ impl Var {
             Var::Depth => "the final depth of the element (mm)",
             Var::FirstX | Var::FirstY => "the start of the contour's first element (mm)",
             Var::LastX | Var::LastY => "the end of the contour's last element (mm)",
+            Var::CenterX | Var::CenterY => "the arc centre, absolute (mm)",
+            Var::FrameXMin | Var::FrameYMin => "the low corner of the cutting moves' extent (mm)",
+            Var::FrameXMax | Var::FrameYMax => "the high corner of the cutting moves' extent (mm)",
+            Var::FrameDx | Var::FrameDy => "the size of the cutting moves' extent (mm)",
+            Var::FrameDz => "the stock top less the lowest drawn depth (mm)",
+            Var::Pass => "the pass's number, from 1",
+            Var::CutDepth => "the stock top less the depth (mm, positive below the top)",
         }
     }
 }

@@ -79,6 +79,7 @@ struct RawComments {
     reserved: Option<S<String>>,
     ascii: Option<bool>,
     active_words: Option<Vec<S<String>>>,
+    line_break: Option<S<String>>,
 }
 
 #[derive(Deserialize)]
@@ -577,6 +578,7 @@ fn comments(src: &Src, raw: Option<RawComments>) -> Result<CommentRules, PostErr
             reserved: String::new(),
             ascii: false,
             active_words: Vec::new(),
+            line_break: String::new(),
         });
     };
     let style = match c.style.as_ref().map(|s| (s.get_ref().as_str(), s.span())) {
@@ -619,11 +621,27 @@ fn comments(src: &Src, raw: Option<RawComments>) -> Result<CommentRules, PostErr
         }
         active_words.push(v.clone());
     }
+    let line_break = match &c.line_break {
+        None => String::new(),
+        Some(l) => {
+            let v = l.get_ref();
+            if v.is_empty() || v.len() > 16 || !v.chars().all(|ch| ch.is_ascii_graphic()) {
+                return Err(bad(
+                    src,
+                    l.span(),
+                    "comments.line_break",
+                    "1 to 16 printable ASCII characters",
+                ));
+            }
+            v.clone()
+        }
+    };
     Ok(CommentRules {
         style,
         reserved,
         ascii: c.ascii.unwrap_or(false),
         active_words,
+        line_break,
     })
 }
 

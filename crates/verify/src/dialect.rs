@@ -8,6 +8,7 @@
 //! | `rs274` | `LinuxCnc` | LinuxCNC, Mach3/4, UCCNC, Centroid | `( )` and `;` comments, `%`, `N` first, `G4 P` seconds |
 //! | `grbl` | `Grbl` | GRBL 1.1, FluidNC, grblHAL | `( )` and `;` comments, no `%`, `N` anywhere, `G4 P` seconds |
 //! | `marlin` | `Marlin` | Marlin routers | `;` comments only, no `%`, one command a line, no modal motion, `G4 P` ms / `S` s, no M30 |
+//! | `xcam` | `Xcam` | xCAM's `.NCC` exchange format | `ncc.rs`: contours, millings, drillings rebuilt as moves |
 //!
 //! A line number is a whole number from 0 to the family's largest; above 1000000 every
 //! number is absurd to the checker, whatever the controller takes (GRBL 10000000).
@@ -29,6 +30,9 @@ pub enum Dialect {
     Grbl,
     /// The `marlin` family: Marlin firmware on a router (one command a line, `;` comments).
     Marlin,
+    /// The `xcam` family: xCAM's exchange format (`.NCC`), no G-code: its contours, millings
+    /// and drillings are read by `ncc.rs`, which hands their moves to the machine model.
+    Xcam,
 }
 
 /// The unit of `G4 P`.
@@ -63,11 +67,12 @@ pub struct Rules {
 }
 
 impl Dialect {
-    pub const ALL: [Dialect; 4] = [
+    pub const ALL: [Dialect; 5] = [
         Dialect::Reference,
         Dialect::LinuxCnc,
         Dialect::Grbl,
         Dialect::Marlin,
+        Dialect::Xcam,
     ];
 
     pub fn name(self) -> &'static str {
@@ -76,6 +81,7 @@ impl Dialect {
             Dialect::LinuxCnc => "linuxcnc",
             Dialect::Grbl => "grbl",
             Dialect::Marlin => "marlin",
+            Dialect::Xcam => "xcam",
         }
     }
 
@@ -85,6 +91,7 @@ impl Dialect {
             Dialect::Reference | Dialect::LinuxCnc => "rs274",
             Dialect::Grbl => "grbl",
             Dialect::Marlin => "marlin",
+            Dialect::Xcam => "xcam",
         }
     }
 
@@ -95,6 +102,7 @@ impl Dialect {
             Dialect::LinuxCnc => "LinuxCNC",
             Dialect::Grbl => "grbl",
             Dialect::Marlin => "Marlin",
+            Dialect::Xcam => "xCAM",
         }
     }
 
@@ -103,7 +111,8 @@ impl Dialect {
         match self {
             // rs274ngc: "N" only at the start ("Bad character 'n' used" elsewhere); LinuxCNC
             // 2.9 takes any unsigned number (also N10.5): the checker's bound on numbers
-            Dialect::Reference | Dialect::LinuxCnc => Rules {
+            // xcam: the blocks the NCC reader makes are read by the rs274 rules
+            Dialect::Reference | Dialect::LinuxCnc | Dialect::Xcam => Rules {
                 max_line_number: 1_000_000,
                 line_number_first: true,
                 paren_comments: true,
@@ -167,8 +176,9 @@ impl std::str::FromStr for Dialect {
             "linuxcnc" | "rs274" => Ok(Dialect::LinuxCnc),
             "grbl" => Ok(Dialect::Grbl),
             "marlin" => Ok(Dialect::Marlin),
+            "xcam" => Ok(Dialect::Xcam),
             other => Err(format!(
-                "unknown dialect {other:?} (reference, linuxcnc or rs274, grbl, marlin)"
+                "unknown dialect {other:?} (reference, linuxcnc or rs274, grbl, marlin, xcam)"
             )),
         }
     }
@@ -185,7 +195,8 @@ mod tests {
         }
         assert_eq!("rs274".parse::<Dialect>(), Ok(Dialect::LinuxCnc));
         assert_eq!("Marlin".parse::<Dialect>(), Ok(Dialect::Marlin));
-        assert!("xcam".parse::<Dialect>().is_err());
+        assert_eq!("xcam".parse::<Dialect>(), Ok(Dialect::Xcam));
+        assert!("mach3".parse::<Dialect>().is_err());
         assert_eq!(Dialect::Reference.family(), "rs274");
     }
 

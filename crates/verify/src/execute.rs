@@ -1,5 +1,6 @@
 //! One line parsed and executed by the machine model, and the note of a stock model that
-//! cannot run: shared by the first reading (`stream.rs`) and the second (`reread.rs`).
+//! cannot run: shared by the first reading (`stream.rs`) and the second (`reread.rs`). An
+//! xCAM `.NCC` line goes to its reader (`ncc.rs`) instead of the G-code parser.
 
 use crate::machine::{Machine, Raw};
 use crate::{parse, FindingKind, Severity, StockSkip, SyntaxError};
@@ -13,6 +14,9 @@ pub(crate) fn execute(
     max_line_len: usize,
     adjust: impl FnOnce(&mut parse::Block),
 ) {
+    if m.dialect() == crate::Dialect::Xcam {
+        return ncc_line(m, no, l, max_line_len);
+    }
     let parsed = if l.len() > max_line_len {
         Err(FindingKind::Syntax(SyntaxError::LineTooLong(max_line_len)))
     } else {
@@ -36,6 +40,31 @@ pub(crate) fn execute(
             }
         }
     }
+}
+
+/// One line of an xCAM `.NCC` file: the reader's blocks executed at the lines they belong
+/// to, its findings kept; the program may end after any line that leaves nothing pending.
+fn ncc_line(m: &mut Machine, no: usize, l: &str, max_line_len: usize) {
+    if l.len() > max_line_len {
+        m.findings.push(Raw {
+            line: Some(no),
+            kind: FindingKind::Syntax(SyntaxError::LineTooLong(max_line_len)),
+            severity: Severity::Error,
+        });
+        m.last_code_ends = false;
+        return;
+    }
+    let (steps, found) = m.ncc.line(no, l);
+    m.findings
+        .extend(found.into_iter().map(|(line, kind, severity)| Raw {
+            line: Some(line),
+            kind,
+            severity,
+        }));
+    for (line, block) in &steps {
+        m.exec(*line, block);
+    }
+    m.last_code_ends = m.ncc.complete();
 }
 
 /// The stock model cannot run: top or tool unknown.

@@ -115,16 +115,7 @@ pub enum FamilyProblem {
     ShortSpindleDwell { seconds: f64 },
 }
 
-/// Why a number is not acceptable.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum NumberProblem {
-    /// NaN or infinite.
-    NonFinite,
-    /// |value| > 1e6.
-    Absurd,
-    /// `1e3`: not G-code (controllers read it differently or reject it).
-    Exponent,
-}
+pub use crate::number_problem::NumberProblem;
 
 /// Why a cutting move has no feed rate.
 #[derive(Debug, Clone, PartialEq)]
@@ -261,6 +252,8 @@ pub enum FindingKind {
         lines: (usize, usize),
         moves: (usize, usize),
     },
+    /// A line of an xCAM `.NCC` file the reader cannot take (`ncc.rs`).
+    Ncc(crate::ncc_problem::NccProblem),
 }
 
 /// Problems of a program adjusted by adjust-z.
@@ -307,6 +300,7 @@ impl FindingKind {
             FindingKind::Surface(_) => "surface-record",
             FindingKind::RereadDiffers { .. } => "reread-differs",
             FindingKind::Family { .. } => "family",
+            FindingKind::Ncc(_) => "ncc",
         }
     }
 
@@ -509,6 +503,7 @@ impl FindingKind {
                 format!("das für die Klemmen-, Tiefen- und Materialprüfungen ein zweites Mal gelesene Programm ist nicht das zuerst gelesene ({} von {} Zeilen, {} von {} Bewegungen): diese Prüfungen sind unvollständig", lines.0, lines.1, moves.0, moves.1),
             ),
             FindingKind::Family { problem, dialect } => problem.message(*dialect, lang),
+            FindingKind::Ncc(p) => p.message(lang == Lang::De),
             FindingKind::Limit(l) => match l {
                 Limit::Lines(n) => pick(
                     format!("more than {n} lines: the rest is not checked"),

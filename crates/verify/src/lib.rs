@@ -18,6 +18,9 @@
 //! * what the program's family ([`Dialect`], [`Dialect::rules`]) reads otherwise than
 //!   written: line numbers, comments, `%`, Marlin's one command a line, its dwell units.
 //!
+//! An xCAM `.NCC` file (the `xcam` family) is not G-code: `ncc.rs` rebuilds the moves of its
+//! contours, millings and drillings, and the same checks run on them.
+//!
 //! Every [`Finding`] carries the 1-based line and its text, so a caller that knows which
 //! source element wrote which line can map findings back to the drawing.
 //!
@@ -38,6 +41,9 @@ mod finding;
 mod grbl;
 mod machine;
 mod magnitude;
+mod ncc;
+mod ncc_problem;
+mod number_problem;
 mod options;
 mod parse;
 mod report;
@@ -58,6 +64,8 @@ pub use finding::{
 };
 pub use machine::SHORT_SPINDLE_DWELL;
 pub use magnitude::MAX_MAGNITUDE;
+pub use ncc::{MAX_REPLAYED, RAPID_CLEARANCE};
+pub use ncc_problem::NccProblem;
 pub use options::{Limits, Options, XY_TOLERANCE, Z_TOLERANCE};
 pub use parse::{only_a_comment, parse_line, Block, Word};
 pub use report::{Report, StockInfo};

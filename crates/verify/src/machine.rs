@@ -203,6 +203,8 @@ pub struct Machine {
     pub percent_open: bool,
     pub percent_closed: bool,
     pub seen_code: bool,
+    /// The `xcam` family's reader: its lines become this machine's blocks (`ncc.rs`).
+    pub(crate) ncc: crate::ncc::Ncc,
 }
 
 impl Machine {
@@ -240,7 +242,12 @@ impl Machine {
             percent_open: false,
             percent_closed: false,
             seen_code: false,
+            ncc: crate::ncc::Ncc::default(),
         }
+    }
+
+    pub(crate) fn dialect(&self) -> Dialect {
+        self.dialect
     }
 
     fn report(&mut self, line: usize, kind: FindingKind, severity: Severity) {
@@ -407,7 +414,7 @@ impl Machine {
                 Dialect::Grbl => {
                     self.feed_mode == FeedMode::InverseTime && mode != FeedMode::InverseTime
                 }
-                Dialect::Reference | Dialect::Marlin => false,
+                Dialect::Reference | Dialect::Marlin | Dialect::Xcam => false,
             };
             if mode == FeedMode::PerRev && self.dialect == Dialect::Grbl {
                 self.unsupported(line, "G95 (grbl has no feed per revolution)".into());

@@ -199,9 +199,15 @@ impl Verifier {
             && !m.last_code_ends
             && m.findings.len() <= limits.max_findings
         {
+            // an xCAM file has no end code: it ends where nothing it started is pending
+            let kind = if options.dialect == crate::Dialect::Xcam {
+                FindingKind::Ncc(crate::NccProblem::Incomplete)
+            } else {
+                FindingKind::MissingProgramEnd
+            };
             m.findings.push(Raw {
                 line: last_text,
-                kind: FindingKind::MissingProgramEnd,
+                kind,
                 severity: Severity::Error,
             });
             if let (Some(f), Some(no)) = (&mut folded, last_text) {

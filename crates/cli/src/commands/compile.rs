@@ -63,7 +63,13 @@ pub fn run(m: &MachineArgs, files: &[String]) -> u8 {
 }
 
 /// The files a compile writes beside a drawing.
-const OUTPUT_ENDS: [&str; 4] = ["_Milling.gcode", "_Probing.gcode", "_Z.txt", "_Clean.gcode"];
+const OUTPUT_ENDS: [&str; 5] = [
+    "_Milling.gcode",
+    "_Milling.NCC",
+    "_Probing.gcode",
+    "_Z.txt",
+    "_Clean.gcode",
+];
 
 /// Compiles one drawing in a session of its own and writes its outputs; prints its progress,
 /// statistics and diagnostics. Whether its outputs were written. The temporaries that a

@@ -1,12 +1,13 @@
 //! The post's contour events: `contour_start` before each element (with its kind, path name,
 //! whether a chain is closed, infeed, depth, feed and the ends of its first and last
 //! segment in output coordinates) and `contour_end` after it. The built-in posts write
-//! nothing for them; a post that does gets lines that are no moves (like comments).
+//! nothing for them; a post that does gets lines that are no moves (like comments). The
+//! `drill` event (xcam's `B`) comes before a drill element that cuts.
 
 use crate::emit::{Emitter, Frame};
 use crate::front::drawing::Style;
 use crate::geom::near;
-use crate::model::Element;
+use crate::model::{Drill, Element};
 use millpath_post::{Event, Value, Var};
 
 fn kind(e: &Element) -> &'static str {
@@ -21,7 +22,7 @@ fn kind(e: &Element) -> &'static str {
 
 impl Emitter<'_> {
     /// A line of the post that is no move (nothing in a dry run or for an empty template).
-    fn event_line(&mut self, event: Event, vars: &[(Var, Value)]) {
+    pub(crate) fn event_line(&mut self, event: Event, vars: &[(Var, Value)]) {
         if !self.ctl.post.has(event) {
             return;
         }
@@ -35,6 +36,9 @@ impl Emitter<'_> {
     }
 
     pub(crate) fn contour_start(&mut self, fr: Frame, e: &Element) {
+        if let Element::Drill(d) = e {
+            self.drill_event(fr, d);
+        }
         if !self.ctl.post.has(Event::ContourStart) {
             return;
         }
@@ -97,6 +101,34 @@ impl Emitter<'_> {
             (Var::LastY, num(last.map(|p| p.y))),
         ];
         self.event_line(Event::ContourStart, &vars);
+    }
+
+    /// The post's `drill` event: a drill that cuts (its depth below the stock top), at its
+    /// point, from the top down to its depth.
+    fn drill_event(&mut self, fr: Frame, d: &Drill) {
+        if !self.ctl.post.has(Event::Drill) {
+            return;
+        }
+        let Some(depth) = (match d.style {
+            Style::Mark => d.d,
+            _ => d.b,
+        }) else {
+            return;
+        };
+        let (top, bottom) = (fr.h + fr.model.params.t, fr.h + depth);
+        if bottom > top || near(bottom, top) {
+            return;
+        }
+        let c = fr.t.apply(d.c);
+        let vars = [
+            (Var::X, Value::Num(c.x)),
+            (Var::Y, Value::Num(c.y)),
+            (Var::Z, Value::Num(top)),
+            (Var::Depth, Value::Num(bottom)),
+            (Var::CutDepth, Value::Num(top - bottom)),
+            (Var::Feed, Value::Num(d.f)),
+        ];
+        self.event_line(Event::Drill, &vars);
     }
 
     pub(crate) fn contour_end(&mut self, fr: Frame, e: &Element) {

@@ -30,6 +30,8 @@ pub mod heightmap_program;
 pub mod helix;
 pub mod item;
 pub mod motion;
+mod pass;
+mod pass_state;
 pub mod probe_split;
 pub mod program;
 pub(crate) mod record;
@@ -132,6 +134,10 @@ pub(crate) struct Emitter<'a> {
     /// the passes so emitted.
     pub(crate) quick_order: bool,
     pub(crate) quick_steps: usize,
+    /// Where the moves recorded so far took the tool (the post's pass events need it).
+    pub(crate) at: P3,
+    /// The post's passes (`pass.rs`).
+    pub(crate) passes: pass_state::Passes,
 }
 
 /// Elements or passes between two questions to [`Emitter::stop`].
@@ -177,6 +183,7 @@ impl<'a> Emitter<'a> {
         if self.at_capacity() {
             return;
         }
+        self.pass_before(kind, feed);
         let text = if self.dry { String::new() } else { text(self) };
         let item = Item {
             kind,
@@ -253,6 +260,7 @@ impl<'a> Emitter<'a> {
     }
     /// Sets where the last move goes.
     pub(crate) fn to(&mut self, t: Target) {
+        self.pass_moved(t);
         if let Some(it) = self.rec.items.last_mut() {
             it.target = t;
             // each value was in range, but sums of them (T + O, S·(1 + 2e-6), h + depth,
@@ -525,6 +533,8 @@ fn emit_with<S: AsRef<str>>(
         split: (0, 0),
         quick_order,
         quick_steps: 0,
+        at: pass_state::start_position(sx),
+        passes: pass_state::Passes::default(),
     };
     em.comment(2, || format!("Model {}", model.label()));
     em.emit_model(Frame {

@@ -5,7 +5,7 @@
 
 use crate::args;
 use crate::diag::{Diagnostic, Msg, Origin};
-use crate::emit::{bt, probe_split, Emitter, Kind, NamedProbe, Target};
+use crate::emit::{bt, probe_split, Emitter, Kind, NamedProbe, Shape, Target};
 use crate::geom::{near, Geom, F3, P2, P3};
 use crate::machine::Dialect;
 use crate::params::fmt_num;
@@ -38,8 +38,15 @@ impl Emitter<'_> {
                 // plunge feed, which the statistics then use as well
                 let plunge = self.ctl.plunge(feed).unwrap_or(feed);
                 let t = |e: &Emitter| {
+                    // a post that writes drill elements whole (`drill`) does not write
+                    // their plunges again
+                    if e.shape == Shape::Drill && e.ctl.post.has(Event::Drill) {
+                        return String::new();
+                    }
                     let expr = e.zexpr(to, xy).probe_text();
                     let vars = [
+                        (Var::X, Value::Num(xy.x)),
+                        (Var::Y, Value::Num(xy.y)),
                         (Var::Z, Value::Num(to)),
                         (Var::ZProbe, Value::Text(&expr)),
                         (Var::Feed, Value::Num(plunge)),
@@ -273,6 +280,8 @@ impl Emitter<'_> {
                 (Var::I, i.clone()),
                 (Var::J, Value::Num(j)),
                 (Var::R, Value::Num(r_word)),
+                (Var::CenterX, Value::Num(c.x)),
+                (Var::CenterY, Value::Num(c.y)),
             ];
             e.text(if ccw { Event::ArcCcw } else { Event::ArcCw }, &vars)
         };

@@ -205,7 +205,11 @@ fn generate_job(
     (model, file_name, banner, sweep_speed, lang, ctl, stop): Job,
     sink: Option<Sink>,
 ) -> Result<(Generated, Option<Sink>), Vec<Diagnostic>> {
-    let prologue = ctl.prologue(banner, file_name, model, start_height(model), true);
+    let mut prologue = ctl.prologue(banner, file_name, model, start_height(model), true);
+    if ctl.post.has(Event::Header) {
+        let header = header_lines(model, ctl, file_name, stop)?;
+        prologue.splice(0..0, header);
+    }
     // the statistics are all this asks of the moves unless the planner or a height map's grid
     // reads them: then they are kept
     let fold = (ctl.machine.is_none() && ctl.heightmap.is_none()).then_some(sweep_speed);
@@ -412,6 +416,33 @@ pub(crate) fn stamped_line(old: &str, stamped: &str) -> String {
 }
 
 /// Where the body's moves start: above the origin at the start height.
+/// The post's `header` (a CAM format's part, before everything): the extent of the
+/// program's cutting moves, found by a dry run of the emitter (only for a post that has a
+/// header), and the stock's thickness.
+fn header_lines(
+    model: &Model,
+    ctl: &Controller,
+    file_name: &str,
+    stop: Option<&dyn Fn() -> bool>,
+) -> Result<Vec<String>, Vec<Diagnostic>> {
+    let e = emit_until(model, true, ctl, stop)?;
+    let (lo, hi) = crate::emit::extent::cut_extent(&e.rec.items, P2::default())
+        .unwrap_or((P2::default(), P2::default()));
+    let g = Controller::globals(model, file_name);
+    let vars = [
+        (Var::FrameXMin, Value::Num(lo.x)),
+        (Var::FrameYMin, Value::Num(lo.y)),
+        (Var::FrameXMax, Value::Num(hi.x)),
+        (Var::FrameYMax, Value::Num(hi.y)),
+        (Var::FrameDx, Value::Num(hi.x - lo.x)),
+        (Var::FrameDy, Value::Num(hi.y - lo.y)),
+        (Var::FrameDz, Value::Num(g.stock_top - g.stock_bottom)),
+    ];
+    let mut lines = Vec::new();
+    ctl.lines(Event::Header, &vars, &g, &mut lines);
+    Ok(lines)
+}
+
 fn start(sx: f64) -> P3 {
     P3 {
         x: 0.0,

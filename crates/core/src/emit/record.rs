@@ -183,17 +183,23 @@ impl Record {
         }
     }
 
-    /// Records a move and its line.
+    /// Records a move and its line (none for an empty text outside a dry run: the post
+    /// writes nothing for this move).
     pub(crate) fn moved(&mut self, item: Item, text: String, source: u32) {
         let sweep = item.kind == Kind::HSweep;
+        // a post that writes nothing for this move (xcam's rapids): no line
+        let silent = !self.dry && text.is_empty();
         // the held sweep stays unless this one follows it (past comments)
         if let Some(h) = self.held.take() {
+            let written = !h.sweep.0.is_empty();
             if sweep {
                 // no move was recorded after it
                 self.items.pop();
                 self.item_lines.pop();
-                self.write_commented(&h.sweep.0, h.sweep.1);
-            } else {
+                if written {
+                    self.write_commented(&h.sweep.0, h.sweep.1);
+                }
+            } else if written {
                 self.write(&h.sweep.0, h.sweep.1);
             }
             for (c, s) in &h.comments {
@@ -209,13 +215,15 @@ impl Record {
         }
         self.item_lines.push(self.lines as u32);
         self.items.push(item);
-        self.lines += 1;
+        if !silent {
+            self.lines += 1;
+        }
         if sweep {
             self.held = Some(Held {
                 sweep: (text, source),
                 comments: Vec::new(),
             });
-        } else {
+        } else if !silent {
             self.write(&text, source);
         }
     }
@@ -223,7 +231,9 @@ impl Record {
     /// Writes what is held: the end of the body.
     pub(crate) fn finish(&mut self) {
         if let Some(h) = self.held.take() {
-            self.write(&h.sweep.0, h.sweep.1);
+            if !h.sweep.0.is_empty() {
+                self.write(&h.sweep.0, h.sweep.1);
+            }
             for (c, s) in &h.comments {
                 self.write(c, *s);
             }

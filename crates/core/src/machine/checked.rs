@@ -43,7 +43,7 @@ impl Reading {
             (_, Family::Rs274) => (VerifyDialect::LinuxCnc, true),
             (_, Family::Grbl) => (VerifyDialect::Grbl, true),
             (_, Family::Marlin) => (VerifyDialect::Marlin, true),
-            (_, other) => return Err(other),
+            (_, Family::Xcam) => (VerifyDialect::Xcam, true),
         };
         Ok(Reading {
             dialect,
@@ -67,20 +67,17 @@ mod tests {
     }
 
     #[test]
-    fn every_family_but_xcam_is_read() {
+    fn every_family_is_read() {
         use super::super::Dialect as Ours;
         for (family, read) in [
             ("rs274", VerifyDialect::LinuxCnc),
             ("grbl", VerifyDialect::Grbl),
             ("marlin", VerifyDialect::Marlin),
+            ("xcam", VerifyDialect::Xcam),
         ] {
             let r = Reading::of(Ours::LinuxCnc, &post(family, "ij")).unwrap();
             assert_eq!((r.dialect, r.strict, r.arcs_as_lines), (read, true, false));
         }
-        assert_eq!(
-            Reading::of(Ours::Grbl, &post("xcam", "ij")),
-            Err(Family::Xcam)
-        );
         let r = Reading::of(Ours::Reference, &post("rs274", "lines")).unwrap();
         assert_eq!(
             (r.dialect, r.strict, r.arcs_as_lines),
