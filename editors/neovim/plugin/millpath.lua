@@ -19,3 +19,7 @@ end, { nargs = '?', complete = 'file', desc = 'Open a DXF drawing as MillPath te
 vim.api.nvim_create_user_command('MillpathToolpath', function(args)
   require('millpath').toolpath(args.args ~= '' and args.args or nil)
 end, { nargs = '?', desc = 'Toolpath of the path under the cursor, in the browser' })
+
+vim.api.nvim_create_user_command('MillpathDiff', function(args)
+  require('millpath').diff(args.args ~= '' and args.args or nil)
+end, { nargs = '?', desc = "What the file's changes since REV (default HEAD) do to the part" })

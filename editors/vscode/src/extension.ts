@@ -3,11 +3,12 @@
 import * as vscode from 'vscode';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
+import * as os from 'node:os';
 import { execFile } from 'node:child_process';
 import { LanguageClient, LanguageClientOptions, ServerOptions } from 'vscode-languageclient/node';
 import {
   initializationOptions, findServer, ServerLookup, previewUri, parsePreviewUri, pathAtLine, statusText, previewText, PreviewResult, isSourceRef, PREVIEW_SCHEME, MachineSettings,
-  documentSelector,
+  documentSelector, compareArgs, compareOutcome,
 } from './logic';
 
 let client: LanguageClient | undefined;
@@ -27,7 +28,7 @@ function settings(): MachineSettings {
 let log: vscode.OutputChannel | undefined;
 
 /** The extension's own commands. */
-const OWN_COMMANDS = ['millpath.preview', 'millpath.toolpath', 'millpath.dxfToText', 'millpath.textToDxf'];
+const OWN_COMMANDS = ['millpath.preview', 'millpath.toolpath', 'millpath.dxfToText', 'millpath.textToDxf', 'millpath.compareWithHead'];
 
 /** A language client that never registers a server command under the name of one of ours:
  *  vscode-languageclient registers every command the server advertises
@@ -239,6 +240,23 @@ export async function activate(ctx: vscode.ExtensionContext): Promise<void> {
       if (!target) return;
       await run(ctx, ['text2dxf', editor.document.uri.fsPath, '-o', target.fsPath]);
       void vscode.window.showInformationMessage(`Written ${target.fsPath}`);
+    }],
+    ['millpath.compareWithHead', async () => {
+      const editor = vscode.window.activeTextEditor;
+      if (!editor || editor.document.uri.scheme !== 'file') return;
+      await editor.document.save();
+      const file = editor.document.uri.fsPath;
+      const html = path.join(os.tmpdir(), `millpath-diff-${process.pid}-${path.basename(file)}.html`);
+      // exit status 1 means "changed": run() would call it a failure
+      const outcome = await new Promise<ReturnType<typeof compareOutcome>>((resolve) => {
+        execFile(command(ctx), compareArgs(file, html), { cwd: path.dirname(file), maxBuffer: 64 * 1024 * 1024 }, (err, _stdout, stderr) => {
+          const code = err ? (typeof err.code === 'number' ? err.code : null) : 0;
+          resolve(compareOutcome(code, String(stderr), err?.message));
+        });
+      });
+      if (!outcome.open) throw new Error(outcome.message);
+      if (!outcome.changed) void vscode.window.showInformationMessage(`${path.basename(file)}: no change since HEAD`);
+      await vscode.env.openExternal(vscode.Uri.file(html));
     }],
   ];
   for (const [name, f] of commands) {

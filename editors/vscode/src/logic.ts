@@ -168,3 +168,17 @@ export function isSourceRef(v: unknown): v is SourceRef {
   const s = v as SourceRef;
   return !!s && typeof s.file === 'string' && typeof s.line === 'number' && typeof s.character === 'number';
 }
+
+/** "millpath: compare with HEAD": the arguments of `millpath diff` that write the visual diff
+ *  of `file` against git's `rev` to the page `html` (run in the file's folder). */
+export function compareArgs(file: string, html: string, rev = 'HEAD'): string[] {
+  return ['diff', rev, '--html', html, '--', file];
+}
+
+/** What to do once `millpath diff` exits: open the page (0: no change, 1: changed) or show
+ *  the error (2, a signal, a missing binary: its message, else its stderr). */
+export function compareOutcome(code: number | null, stderr: string, error?: string): { open: boolean; changed: boolean; message?: string } {
+  if (code === 0 || code === 1) return { open: true, changed: code === 1 };
+  const said = stderr.trim() || error || `millpath diff exited with ${code}`;
+  return { open: false, changed: false, message: said };
+}

@@ -80,3 +80,43 @@ test('source references from the toolpath page are checked', () => {
   assert.ok(!logic.isSourceRef({ file: '/a.mpath', line: '3' }));
   assert.ok(!logic.isSourceRef(null));
 });
+
+test('compare with HEAD: the diff command writes the page of a changed file, no change opens it too, errors are shown', async () => {
+  const { execFileSync, spawnSync } = await import('node:child_process');
+  const { mkdtempSync, writeFileSync, readFileSync, existsSync } = await import('node:fs');
+  const { tmpdir } = await import('node:os');
+  const { join, dirname, resolve } = await import('node:path');
+  const { fileURLToPath } = await import('node:url');
+  const repo = resolve(dirname(fileURLToPath(import.meta.url)), '../../..');
+  const bin = process.env.MILLPATH_BIN || join(repo, 'target/release/millpath');
+  const dir = mkdtempSync(join(tmpdir(), 'mp-compare-'));
+  const git = (...a) => execFileSync('git', a, { cwd: dir });
+  const slot = (x) => `path 2001.1P {\n  start (0, 0)  M10x3 O2 T3 I1,5 B-0,2\n  end (30, 0)\n  sweep (0, 0) -> (5, 0)\n  mill (5, 0) -> (${x}, 0)\n  sweep (${x}, 0) -> (30, 0)\n}\n`;
+  const file = join(dir, '2001.mpath');
+  git('init', '-q');
+  git('config', 'user.email', 't@example.com');
+  git('config', 'user.name', 't');
+  writeFileSync(file, slot(25));
+  git('add', '.');
+  git('commit', '-qm', 'first');
+  assert.deepEqual(logic.compareArgs(file, '/t/p.html'), ['diff', 'HEAD', '--html', '/t/p.html', '--', file]);
+  const compare = (html, rev) => {
+    const r = spawnSync(bin, logic.compareArgs(file, html, rev), { cwd: dir, encoding: 'utf8' });
+    return logic.compareOutcome(r.status, r.stderr ?? '', r.error?.message);
+  };
+  const same = join(dir, 'same.html');
+  assert.deepEqual(compare(same), { open: true, changed: false });
+  assert.ok(existsSync(same));
+  writeFileSync(file, slot(20));
+  const changed = join(dir, 'changed.html');
+  assert.deepEqual(compare(changed), { open: true, changed: true });
+  const page = readFileSync(changed, 'utf8');
+  assert.match(page, /<svg/);
+  assert.match(page, /mill \(5, 0\) -&gt; \(20, 0\)|mill \(5, 0\) -> \(20, 0\)/);
+  const bad = compare(join(dir, 'bad.html'), 'no-such-rev');
+  assert.equal(bad.open, false);
+  assert.match(bad.message, /no-such-rev/);
+  assert.equal(existsSync(join(dir, 'bad.html')), false);
+  // a missing binary: its error, no page
+  assert.deepEqual(logic.compareOutcome(null, '', 'spawn millpath ENOENT'), { open: false, changed: false, message: 'spawn millpath ENOENT' });
+});

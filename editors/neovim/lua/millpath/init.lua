@@ -365,4 +365,36 @@ function M.dxf_to_text(file)
   vim.api.nvim_buf_set_name(0, vim.fn.fnamemodify(file, ':r') .. '.mpath')
 end
 
+--- `:MillpathDiff [REV]`: what the file's changes since REV (default HEAD) do to the part
+--- (`millpath diff REV -- FILE`) in a scratch split, and the visual diff (`--html`) in a
+--- temporary file whose path is printed. Returns the report's buffer and the page's path.
+function M.diff(rev, file)
+  rev = rev or 'HEAD'
+  file = file or vim.api.nvim_buf_get_name(0)
+  if file == '' then
+    vim.notify('millpath diff: the buffer has no file', vim.log.levels.ERROR)
+    return nil
+  end
+  local html = vim.fn.tempname() .. '-diff.html'
+  local out = vim.fn.system({ M.config.cmd[1], 'diff', rev, '--html', html, '--', file })
+  -- exit status 1 means "changed", not a failure
+  if vim.v.shell_error > 1 then
+    vim.notify('millpath diff: ' .. out, vim.log.levels.ERROR)
+    return nil
+  end
+  vim.cmd('new')
+  local buf = vim.api.nvim_get_current_buf()
+  vim.bo[buf].buftype = 'nofile'
+  vim.bo[buf].bufhidden = 'wipe'
+  vim.bo[buf].swapfile = false
+  local lines = vim.split(out, '\n', { plain = true })
+  if lines[#lines] == '' then
+    table.remove(lines)
+  end
+  vim.api.nvim_buf_set_lines(buf, 0, -1, false, lines)
+  vim.bo[buf].modifiable = false
+  vim.api.nvim_echo({ { 'millpath diff: the visual diff is ' .. html } }, true, {})
+  return buf, html
+end
+
 return M
