@@ -100,11 +100,17 @@ test('a post file: the extension serves it, its errors are diagnostics, the prev
   const proc = spawn(bin, ['lsp'], { stdio: ['pipe', 'pipe', 'ignore'] });
   const conn = rpc.createMessageConnection(new rpc.StreamMessageReader(proc.stdout), new rpc.StreamMessageWriter(proc.stdin));
   const waiting = new Map();
+  // the server may spell a URI another way than the client (Windows: `Z%3A` for `Z:`), as
+  // VS Code and Neovim allow: the same file either way; a missing answer fails, never hangs
+  const sameFile = (u) => decodeURIComponent(u).replace(/^file:\/\/\/([a-z]):/i, (m, d) => `file:///${d.toUpperCase()}:`);
   conn.onNotification('textDocument/publishDiagnostics', (p) => {
-    const w = waiting.get(p.uri);
-    if (w) { waiting.delete(p.uri); w(p); }
+    const w = waiting.get(sameFile(p.uri));
+    if (w) { waiting.delete(sameFile(p.uri)); w(p); }
   });
-  const diagnosticsOf = (uri) => new Promise((resolve) => waiting.set(uri, resolve));
+  const diagnosticsOf = (uri) => new Promise((resolve, reject) => {
+    waiting.set(sameFile(uri), resolve);
+    setTimeout(() => reject(new Error(`no diagnostics for ${uri} in 60 s`)), 60000).unref();
+  });
   conn.listen();
   await conn.sendRequest('initialize', {
     processId: process.pid, rootUri: fileUri(dir), capabilities: {},
