@@ -303,19 +303,7 @@ pub fn settings_for(
                 ),
             });
         }
-        for (name, v) in [
-            ("feed", s.feed),
-            ("sweep_speed", s.sweep_speed),
-            ("sweep_height", s.sweep_height),
-        ] {
-            if v.is_nan() || v <= 0.0 {
-                return Err(if de {
-                    format!("{name} muss > 0 sein (ist {v})")
-                } else {
-                    format!("{name} must be > 0 (is {v})")
-                });
-            }
-        }
+        s.machine_values_positive()?;
     }
     Ok(s)
 }

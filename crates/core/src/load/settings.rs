@@ -160,6 +160,24 @@ impl Default for Settings {
 }
 
 impl Settings {
+    /// compile's rule for the machine values (the command line's and the Python package's):
+    /// feed, sweep speed and sweep height each a number > 0, else the message naming it.
+    pub fn machine_values_positive(&self) -> Result<(), String> {
+        for (name, v) in [
+            ("feed", self.feed),
+            ("sweep_speed", self.sweep_speed),
+            ("sweep_height", self.sweep_height),
+        ] {
+            if v.is_nan() || v <= 0.0 {
+                return Err(match self.lang {
+                    Lang::De => format!("{name} muss > 0 sein (ist {v})"),
+                    Lang::En => format!("{name} must be > 0 (is {v})"),
+                });
+            }
+        }
+        Ok(())
+    }
+
     /// Where an error of setting `name` is located: millpath.toml, unless an option gave it.
     fn origin_of(&self, name: &str) -> Origin {
         match &self.settings_file {
