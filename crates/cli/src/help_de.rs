@@ -74,6 +74,7 @@ fn arg(cmd: &str, id: &str) -> Option<&'static str> {
         ("diff", "html") => Some("Den sichtbaren Vergleich als HTML-Seite hierhin schreiben (entfernt rot, hinzugefügt grün, andere Tiefe blau; Umschalter vorher/nachher; Klick auf eine Bewegung zeigt ihr Element)"),
         ("diff", "svg") => Some("Den sichtbaren Vergleich als SVG hierhin schreiben"),
         ("diff", "png") => Some("Den sichtbaren Vergleich als PNG hierhin schreiben (kein Browser nötig)"),
+        ("diff", "at") => Some("Mit ALT NEU: beide sind Fassungen dieser Zeichnung (Kopien an anderer Stelle, wie ein Editor sie schreibt): ihre Teilpfade und millpath.toml gelten"),
         ("difftool", "local") => Some("Die alte Fassung ($LOCAL von git)"),
         ("difftool", "remote") => Some("Die neue Fassung ($REMOTE von git)"),
         ("difftool", "merged") => Some("Die Zeichnung im Arbeitsverzeichnis ($MERGED von git): wo Teilpfade und millpath.toml liegen"),

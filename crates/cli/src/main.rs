@@ -283,6 +283,10 @@ enum Command {
         /// Write the visual diff as a PNG here (no browser needed)
         #[arg(long)]
         png: Option<PathBuf>,
+        /// With OLD NEW: both are versions of this drawing (copies elsewhere, as an editor
+        /// writes them): its subpaths and millpath.toml are used
+        #[arg(long, value_name = "FILE")]
+        at: Option<PathBuf>,
     },
     /// The visual diff for `git difftool -t millpath`: LOCAL REMOTE [MERGED] as an HTML page
     /// (its path printed)
@@ -532,6 +536,7 @@ fn main() -> ExitCode {
             html,
             svg,
             png,
+            at,
         } => commands::diff::run(&commands::diff::Args {
             machine,
             format,
@@ -539,6 +544,7 @@ fn main() -> ExitCode {
             revs,
             files,
             pictures: commands::diff::Pictures { html, svg, png },
+            at,
         }),
         Command::Difftool {
             machine,

@@ -101,6 +101,86 @@ fn files_exit_statuses_and_the_effect() {
     );
 }
 
+/// An editor's copies of two revisions, elsewhere: `--at` compiles them as the drawing in the
+/// work tree (its millpath.toml and subpaths), as the diff in its own folder does.
+#[test]
+fn copies_read_at_the_drawing() {
+    let d = tempfile::tempdir().unwrap();
+    copy_text_examples(d.path());
+    let copies = tempfile::tempdir().unwrap();
+    let c = copies.path();
+    std::fs::create_dir_all(c.join("HEAD")).unwrap();
+    std::fs::create_dir_all(c.join("working tree")).unwrap();
+    std::fs::copy(d.path().join("2001.mpath"), c.join("HEAD/2001.mpath")).unwrap();
+    write(c, "working tree/2001.mpath", &deeper_2001(d.path()));
+    let seconds = |args: &[&str]| {
+        let (code, text) = status_and_text(c, args);
+        assert_eq!(code, 1, "{text}");
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        let p = &v["files"][0]["paths"][0];
+        assert_eq!(p["effects"][0]["count"], 1, "{text}");
+        assert_eq!(v["files"][0]["old"], "HEAD/2001.mpath");
+        p["before"]["seconds"].as_f64().unwrap()
+    };
+    let pair = [
+        "diff",
+        "--format",
+        "json",
+        "HEAD/2001.mpath",
+        "working tree/2001.mpath",
+    ];
+    let at = d.path().join("2001.mpath");
+    let with_at = seconds(&[&pair[..], &["--at", at.to_str().unwrap()]].concat());
+    let without = seconds(&pair);
+    // the examples' millpath.toml sets the feeds: the same figure as the diff in place
+    let (_, text) = status_and_text(
+        d.path(),
+        &["diff", "--format", "json", "2001.mpath", "2001.mpath"],
+    );
+    assert!(text.contains("\"changed\": false"), "{text}");
+    write(d.path(), "new.mpath", &deeper_2001(d.path()));
+    let (_, text) = status_and_text(
+        d.path(),
+        &["diff", "--format", "json", "2001.mpath", "new.mpath"],
+    );
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let in_place = v["files"][0]["paths"][0]["before"]["seconds"]
+        .as_f64()
+        .unwrap();
+    assert_eq!(with_at, in_place);
+    assert_ne!(
+        with_at, without,
+        "millpath.toml beside the drawing was not read"
+    );
+    // the subpath (2010 embeds 2001) is found beside the drawing: both versions compile
+    // (in folders without 2001.mpath)
+    std::fs::create_dir_all(c.join("old")).unwrap();
+    std::fs::create_dir_all(c.join("new")).unwrap();
+    let t = std::fs::read_to_string(d.path().join("2010.mpath")).unwrap();
+    write(c, "old/2010.mpath", &t);
+    write(c, "new/2010.mpath", &t.replace("B-0,2 D2,5", "B-0,5 D2,5"));
+    let pair = [
+        "diff",
+        "--format",
+        "json",
+        "old/2010.mpath",
+        "new/2010.mpath",
+    ];
+    let error = |args: &[&str]| {
+        let (code, text) = status_and_text(c, args);
+        assert_eq!(code, 1, "{text}");
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        v["files"][0]["paths"][0]["before"]["error"].clone()
+    };
+    let at = d.path().join("2010.mpath");
+    assert!(error(&[&pair[..], &["--at", at.to_str().unwrap()]].concat()).is_null());
+    assert!(!error(&pair).is_null(), "2001.mpath found without --at");
+    // only with two files
+    let (code, text) = status_and_text(d.path(), &["diff", "HEAD", "--at", "2001.mpath"]);
+    assert_eq!(code, 2, "{text}");
+    assert!(text.contains("--at goes with OLD NEW"), "{text}");
+}
+
 #[test]
 fn a_change_without_effect_says_so() {
     let d = tempfile::tempdir().unwrap();

@@ -38,6 +38,9 @@ pub struct Args {
     pub files: Vec<PathBuf>,
     /// The visual diff: HTML page, SVG, PNG.
     pub pictures: Pictures,
+    /// With OLD NEW: the drawing both stand for (an editor's copies of two revisions): its
+    /// subpaths and millpath.toml are used.
+    pub at: Option<PathBuf>,
 }
 
 #[derive(Default)]
@@ -54,11 +57,10 @@ impl Pictures {
 }
 
 pub fn run(a: &Args) -> u8 {
-    let first = a
-        .files
-        .first()
-        .cloned()
-        .or_else(|| a.revs.last().map(PathBuf::from));
+    let first =
+        a.at.clone()
+            .or_else(|| a.files.first().cloned())
+            .or_else(|| a.revs.last().map(PathBuf::from));
     let lang = lang_of(&a.machine, first.as_deref());
     let pairs = match sources(a, lang) {
         Ok(p) => p,
@@ -295,11 +297,21 @@ fn sources(a: &Args, lang: Lang) -> Result<Vec<(Source, Source)>, String> {
             let bytes = std::fs::read(&path).map_err(|e| cannot_read(&path, e, lang))?;
             Ok(Source {
                 label: p.to_string(),
-                file: dunce::canonicalize(&path).unwrap_or(path),
+                file: a
+                    .at
+                    .as_deref()
+                    .map_or_else(|| dunce::canonicalize(&path).unwrap_or(path), absolute),
                 bytes: Some(bytes),
             })
         };
         return Ok(vec![(read(&a.revs[0])?, read(&a.revs[1])?)]);
+    }
+    if a.at.is_some() {
+        return Err(if de {
+            "Fehler: --at gilt mit ALT NEU (zwei Zeichnungen)".into()
+        } else {
+            "error: --at goes with OLD NEW (two drawings)".into()
+        });
     }
     if a.revs.len() > 1 {
         return Err(if de {
