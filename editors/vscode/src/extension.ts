@@ -1,5 +1,6 @@
 // VS Code glue: the language client, G-code preview documents, the toolpath webview, DXF
-// conversions and the status bar. The logic lives in logic.ts.
+// conversions and the status bar; the diff editor's effect summary is effect.ts. The logic
+// lives in logic.ts.
 import * as vscode from 'vscode';
 import * as fs from 'node:fs';
 import * as path from 'node:path';
@@ -10,6 +11,7 @@ import {
   initializationOptions, findServer, ServerLookup, previewUri, parsePreviewUri, pathAtLine, statusText, previewText, PreviewResult, isSourceRef, PREVIEW_SCHEME, MachineSettings,
   documentSelector, compareArgs, compareOutcome,
 } from './logic';
+import { registerEffectSummary, EFFECT_COMMAND } from './effect';
 
 let client: LanguageClient | undefined;
 
@@ -28,7 +30,7 @@ function settings(): MachineSettings {
 let log: vscode.OutputChannel | undefined;
 
 /** The extension's own commands. */
-const OWN_COMMANDS = ['millpath.preview', 'millpath.toolpath', 'millpath.dxfToText', 'millpath.textToDxf', 'millpath.compareWithHead'];
+const OWN_COMMANDS = ['millpath.preview', 'millpath.toolpath', 'millpath.dxfToText', 'millpath.textToDxf', 'millpath.compareWithHead', EFFECT_COMMAND];
 
 /** A language client that never registers a server command under the name of one of ours:
  *  vscode-languageclient registers every command the server advertises
@@ -265,6 +267,11 @@ export async function activate(ctx: vscode.ExtensionContext): Promise<void> {
     } catch (e) {
       report(`registering ${name}`, e);
     }
+  }
+  try {
+    registerEffectSummary(ctx, () => command(ctx), settings, (line) => log?.appendLine(line));
+  } catch (e) {
+    report('the effect summary of diff editors', e);
   }
   ctx.subscriptions.push(
     vscode.workspace.registerTextDocumentContentProvider(PREVIEW_SCHEME, provider),

@@ -190,3 +190,78 @@ test('the feed override setting reaches the server: the estimate at that overrid
   assert.match(summary, /feed override 300 %/);
   assert.match(logic.statusText(faster.path, faster.stats, faster.time, 300), new RegExp(`· ${faster.time} at 300 % ·`));
 });
+
+// The diff editor's effect summary: the arguments the extension gives `millpath diff` for the
+// copies of two versions it reads from VS Code, and the line it shows from the JSON answer.
+test('effect summary of a diff editor from millpath diff', () => {
+  const dir = mkdtempSync(join(tmpdir(), 'millpath-effect-'));
+  for (const f of ['2001.mpath', '2010.mpath', '2020.mpath', 'millpath.toml']) writeFileSync(join(dir, f), readFileSync(join(repo, 'examples/text', f)));
+  const text = readFileSync(join(dir, '2001.mpath'), 'utf8');
+  // the sides as the git extension names them: the index (~) and the file on disk
+  const old = logic.diffSide('git', '/x/2001.mpath.git', JSON.stringify({ path: join(dir, '2001.mpath'), ref: '~' }));
+  const neu = logic.diffSide('file', join(dir, '2001.mpath'), '');
+  assert.deepEqual([old.label, neu.label], ['index', 'working tree']);
+  const copies = mkdtempSync(join(tmpdir(), 'millpath-effect-copies-'));
+  const [of, nf] = logic.copyFolders(old, neu);
+  mkdirSync(join(copies, of));
+  mkdirSync(join(copies, nf));
+  writeFileSync(join(copies, of, '2001.mpath'), text);
+  writeFileSync(join(copies, nf, '2001.mpath'), text.replace('B-0,2', 'B-0,5'));
+  const run = (format, settings = {}, files = [join(of, '2001.mpath'), join(nf, '2001.mpath')]) =>
+    spawnSync(bin, logic.effectArgs(files[0], files[1], neu.drawing, format, settings), { cwd: copies, encoding: 'utf8' });
+  const r = run('json');
+  assert.equal(r.status, 1, r.stderr);
+  const json = JSON.parse(r.stdout);
+  const line = logic.effectLine(json);
+  assert.match(line, /^millpath: 1 path changed; 1 element edited, 1 more reached by the effect · 2001\.1P: /);
+  assert.match(line, /B -0,2 → -0,5 on 1 element \(path start \(line 4\)\); lowest Z -0\.2 → -0\.5; milling 63\.2 → 63\.5 mm; /);
+  assert.match(line, /; 12 moves; G-code changed$/);
+  // the time as millpath.toml beside the drawing makes it (F and sweeps of the examples)
+  const seconds = json.files[0].paths[0].after.seconds;
+  const clock = `${Math.floor(seconds / 3600)}:${String(Math.floor(seconds / 60) % 60).padStart(2, '0')}:${String(Math.round(seconds) % 60).padStart(2, '0')}`;
+  assert.ok(line.includes(clock), `${clock} in ${line}`);
+  // the extension's machine settings are passed as the language server gets them
+  assert.deepEqual(logic.effectArgs('a', 'b', '/w/c.mpath', 'json', { feed: 10, sweepHeight: Number.NaN, language: 'de' }),
+    ['diff', '--format', 'json', '--at', '/w/c.mpath', '--feed', '10', '--lang', 'de', 'a', 'b']);
+  assert.equal(run('json', { feed: 10 }).status, 1);
+  // the markdown report for the hover and the command
+  const md = run('markdown');
+  assert.equal(md.status, 1, md.stderr);
+  assert.match(md.stdout, /^### index\/2001\.mpath → working tree\/2001\.mpath/);
+  assert.match(md.stdout, /\| lowest Z \| -0\.2 \| \*\*-0\.5\*\* \|/);
+  // German: every message the line uses is in the bundle, numbers with decimal commas
+  const de = JSON.parse(readFileSync(join(repo, 'editors/vscode/l10n/bundle.l10n.de.json'), 'utf8'));
+  const used = new Set();
+  const t = (m, ...args) => {
+    used.add(m);
+    return logic.english(de[m] ?? m, ...args);
+  };
+  const german = logic.effectLine(JSON.parse(run('json', { language: 'de' }).stdout), t, true);
+  assert.match(german, /^millpath: 1 Pfad geändert; 1 Element bearbeitet, 1 weitere durch die Wirkung erreicht · 2001\.1P: B -0,2 → -0,5 an 1 Element \(/);
+  assert.match(german, /tiefstes Z -0,2 → -0,5; Fräsweg 63,2 → 63,5 mm; .*; 12 Bewegungen; G-Code geändert$/);
+  // no change; a path added and one removed; a file that does not compile
+  writeFileSync(join(copies, nf, '2001.mpath'), text);
+  const same = run('json');
+  assert.equal(same.status, 0, same.stderr);
+  assert.equal(logic.effectLine(JSON.parse(same.stdout), t), 'millpath: keine Änderung am Teil');
+  assert.equal(logic.effectLine(JSON.parse(same.stdout)), 'millpath: no change to the part');
+  writeFileSync(join(copies, nf, '2001.mpath'), text.replace(/path 2001\.1P/g, 'path 2001.2P') + '\npath 2001.3P {\n  start (0, 0)  T1 O2 B-1\n  end (5, 0)\n  mill (0, 0) -> (5, 5)  B-9 B\n}\n');
+  const renamed = run('json');
+  const moved = logic.effectLine(JSON.parse(renamed.stdout), t);
+  assert.match(moved, /1 Pfad umbenannt|1 Pfad hinzugefügt/, moved);
+  assert.match(moved, /lässt sich nicht übersetzen|G-Code/, moved);
+  const sources = ['src/logic.ts', 'src/effect.ts'].map((f) => readFileSync(join(repo, 'editors/vscode', f), 'utf8')).join('\n');
+  for (const m of sources.matchAll(/l10n\.t\('([^']+)'/g)) used.add(m[1]);
+  const missing = [...used].filter((m) => !(m in de));
+  assert.deepEqual(missing, [], 'messages without German');
+  // hostile: a side that is no drawing is an error (exit 2), not an answer
+  writeFileSync(join(copies, nf, '2001.mpath'), Buffer.from([0, 1, 2, 0, 255]));
+  const bad = run('json');
+  assert.equal(bad.status, 2, bad.stdout);
+  // sides that are no drawing, or no URI the extension reads, have no summary
+  assert.equal(logic.diffSide('file', '/x/notes.txt', ''), undefined);
+  assert.equal(logic.diffSide('git', '/x/a.mpath', 'not json'), undefined);
+  assert.equal(logic.diffSide('vscode-remote', '/x/a.mpath', ''), undefined);
+  assert.deepEqual(logic.diffSide('git', '/x/p.DXF', JSON.stringify({ path: '/x/p.DXF', ref: 'a'.repeat(40) })), { drawing: '/x/p.DXF', label: 'aaaaaaaaaa' });
+  assert.deepEqual(logic.copyFolders({ drawing: '/a', label: '-rf' }, { drawing: '/a', label: '-rf' }), ['_rf (old)', '_rf (new)']);
+});
