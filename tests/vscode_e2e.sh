@@ -32,6 +32,10 @@ cp examples/text/*.mpath examples/text/millpath.toml examples/plate/1234.1P.dxf 
 # a drawing with an error that is never opened: the workspace pull shows it in Problems
 printf 'path 3002.1P {\n  start (0, 0)  M10x3 O2 T3 I1,5 B-0,2\n  end (50, 0)\n  sweep (0, 0) -> (10, 10)\n  mill (10, 10) -> (40, 10)  O-3\n  sweep (40, 10) -> (50, 0)\n}\n' >"$tmp/3002.mpath"
 "$bin" text2dxf "$tmp/3002.mpath" -o "$ws/3002.dxf" >/dev/null
+# a git repository (the diff editor's effect summary opens git's changes of a drawing)
+git -C "$ws" init -q
+git -C "$ws" add -A
+git -C "$ws" -c user.email=e2e@millpath.invalid -c user.name=e2e commit -qm "the examples"
 cat > "$tmp/user/User/settings.json" <<'JSON'
 {
   "security.workspace.trust.enabled": false,

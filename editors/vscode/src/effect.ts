@@ -1,7 +1,8 @@
 // The effect summary in VS Code's diff editor: when a diff editor compares two versions of a
 // drawing (git's "Open Changes", a staged change, any two .mpath/.dxf files), `millpath diff
 // --format json|markdown` compares them and the summary shows as a line at the top of the
-// modified side, its hover holds millpath's markdown report, and the title-bar command
+// modified side and (its head) in the status bar, its hover holds millpath's markdown report,
+// and the title-bar command
 // "MillPath: Show Effect of the Changes" opens that report. The sides are read through VS Code
 // (workspace.fs, open documents), so git revisions and unsaved edits count; the copies are
 // compiled as the drawing in the work tree (`--at`: its millpath.toml and subpaths).
@@ -69,6 +70,11 @@ export function registerEffectSummary(
     isWholeLine: true,
     after: { color: new vscode.ThemeColor('editorCodeLens.foreground'), fontStyle: 'italic', margin: '0 0 0 3em' },
   });
+  // the head of the line in the status bar while a drawing's diff editor is the active one
+  // (the line atop the modified side may be out of sight in a narrow editor)
+  const status = vscode.window.createStatusBarItem('millpath.effect', vscode.StatusBarAlignment.Left, 49);
+  status.name = vscode.l10n.t('MillPath: effect of the changes');
+  status.command = EFFECT_COMMAND;
   const cache = new Map<string, Promise<Summary>>();
   const reports = new Map<string, string>();
   const changed = new vscode.EventEmitter<vscode.Uri>();
@@ -116,15 +122,21 @@ export function registerEffectSummary(
     const diffs = drawingDiffs();
     const shown = new Set<vscode.TextEditor>();
     for (const { tab, input } of diffs) {
-      // the modified side: the editor of that document in the diff's group
+      // the modified side: an editor of that document without a column of its own (VS Code
+      // gives the sides of a diff editor none), not the same file open beside
       const editors = vscode.window.visibleTextEditors.filter(
-        (e) => e.document.uri.toString() === input.modified.toString() && e.viewColumn === tab.group.viewColumn,
+        (e) => e.document.uri.toString() === input.modified.toString() && (e.viewColumn === undefined || e.viewColumn === tab.group.viewColumn),
       );
-      if (editors.length === 0) continue;
+      if (editors.length === 0) {
+        const seen = vscode.window.visibleTextEditors.map((e) => `${e.document.uri.toString(true)}@${e.viewColumn}`).join(', ');
+        log(`[info] effect summary: no editor of ${input.modified.toString(true)} in column ${tab.group.viewColumn} (${seen})`);
+        continue;
+      }
       let line: string, hover: vscode.MarkdownString;
       try {
         const s = await summary(input.original, input.modified);
         line = s.line;
+        log(`[info] effect summary of ${input.original.toString(true)} → ${input.modified.toString(true)}: ${line}`);
         hover = new vscode.MarkdownString(s.markdown);
       } catch (e) {
         const msg = (e as Error).message.split('\n')[0];
@@ -140,6 +152,16 @@ export function registerEffectSummary(
       }
     }
     for (const e of vscode.window.visibleTextEditors) if (!shown.has(e)) e.setDecorations(decoration, []);
+    const active = vscode.window.tabGroups.activeTabGroup.activeTab?.input;
+    const pair = active instanceof vscode.TabInputTextDiff && diffs.find(({ input }) => input === active)?.input;
+    const s = pair ? await summary(pair.original, pair.modified).catch(() => undefined) : undefined;
+    if (s) {
+      status.text = `$(diff) ${s.line.split(' · ')[0]}`;
+      status.tooltip = new vscode.MarkdownString(s.markdown);
+      status.show();
+    } else {
+      status.hide();
+    }
   }
 
   const later = (ms = 300) => {
@@ -149,6 +171,7 @@ export function registerEffectSummary(
 
   ctx.subscriptions.push(
     decoration,
+    status,
     changed,
     vscode.workspace.registerTextDocumentContentProvider(REPORT_SCHEME, {
       onDidChange: changed.event,

@@ -3,7 +3,7 @@
 // clicks. Each check prints `ok - …` or `not ok - …`; the last line is `N passed, M failed`.
 // Screenshots: test-artifacts/vscode-*.png.
 import { chromium } from 'playwright-core';
-import { mkdirSync, readdirSync, readFileSync, statSync } from 'node:fs';
+import { mkdirSync, readdirSync, readFileSync, statSync, writeFileSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
@@ -444,6 +444,67 @@ try {
     }, 15000);
     expect(st, `status bar: ${await item.innerText().catch(() => 'none')}`);
     return `${mode.trim()}; status ${st.trim()}`;
+  });
+
+  await check("git's Open Changes of a drawing shows millpath's effect summary in the diff editor", 'diff-effect', async () => {
+    await palette('View: Close All Editors');
+    await sleep(500);
+    const dontSave4 = page.locator('.monaco-dialog-box button', { hasText: "Don't Save" });
+    if (await dontSave4.isVisible().catch(() => false)) await dontSave4.click();
+    // the start's depth, inherited by the slot: one line changed, one more element reached
+    const file = join(ws, '2001.mpath');
+    const original = readFileSync(file, 'utf8');
+    // an edit left unsaved by the checks before is dropped: the diff shows the file on disk
+    await openFile('2001.mpath');
+    await palette('File: Revert File');
+    await sleep(500);
+    writeFileSync(file, original.replace('B-0,2', 'B-0,5'));
+
+    try {
+      const diff = page.locator('.editor-group-container.active .monaco-diff-editor').first();
+      // the Source Control view lists the change once git's watcher has seen it; a click on
+      // it opens its changes in the diff editor
+      await page.keyboard.press('Control+Shift+G');
+      const row = page.locator('.scm-view .monaco-list-row', { hasText: '2001.mpath' }).first();
+      await row.waitFor({ timeout: 30000 });
+      await row.click();
+      const opened = await diff.waitFor({ timeout: 20000 }).then(() => true, () => false);
+      expect(opened, 'a click on the change in Source Control opened no diff editor');
+      // the line atop the modified side (the decoration's text: injected text or ::after)
+      const modified = diff.locator('.editor.modified').first();
+      const summary = await until(async () => {
+        const shown = norm(await modified.locator('.view-lines').first().innerText()) + '\n' +
+          norm((await modified.locator('.view-lines span').evaluateAll((spans) =>
+            spans.map((e) => getComputedStyle(e, '::after').content).filter((c) => c && c !== 'none' && c !== 'normal').join('\n'))));
+        return /millpath: \d+ path/.test(shown) && shown.split('\n').find((l) => /millpath: \d+ path/.test(l));
+      }, 45000, 500);
+      expect(summary, `no summary in the modified side: ${(await modified.innerText().catch(() => '')).slice(0, 300)}`);
+      for (const want of ['1 path changed; 1 element edited, 1 more reached by the effect', 'B -0,2 → -0,5 on 1 element (path start (line 4))', 'lowest Z -0.2 → -0.5', 'G-code changed']) {
+        expect(summary.includes(want), `'${want}' not in: ${summary}`);
+      }
+      // its head in the status bar while the diff editor is active
+      const item = page.locator('.statusbar-item', { has: page.locator('.codicon-diff') }).first();
+      const head = await until(async () => {
+        const t = norm(await item.innerText());
+        return /millpath: 1 path changed/.test(t) && t;
+      }, 15000);
+      expect(head, `status bar: ${await item.innerText().catch(() => 'none')}`);
+      await page.screenshot({ path: join(artifacts, 'vscode-diff-effect-line.png') });
+      // the title-bar button opens millpath's markdown report beside
+      const button = page.locator('.editor-group-container.active .editor-actions .action-label[aria-label*="Show Effect of the Changes"]').first();
+      await button.waitFor({ timeout: 10000 });
+      await button.click();
+      await page.locator('.tab[aria-label*="2001.mpath.effect.md"]').first().waitFor({ timeout: 20000 });
+      const report = await until(async () => {
+        const t = await editorText('2001.mpath.effect.md');
+        return /lowest Z \| -0\.2 \| \*\*-0\.5\*\*/.test(t) && t;
+      }, 20000);
+      expect(report, `report: ${(await editorText('2001.mpath.effect.md').catch(() => '')).slice(0, 300)}`);
+      return `${summary.slice(0, 160)}…; report: ${report.split('\n')[0]}`;
+    } finally {
+      writeFileSync(file, original);
+      await page.keyboard.press('Control+Shift+E');
+    }
   });
 
   await check('F2 renames a path in its file and in the files embedding it', 'rename', async () => {
