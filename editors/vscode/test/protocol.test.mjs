@@ -207,8 +207,8 @@ test('effect summary of a diff editor from millpath diff', () => {
   mkdirSync(join(copies, nf));
   writeFileSync(join(copies, of, '2001.mpath'), text);
   writeFileSync(join(copies, nf, '2001.mpath'), text.replace('B-0,2', 'B-0,5'));
-  const run = (format, settings = {}, files = [join(of, '2001.mpath'), join(nf, '2001.mpath')]) =>
-    spawnSync(bin, logic.effectArgs(files[0], files[1], neu.drawing, format, settings), { cwd: copies, encoding: 'utf8' });
+  const run = (format, settings = {}, files = [join(of, '2001.mpath'), join(nf, '2001.mpath')], at = neu.drawing) =>
+    spawnSync(bin, logic.effectArgs(files[0], files[1], at, format, settings), { cwd: copies, encoding: 'utf8' });
   const r = run('json');
   assert.equal(r.status, 1, r.stderr);
   const json = JSON.parse(r.stdout);
@@ -254,6 +254,14 @@ test('effect summary of a diff editor from millpath diff', () => {
   for (const m of sources.matchAll(/l10n\.t\('([^']+)'/g)) used.add(m[1]);
   const missing = [...used].filter((m) => !(m in de));
   assert.deepEqual(missing, [], 'messages without German');
+  // drawings: the copies of two revisions of part.dxf, read as part.dxf beside millpath.toml
+  writeFileSync(join(copies, nf, '2001.mpath'), text.replace('B-0,2', 'B-0,5'));
+  const dxf = (from, to) => assert.equal(spawnSync(bin, ['text2dxf', from, '-o', to]).status, 0);
+  dxf(join(copies, of, '2001.mpath'), join(copies, of, 'part.dxf'));
+  dxf(join(copies, nf, '2001.mpath'), join(copies, nf, 'part.dxf'));
+  const d = run('json', {}, [join(of, 'part.dxf'), join(nf, 'part.dxf')], join(dir, 'part.dxf'));
+  assert.equal(d.status, 1, d.stderr);
+  assert.match(logic.effectLine(JSON.parse(d.stdout)), /2001\.1P: B -0,2 → -0,5 on 1 element .*; G-code changed$/);
   // hostile: a side that is no drawing is an error (exit 2), not an answer
   writeFileSync(join(copies, nf, '2001.mpath'), Buffer.from([0, 1, 2, 0, 255]));
   const bad = run('json');
