@@ -490,6 +490,18 @@ try {
       }, 15000);
       expect(head, `status bar: ${await item.innerText().catch(() => 'none')}`);
       await page.screenshot({ path: join(artifacts, 'vscode-diff-effect-line.png') });
+      // the line's hover holds millpath's report (the markdown table of the figures)
+      await modified.locator('.view-lines').first().click({ position: { x: 30, y: 8 }, force: true, timeout: 10000 });
+      await goTo(1, 3);
+      await page.keyboard.press('Control+K');
+      await page.keyboard.press('Control+I');
+      const hover = page.locator('.monaco-hover:not(.hidden)').first();
+      const hovered = await until(async () => {
+        const t = norm(await hover.innerText());
+        return /lowest Z/.test(t) && /G-code changed/.test(t) && t;
+      }, 15000);
+      expect(hovered, `hover: ${(await hover.innerText().catch(() => 'none')).slice(0, 200)}`);
+      await page.keyboard.press('Escape');
       // the title-bar button opens millpath's markdown report beside
       const button = page.locator('.editor-group-container.active .editor-actions .action-label[aria-label*="Show Effect of the Changes"]').first();
       await button.waitFor({ timeout: 10000 });
