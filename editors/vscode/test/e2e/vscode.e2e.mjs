@@ -515,6 +515,14 @@ try {
       return `${summary.slice(0, 160)}…; report: ${report.split('\n')[0]}`;
     } finally {
       writeFileSync(file, original);
+      // the report and the diff closed (a middle click on the tab): the checks after look
+      // for 2001.mpath in active tabs
+      for (const name of ['2001.mpath.effect.md', 'Working Tree']) {
+        for (let i = 0; i < 3 && (await page.locator(`.tab[aria-label*="${name}"]`).count()) > 0; i++) {
+          await page.locator(`.tab[aria-label*="${name}"]`).first().click({ button: 'middle', timeout: 5000 }).catch(() => {});
+          await sleep(300);
+        }
+      }
       await page.keyboard.press('Control+Shift+E');
     }
   });
