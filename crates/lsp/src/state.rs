@@ -145,16 +145,22 @@ impl Backend {
                         let st = state.clone();
                         let p = path.clone();
                         let prev = state.lock().ok().and_then(|s| s.last.get(&path).cloned());
-                        // on the analysis thread, where the previous one's pages are
-                        let r = crate::worker::run(move || {
+                        let work = move || {
                             let cancelled = || g != u64::MAX && !is_current(&st, &p, g);
                             if millpath_ide::is_toml(&p) {
                                 // millpath.toml or a post file: its own checks
                                 return Some(millpath_ide::analyze_toml(&ws, &p));
                             }
                             analyze_from(&ws, &p, prev.as_deref(), &cancelled)
-                        })
-                        .await;
+                        };
+                        // an open document's on the analysis thread, where the previous
+                        // one's pages are; a file that is not open (it cannot go stale)
+                        // not in the queue before them
+                        let r = if g != u64::MAX {
+                            crate::worker::run(work).await
+                        } else {
+                            blocking(work).await.ok()
+                        };
                         let a = match r {
                             Some(Some(a)) => Arc::new(a),
                             // stale (given up), or a panic: the error is reported by the caller
