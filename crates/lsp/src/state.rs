@@ -147,6 +147,10 @@ impl Backend {
                         let prev = state.lock().ok().and_then(|s| s.last.get(&path).cloned());
                         let work = move || {
                             let cancelled = || g != u64::MAX && !is_current(&st, &p, g);
+                            // queued behind a newer change: not started at all
+                            if cancelled() {
+                                return None;
+                            }
                             if millpath_ide::is_toml(&p) {
                                 // millpath.toml or a post file: its own checks
                                 return Some(millpath_ide::analyze_toml(&ws, &p));
