@@ -94,23 +94,39 @@ impl LineIndex {
             .starts
             .get(pos.line as usize + 1)
             .map_or(self.text.len(), |e| e - 1);
-        let mut units = 0u32;
-        for (i, c) in self.text[start..line_end].char_indices() {
-            if units >= pos.col {
-                return start + i;
+        column_offset(&self.text, start, line_end, pos.col, self.utf8)
+    }
+
+    /// [`LineIndex::offset`] in `text` without an index: its lines scanned up to `pos` only
+    /// (one edit of a long document, where making the index would cost more than the edit).
+    pub fn offset_in(text: &str, pos: Pos, utf8: bool) -> usize {
+        let mut start = 0;
+        for _ in 0..pos.line {
+            match text[start..].find('\n') {
+                Some(i) => start += i + 1,
+                None => return text.len(),
             }
-            units += if self.utf8 {
-                c.len_utf8()
-            } else {
-                c.len_utf16()
-            } as u32;
         }
-        line_end
+        let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);
+        column_offset(text, start, line_end, pos.col, utf8)
     }
 
     pub fn line_count(&self) -> usize {
         self.starts.len()
     }
+}
+
+/// The offset of column `col` (UTF-8 bytes or UTF-16 units) in the line `start..line_end`;
+/// past its end, the line's end.
+fn column_offset(text: &str, start: usize, line_end: usize, col: u32, utf8: bool) -> usize {
+    let mut units = 0u32;
+    for (i, c) in text[start..line_end].char_indices() {
+        if units >= col {
+            return start + i;
+        }
+        units += if utf8 { c.len_utf8() } else { c.len_utf16() } as u32;
+    }
+    line_end
 }
 
 #[cfg(test)]
@@ -165,5 +181,26 @@ mod tests {
         assert_eq!(idx.offset(Pos { line: 1, col: 2 }), 5);
         // inside a character: the next one
         assert_eq!(idx.offset(Pos { line: 1, col: 1 }), 5);
+    }
+
+    /// Without an index, the same offset for every position (inside, past a line's end, past
+    /// the last line, inside a character), in both encodings, with CRLF and no final newline.
+    #[test]
+    fn an_offset_without_an_index_equals_the_indexed_one() {
+        for text in ["ab\nüx𝄞y\n", "a\r\n😀b\r\n\nlast", "", "\n\n", "one line"] {
+            for utf8 in [false, true] {
+                let idx = LineIndex::with_encoding(text, utf8);
+                for line in 0..6 {
+                    for col in 0..10 {
+                        let pos = Pos { line, col };
+                        assert_eq!(
+                            LineIndex::offset_in(text, pos, utf8),
+                            idx.offset(pos),
+                            "{text:?} {pos:?} utf8 {utf8}"
+                        );
+                    }
+                }
+            }
+        }
     }
 }

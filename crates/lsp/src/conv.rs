@@ -100,13 +100,18 @@ pub(crate) fn internal_error_diagnostic() -> Vec<Diagnostic> {
 }
 
 /// Applies one incremental change (an LSP range in the negotiated encoding) to a text.
+/// The text is scanned up to the edited lines only (no index of every line, no copy: this is
+/// on the way from a keystroke to its diagnostics).
 pub fn apply_edit(text: &mut String, r: Range, new_text: &str, utf8: bool) {
-    let idx = LineIndex::with_encoding(text, utf8);
     let at = |p: Position| {
-        idx.offset(Pos {
-            line: p.line,
-            col: p.character,
-        })
+        LineIndex::offset_in(
+            text,
+            Pos {
+                line: p.line,
+                col: p.character,
+            },
+            utf8,
+        )
     };
     let (start, end) = (at(r.start), at(r.end));
     let (start, end) = (start.min(end), end.max(start));

@@ -4,7 +4,7 @@
 //! file per group of handlers (`handlers/`), each turning a request into an ide call.
 //!
 //! - **One analysis per document version.** Every change bumps the document's generation;
-//!   the `Arc<Analysis>` of the current generation is made once (on tokio's blocking pool, in
+//!   the `Arc<Analysis>` of the current generation is made once (on the analysis thread, `worker.rs`, in
 //!   a `OnceCell`) and shared by the diagnostics, hover, inlay hints, lenses, symbols, actions
 //!   and the preview. An analysis whose generation is no longer current gives up between its
 //!   stages (inside the compiler: between elements and passes) and is never published;
@@ -47,6 +47,7 @@ mod conv;
 mod handlers;
 mod results;
 mod state;
+mod worker;
 
 pub use conv::apply_edit;
 pub use handlers::preview::{PreviewParams, PreviewResult};

@@ -1,8 +1,8 @@
 //! The server's state: open documents, their generations and shared analyses, the
 //! dependency graph between files, and the publication of diagnostics.
 //!
-//! `Backend` and its state: generations, the shared analysis per version (the one it replaces freed
-//! on the blocking pool, not on the way to the diagnostics), the dependency graph, debounced
+//! `Backend` and its state: generations, the shared analysis per version (made on the analysis
+//! thread, `worker.rs`; the one it replaces freed there after it, not on the way to the diagnostics), the dependency graph, debounced
 //! publication, `blocking`/`guarded`.
 
 use crate::conv::*;
@@ -104,7 +104,7 @@ impl Backend {
 
     /// The analysis of the current version of a document, made once and shared: the
     /// diagnostics, hover, inlay hints, lenses, symbols and the preview all use it. Runs on
-    /// the blocking pool; gives up between its stages when a newer change arrives.
+    /// the analysis thread (`worker.rs`); gives up between its stages when a newer change arrives.
     pub(crate) async fn analysis(&self, uri: &Uri) -> Result<(Arc<Analysis>, Arc<Workspace>)> {
         let path = to_path(uri).ok_or_else(|| Error::invalid_params("not a file URI"))?;
         let entry = {
@@ -145,21 +145,29 @@ impl Backend {
                         let st = state.clone();
                         let p = path.clone();
                         let prev = state.lock().ok().and_then(|s| s.last.get(&path).cloned());
-                        let r = tokio::task::spawn_blocking(move || {
-                            catch_unwind(AssertUnwindSafe(|| {
-                                let cancelled = || g != u64::MAX && !is_current(&st, &p, g);
-                                if millpath_ide::is_toml(&p) {
-                                    // millpath.toml or a post file: its own checks
-                                    return Some(millpath_ide::analyze_toml(&ws, &p));
-                                }
-                                analyze_from(&ws, &p, prev.as_deref(), &cancelled)
-                            }))
-                        })
-                        .await;
+                        let work = move || {
+                            let cancelled = || g != u64::MAX && !is_current(&st, &p, g);
+                            // queued behind a newer change: not started at all
+                            if cancelled() {
+                                return None;
+                            }
+                            if millpath_ide::is_toml(&p) {
+                                // millpath.toml or a post file: its own checks
+                                return Some(millpath_ide::analyze_toml(&ws, &p));
+                            }
+                            analyze_from(&ws, &p, prev.as_deref(), &cancelled)
+                        };
+                        // an open document's on the analysis thread, where the previous
+                        // one's pages are; a file that is not open (it cannot go stale)
+                        // not in the queue before them
+                        let r = if g != u64::MAX {
+                            crate::worker::run(work).await
+                        } else {
+                            blocking(work).await.ok()
+                        };
                         let a = match r {
-                            Ok(Ok(Some(a))) => Arc::new(a),
-                            Ok(Ok(None)) => return None,
-                            // a panic: the error is reported by the caller
+                            Some(Some(a)) => Arc::new(a),
+                            // stale (given up), or a panic: the error is reported by the caller
                             _ => return None,
                         };
                         if g != u64::MAX {
@@ -172,7 +180,7 @@ impl Backend {
                             // freeing a large analysis takes a millisecond or more: not on
                             // the way to the diagnostics
                             if let Some(old) = replaced {
-                                tokio::task::spawn_blocking(move || drop(old));
+                                crate::worker::drop_later(old);
                             }
                         }
                         Some(a)

@@ -23,7 +23,7 @@ fn kind(e: &Element) -> &'static str {
 impl Emitter<'_> {
     /// A line of the post that is no move (nothing in a dry run or for an empty template).
     pub(crate) fn event_line(&mut self, event: Event, vars: &[(Var, Value)]) {
-        if !self.ctl.post.has(event) {
+        if !self.writes(event) {
             return;
         }
         let text = if self.dry {
@@ -39,7 +39,7 @@ impl Emitter<'_> {
         if let Element::Drill(d) = e {
             self.drill_event(fr, d);
         }
-        if !self.ctl.post.has(Event::ContourStart) {
+        if !self.writes(Event::ContourStart) {
             return;
         }
         let h = fr.h;
@@ -106,7 +106,7 @@ impl Emitter<'_> {
     /// The post's `drill` event: a drill that cuts (its depth below the stock top), at its
     /// point, from the top down to its depth.
     fn drill_event(&mut self, fr: Frame, d: &Drill) {
-        if !self.ctl.post.has(Event::Drill) {
+        if !self.writes(Event::Drill) {
             return;
         }
         let Some(depth) = (match d.style {

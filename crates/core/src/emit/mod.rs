@@ -138,6 +138,20 @@ pub(crate) struct Emitter<'a> {
     pub(crate) at: P3,
     /// The post's passes (`pass.rs`).
     pub(crate) passes: pass_state::Passes,
+    /// The post's events that write text, one bit each ([`Emitter::writes`]).
+    pub(crate) written: u32,
+}
+
+// one bit per event in [`Emitter::written`]
+const _: () = assert!(Event::ALL.len() <= 32);
+
+/// The events `post` writes text for, one bit each: asked at every move, where a lookup in
+/// the post's map of templates was a fifth of the editor's quick check.
+fn written_events(post: &millpath_post::Post) -> u32 {
+    Event::ALL
+        .iter()
+        .filter(|e| post.has(**e))
+        .fold(0, |bits, e| bits | 1 << *e as u32)
 }
 
 /// Elements or passes between two questions to [`Emitter::stop`].
@@ -160,6 +174,10 @@ pub(crate) fn bt(b: bool) -> &'static str {
 pub(crate) type Skip = Diagnostic;
 
 impl<'a> Emitter<'a> {
+    /// Does the post write text for `event` (a template that is not empty)?
+    pub(crate) fn writes(&self, event: Event) -> bool {
+        self.written & 1 << event as u32 != 0
+    }
     /// Texts are only made when they are written: a check needs the moves, not the words.
     pub(crate) fn comment(&mut self, indent: usize, text: impl FnOnce() -> String) {
         if self.at_capacity() {
@@ -535,6 +553,7 @@ fn emit_with<S: AsRef<str>>(
         quick_steps: 0,
         at: pass_state::start_position(sx),
         passes: pass_state::Passes::default(),
+        written: written_events(ctl.post),
     };
     em.comment(2, || format!("Model {}", model.label()));
     em.emit_model(Frame {

@@ -40,7 +40,7 @@ impl Emitter<'_> {
                 let t = |e: &Emitter| {
                     // a post that writes drill elements whole (`drill`) does not write
                     // their plunges again
-                    if e.shape == Shape::Drill && e.ctl.post.has(Event::Drill) {
+                    if e.shape == Shape::Drill && e.writes(Event::Drill) {
                         return String::new();
                     }
                     let expr = e.zexpr(to, xy).probe_text();

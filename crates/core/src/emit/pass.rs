@@ -11,7 +11,7 @@ use millpath_post::{Event, Value, Var};
 
 impl Emitter<'_> {
     fn writes_passes(&self) -> bool {
-        self.ctl.post.has(Event::PassStart) || self.ctl.post.has(Event::PassEnd)
+        self.writes(Event::PassStart) || self.writes(Event::PassEnd)
     }
 
     /// Before a move of `kind` at `feed` is recorded (the tool at `self.at`): opens a pass
@@ -21,7 +21,7 @@ impl Emitter<'_> {
             return;
         }
         // plunges are cut too, but not a drill element's where the post writes drills whole
-        let whole_drill = self.shape == Shape::Drill && self.ctl.post.has(Event::Drill);
+        let whole_drill = self.shape == Shape::Drill && self.writes(Event::Drill);
         let cutting = kind == Kind::Mill || (kind == Kind::Drill && !whole_drill);
         match (&self.passes.open, cutting) {
             (None, true) => {
