@@ -49,10 +49,18 @@ pub struct Compiled {
 }
 
 impl Compiled {
-    /// The version's text in memory at `DIR/STEM.mpath` for a drawing at `file`.
-    pub fn new(version: &Version, file: &Path) -> Compiled {
+    /// The version's text in memory at `DIR/STEM.mpath` for a drawing at `file`; `files`:
+    /// the other files as the version's revision has them (instead of the disk).
+    pub fn new(
+        version: &Version,
+        file: &Path,
+        files: Option<std::sync::Arc<millpath_core::MemFileSystem>>,
+    ) -> Compiled {
         let at = file.with_extension("mpath");
-        let mut ws = Workspace::default();
+        let mut ws = Workspace {
+            memory: files,
+            ..Workspace::default()
+        };
         ws.overlays.insert(at.clone(), version.text.clone());
         Compiled {
             ws,

@@ -126,6 +126,9 @@ impl Diff {
 pub struct Side<'a> {
     pub version: &'a Version,
     pub file: &'a Path,
+    /// The files of the version's revision (a git commit) at their work-tree paths, read
+    /// instead of the disk; `None`: the disk.
+    pub files: Option<std::sync::Arc<millpath_core::MemFileSystem>>,
 }
 
 /// Diffs two versions; `compile`: also compile both and report the effect (without it the
@@ -135,8 +138,8 @@ pub struct Side<'a> {
 /// the effective values of all elements whose moves changed are then read with one
 /// analysis per version, again both at once.
 pub fn diff(old: Side, new: Side, compile: bool) -> Diff {
-    let mut old_c = Compiled::new(old.version, old.file);
-    let mut new_c = Compiled::new(new.version, new.file);
+    let mut old_c = Compiled::new(old.version, old.file, old.files.clone());
+    let mut new_c = Compiled::new(new.version, new.file, new.files.clone());
     let pairing = match_paths(old.version, new.version);
     let (mut before, mut after) = if compile {
         both_sides(
