@@ -89,10 +89,7 @@ pub fn run(a: &Args) -> u8 {
     let mut texts = Vec::new();
     let mut jsons = Vec::new();
     for (old, new) in &pairs {
-        let (o, n) = match (
-            version(old, &a.machine, lang),
-            version(new, &a.machine, lang),
-        ) {
+        let (o, n) = match both_versions(old, new, &a.machine, lang) {
             (Ok(o), Ok(n)) => (o, n),
             (Err(e), _) | (_, Err(e)) => {
                 eprintln!("{e}");
@@ -211,7 +208,7 @@ pub fn difftool(
             return 2;
         }
     };
-    let (o, n) = match (version(&old, machine, lang), version(&new, machine, lang)) {
+    let (o, n) = match both_versions(&old, &new, machine, lang) {
         (Ok(o), Ok(n)) => (o, n),
         (Err(e), _) | (_, Err(e)) => {
             eprintln!("{e}");
@@ -264,6 +261,23 @@ pub fn difftool(
         }
     }
     0
+}
+
+/// Both versions read at once (a large drawing's conversion takes a while).
+fn both_versions(
+    old: &Source,
+    new: &Source,
+    m: &MachineArgs,
+    lang: Lang,
+) -> (Result<Version, String>, Result<Version, String>) {
+    std::thread::scope(|s| {
+        let o = s.spawn(|| version(old, m, lang));
+        let n = version(new, m, lang);
+        let o = o
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        (o, n)
+    })
 }
 
 /// A version from its source (an absent file: no paths).
