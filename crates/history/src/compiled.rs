@@ -5,6 +5,8 @@
 //! parameters of elements with their origins.
 
 use crate::version::Version;
+use millpath_core::emit::Toolpath;
+use millpath_core::Origin;
 use millpath_ide::{Analysis, Effective, Workspace};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -47,10 +49,18 @@ pub struct Compiled {
 }
 
 impl Compiled {
-    /// The version's text in memory at `DIR/STEM.mpath` for a drawing at `file`.
-    pub fn new(version: &Version, file: &Path) -> Compiled {
+    /// The version's text in memory at `DIR/STEM.mpath` for a drawing at `file`; `files`:
+    /// the other files as the version's revision has them (instead of the disk).
+    pub fn new(
+        version: &Version,
+        file: &Path,
+        files: Option<std::sync::Arc<millpath_core::MemFileSystem>>,
+    ) -> Compiled {
         let at = file.with_extension("mpath");
-        let mut ws = Workspace::default();
+        let mut ws = Workspace {
+            memory: files,
+            ..Workspace::default()
+        };
         ws.overlays.insert(at.clone(), version.text.clone());
         Compiled {
             ws,
@@ -61,8 +71,8 @@ impl Compiled {
 
     /// Compiles one path of the version (its moves and figures).
     pub fn outcome(&self, path: &str) -> Outcome {
-        match millpath_ide::toolpath(&self.ws, &self.at, Some(path)) {
-            Ok(data) => outcome_of(&data, &self.at),
+        match millpath_ide::toolpath_moves(&self.ws, &self.at, Some(path)) {
+            Ok(tp) => outcome_of(&tp, &self.at),
             Err(e) => Outcome {
                 error: Some(e),
                 ..Default::default()
@@ -90,52 +100,63 @@ fn r3(v: f64) -> i64 {
     }
 }
 
-/// The figures and moves of a toolpath (the JSON of `millpath_ide::toolpath`).
-fn outcome_of(data: &serde_json::Value, at: &Path) -> Outcome {
+/// A coordinate to the output precision, as the toolpath page shows it (the figures are
+/// summed from these).
+fn shown(v: f64) -> f64 {
+    let r = (v * 1000.0).round() / 1000.0;
+    if r == 0.0 {
+        0.0
+    } else {
+        r
+    }
+}
+
+/// Where a move comes from: the element's line in our text (`Ok`, 1-based), or the label
+/// of an element of another file (`Err`, `2001.mpath:7`).
+fn source_of(o: &Origin, own: &Path) -> Result<usize, String> {
+    let (file, line, label) = match o {
+        Origin::Span { file, line, .. } => (
+            Some(&file.path),
+            *line as usize,
+            format!("{}:{line}", file.name),
+        ),
+        Origin::Entity(e) => (
+            Some(&e.file.path),
+            e.line.max(1),
+            format!("{}:{}", e.file.name, e.line),
+        ),
+        o => (o.file().map(|f| &f.path), 1, o.context()),
+    };
+    if file.is_some_and(|f| f == own) {
+        Ok(line)
+    } else {
+        Err(label)
+    }
+}
+
+/// The figures and moves of a toolpath.
+fn outcome_of(tp: &Toolpath, at: &Path) -> Outcome {
     use std::hash::{Hash, Hasher};
-    let empty = Vec::new();
-    let moves = data["moves"].as_array().unwrap_or(&empty);
-    let sources = data["sources"].as_array().unwrap_or(&empty);
-    let own = at.display().to_string();
-    // by source index: the element's line in our text, or the label of another file's
-    let lines: Vec<Result<usize, String>> = sources
-        .iter()
-        .map(|s| {
-            if s["file"].as_str() == Some(own.as_str()) {
-                Ok(s["line"].as_u64().map_or(0, |l| l as usize + 1))
-            } else {
-                Err(s["label"].as_str().unwrap_or("").to_string())
-            }
-        })
-        .collect();
     let mut out = Outcome {
         lowest_z: f64::INFINITY,
-        moves: moves.len(),
-        seconds: data["seconds"].as_f64().unwrap_or(0.0),
+        moves: tp.moves.len(),
+        seconds: shown(tp.stats.seconds()),
         ..Default::default()
     };
     let mut hasher = std::collections::hash_map::DefaultHasher::new();
-    for m in moves {
-        let kind = m["kind"].as_str().unwrap_or("").to_string();
-        let p = |k: &str, i: usize| m[k][i].as_f64().unwrap_or(0.0);
+    for m in &tp.moves {
         let (from, to) = (
-            [p("from", 0), p("from", 1), p("from", 2)],
-            [p("to", 0), p("to", 1), p("to", 2)],
+            [shown(m.from.x), shown(m.from.y), shown(m.from.z)],
+            [shown(m.to.x), shown(m.to.y), shown(m.to.z)],
         );
-        let arc = m["arc"].as_object().map(|a| {
-            (
-                a["cx"].as_f64().unwrap_or(0.0),
-                a["cy"].as_f64().unwrap_or(0.0),
-                a["ccw"].as_bool().unwrap_or(true),
-            )
-        });
-        if kind != "rapid" {
+        let arc = m.arc.map(|(c, ccw)| (shown(c.x), shown(c.y), ccw));
+        if m.kind != "rapid" {
             out.lowest_z = out.lowest_z.min(from[2]).min(to[2]);
             out.milling_length += length(from, to, arc);
         }
-        m["gcode"].as_str().unwrap_or("").hash(&mut hasher);
+        m.gcode.hash(&mut hasher);
         let key: MoveKey = (
-            kind,
+            m.kind.to_string(),
             [
                 r3(from[0]),
                 r3(from[1]),
@@ -145,19 +166,19 @@ fn outcome_of(data: &serde_json::Value, at: &Path) -> Outcome {
                 r3(to[2]),
             ],
             arc.map(|(x, y, ccw)| (r3(x), r3(y), ccw)),
-            r3(m["feed"].as_f64().unwrap_or(0.0)),
+            r3(shown(m.feed)),
         );
-        let source = m["source"].as_u64().and_then(|i| lines.get(i as usize));
+        let source = m.source.as_ref().map(|o| source_of(o, at));
         out.sequence.push((
             key.clone(),
-            match source {
+            match &source {
                 Some(Ok(line)) => *line,
                 _ => 0,
             },
         ));
         match source {
-            Some(Ok(line)) => out.by_line.entry(*line).or_default().push(key),
-            Some(Err(label)) => out.elsewhere.entry(label.clone()).or_default().push(key),
+            Some(Ok(line)) => out.by_line.entry(line).or_default().push(key),
+            Some(Err(label)) => out.elsewhere.entry(label).or_default().push(key),
             None => out.elsewhere.entry(String::new()).or_default().push(key),
         }
     }

@@ -126,47 +126,101 @@ impl Diff {
 pub struct Side<'a> {
     pub version: &'a Version,
     pub file: &'a Path,
+    /// The files of the version's revision (a git commit) at their work-tree paths, read
+    /// instead of the disk; `None`: the disk.
+    pub files: Option<std::sync::Arc<millpath_core::MemFileSystem>>,
 }
 
 /// Diffs two versions; `compile`: also compile both and report the effect (without it the
 /// diff is the written change only).
+///
+/// The two versions compile at once (one thread each), every path of a version in one go;
+/// the effective values of all elements whose moves changed are then read with one
+/// analysis per version, again both at once.
 pub fn diff(old: Side, new: Side, compile: bool) -> Diff {
-    let mut old_c = Compiled::new(old.version, old.file);
-    let mut new_c = Compiled::new(new.version, new.file);
+    let mut old_c = Compiled::new(old.version, old.file, old.files.clone());
+    let mut new_c = Compiled::new(new.version, new.file, new.files.clone());
     let pairing = match_paths(old.version, new.version);
+    let (mut before, mut after) = if compile {
+        both_sides(
+            || outcomes(&old_c, old.version),
+            || outcomes(&new_c, new.version),
+        )
+    } else {
+        (
+            vec![None; old.version.paths.len()],
+            vec![None; new.version.paths.len()],
+        )
+    };
     let mut out = Diff::default();
-    let outcome = |c: &Compiled, p: &PathVersion| compile.then(|| c.outcome(&p.name));
+    // (path, change, old offset, new offset) of the pairs whose moves changed
+    let mut effect_pairs: Vec<(usize, usize, usize, usize)> = Vec::new();
     for &(i, j) in &pairing.both {
         let (po, pn) = (&old.version.paths[i], &new.version.paths[j]);
-        let before = outcome(&old_c, po);
-        let after = outcome(&new_c, pn);
-        let d = path_diff(
-            (old.version, po, &mut old_c, before),
-            (new.version, pn, &mut new_c, after),
+        let (d, pairs) = path_diff(
+            (old.version, po, before[i].take()),
+            (new.version, pn, after[j].take()),
         );
+        let at = out.paths.len();
+        effect_pairs.extend(pairs.into_iter().map(|(c, o, n)| (at, c, o, n)));
         out.paths.push(d);
+    }
+    let olds: Vec<usize> = effect_pairs.iter().map(|p| p.2).collect();
+    let news: Vec<usize> = effect_pairs.iter().map(|p| p.3).collect();
+    let (eff_old, eff_new) = both_sides(|| old_c.effective(&olds), || new_c.effective(&news));
+    for (k, &(p, c, _, _)) in effect_pairs.iter().enumerate() {
+        if let (Some(o), Some(n)) = (eff_old.get(k), eff_new.get(k)) {
+            out.paths[p].changes[c].values = value_changes(o, n);
+        }
+    }
+    for d in &mut out.paths {
+        finish(d);
     }
     for &i in &pairing.removed {
         let p = &old.version.paths[i];
         out.paths
-            .push(one_sided(old.version, p, outcome(&old_c, p), false));
+            .push(one_sided(old.version, p, before[i].take(), false));
     }
     for &j in &pairing.added {
         let p = &new.version.paths[j];
         out.paths
-            .push(one_sided(new.version, p, outcome(&new_c, p), true));
+            .push(one_sided(new.version, p, after[j].take(), true));
     }
     out.paths.sort_by(|a, b| a.name.cmp(&b.name));
     out
 }
 
+/// Runs two jobs at once (the second on this thread); a panic in either goes on here.
+fn both_sides<A: Send, B: Send>(
+    a: impl FnOnce() -> A + Send,
+    b: impl FnOnce() -> B + Send,
+) -> (A, B) {
+    std::thread::scope(|s| {
+        let first = s.spawn(a);
+        let second = b();
+        let first = first
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        (first, second)
+    })
+}
+
+/// The compiled outcome of every path of a version, by its index.
+fn outcomes(c: &Compiled, v: &Version) -> Vec<Option<Outcome>> {
+    v.paths.iter().map(|p| Some(c.outcome(&p.name))).collect()
+}
+
+/// The element's line (trimmed), found from its offset: as long as the line, not the text.
 fn line_text(v: &Version, e: &Element) -> String {
-    v.text
-        .lines()
-        .nth(e.line - 1)
-        .unwrap_or("")
-        .trim()
-        .to_string()
+    let text = v.text.as_str();
+    let Some(before) = text.get(..e.offset) else {
+        return String::new();
+    };
+    let start = before.rfind('\n').map_or(0, |i| i + 1);
+    let end = text[e.offset..]
+        .find('\n')
+        .map_or(text.len(), |i| e.offset + i);
+    text[start..end].trim().to_string()
 }
 
 /// A path only one version has.
@@ -237,16 +291,14 @@ pub fn passes_of(moves: Option<&Vec<MoveKey>>) -> usize {
     level.len()
 }
 
-type SideData<'a> = (
-    &'a Version,
-    &'a PathVersion,
-    &'a mut Compiled,
-    Option<Outcome>,
-);
+type SideData<'a> = (&'a Version, &'a PathVersion, Option<Outcome>);
 
-fn path_diff(old: SideData, new: SideData) -> PathDiff {
-    let (vo, po, co, before) = old;
-    let (vn, pn, cn, after) = new;
+/// The diff of a path both versions have, without the effective values and what is counted
+/// from them ([`finish`]); with (change, old offset, new offset) of the pairs whose moves
+/// changed, whose effective values are to be compared.
+fn path_diff(old: SideData, new: SideData) -> (PathDiff, Vec<(usize, usize, usize)>) {
+    let (vo, po, before) = old;
+    let (vn, pn, after) = new;
     let pairing = match_elements(&po.elements, &pn.elements);
     let empty = Vec::new();
     let mut changes = Vec::new();
@@ -305,18 +357,43 @@ fn path_diff(old: SideData, new: SideData) -> PathDiff {
             values: Vec::new(),
         });
     }
-    // the effective values of the pairs whose moves changed, one analysis per side
-    let olds: Vec<usize> = effect_pairs.iter().map(|p| p.1).collect();
-    let news: Vec<usize> = effect_pairs.iter().map(|p| p.2).collect();
-    let (eff_old, eff_new) = (co.effective(&olds), cn.effective(&news));
-    for (k, &(ci, _, _)) in effect_pairs.iter().enumerate() {
-        changes[ci].values = value_changes(&eff_old[k], &eff_new[k]);
-    }
-    changes.sort_by_key(|c| (c.new_line.or(c.old_line), c.old_line, c.kind));
+    let renamed = po.name != pn.name;
+    let no_moves = std::collections::BTreeMap::new();
+    let (eo, en) = (
+        before.as_ref().map_or(&no_moves, |o| &o.elsewhere),
+        after.as_ref().map_or(&no_moves, |o| &o.elsewhere),
+    );
+    let elsewhere: Vec<String> = eo
+        .keys()
+        .chain(en.keys())
+        .filter(|k| eo.get(*k) != en.get(*k))
+        .cloned()
+        .collect::<std::collections::BTreeSet<_>>()
+        .into_iter()
+        .collect();
+    let d = PathDiff {
+        name: pn.name.clone(),
+        old_name: renamed.then(|| po.name.clone()),
+        status: PathStatus::Unchanged,
+        changes,
+        effects: Vec::new(),
+        passes: Vec::new(),
+        elsewhere,
+        before,
+        after,
+    };
+    (d, effect_pairs)
+}
+
+/// Sorts a path's changes (their effective values filled in), groups the effects and the
+/// pass counts, and sets its status.
+fn finish(d: &mut PathDiff) {
+    d.changes
+        .sort_by_key(|c| (c.new_line.or(c.old_line), c.old_line, c.kind));
     let mut groups: BTreeMap<(char, Option<String>, Option<String>, String), usize> =
         BTreeMap::new();
     let mut passes: BTreeMap<(usize, usize), usize> = BTreeMap::new();
-    for c in &changes {
+    for c in &d.changes {
         for v in &c.values {
             *groups
                 .entry((v.key, v.old.clone(), v.new.clone(), v.source.clone()))
@@ -337,39 +414,15 @@ fn path_diff(old: SideData, new: SideData) -> PathDiff {
         })
         .collect();
     effects.sort_by(|a, b| b.count.cmp(&a.count).then(a.key.cmp(&b.key)));
-    let renamed = po.name != pn.name;
-    let no_moves = std::collections::BTreeMap::new();
-    let (eo, en) = (
-        before.as_ref().map_or(&no_moves, |o| &o.elsewhere),
-        after.as_ref().map_or(&no_moves, |o| &o.elsewhere),
-    );
-    let elsewhere: Vec<String> = eo
-        .keys()
-        .chain(en.keys())
-        .filter(|k| eo.get(*k) != en.get(*k))
-        .cloned()
-        .collect::<std::collections::BTreeSet<_>>()
-        .into_iter()
-        .collect();
-    let mut d = PathDiff {
-        name: pn.name.clone(),
-        old_name: renamed.then(|| po.name.clone()),
-        status: PathStatus::Unchanged,
-        changes,
-        effects,
-        passes: passes.into_iter().collect(),
-        elsewhere,
-        before,
-        after,
-    };
-    d.status = if renamed {
+    d.effects = effects;
+    d.passes = passes.into_iter().collect();
+    d.status = if d.old_name.is_some() {
         PathStatus::Renamed
     } else if !d.changes.is_empty() || !d.elsewhere.is_empty() || d.gcode_changed() {
         PathStatus::Changed
     } else {
         PathStatus::Unchanged
     };
-    d
 }
 
 fn moves_of(o: &Option<Outcome>, line: usize) -> Option<&Vec<MoveKey>> {

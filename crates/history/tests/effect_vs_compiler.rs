@@ -193,10 +193,12 @@ fn check(tmp: &Path, f: &Folder, k: usize, new_text: &str, new_toml: &str, what:
         Side {
             version: &old,
             file: &old_file,
+            files: None,
         },
         Side {
             version: &new,
             file: &new_file,
+            files: None,
         },
         true,
     );

@@ -1,9 +1,10 @@
 //! The effective parameters of elements with their origins, as data for other crates
 //! (`millpath diff` compares them between two versions): the rows hover shows.
 
-use crate::common::segment_of;
+use crate::common::object_index;
 use crate::provenance::provenance;
 use crate::Analysis;
+use millpath_core::front::drawing::{RawPath, RawSegment};
 use std::collections::HashMap;
 
 /// One effective parameter: key, value as written, where it comes from.
@@ -16,18 +17,40 @@ pub struct Effective {
 
 /// The effective parameters of the elements that start at the given byte offsets of the
 /// analysed text, in their order (empty for an offset where no element of a path starts).
-/// One walk over the text, whatever the number of offsets.
+/// One walk over the text, whatever the number of offsets; paths and their segments are
+/// found through maps made once (a path of 100,000 elements stays linear).
 pub fn effective_values(a: &Analysis, offsets: &[usize]) -> Vec<Vec<Effective>> {
     let wanted: HashMap<usize, usize> = offsets.iter().enumerate().map(|(i, &o)| (o, i)).collect();
     let mut out = vec![Vec::new(); offsets.len()];
+    let mut paths: HashMap<&str, &RawPath> = HashMap::new();
+    for p in a.paths.iter().rev() {
+        // the first of a name wins, as `raw_path` finds it
+        paths.insert(p.name.as_str(), &**p);
+    }
+    let mut segments: HashMap<&str, HashMap<usize, &RawSegment>> = HashMap::new();
     for p in a.ast.paths() {
         for el in p.elements() {
             let Some(&i) = wanted.get(&el.span.start) else {
                 continue;
             };
-            let Some((path, seg)) = segment_of(a, el) else {
+            let Some(object) = object_index(a, el) else {
                 continue;
             };
+            let Some(path) = paths.get(&*a.objects[object].path).copied() else {
+                continue;
+            };
+            let seg = segments
+                .entry(path.name.as_str())
+                .or_insert_with(|| {
+                    let mut by_object = HashMap::new();
+                    for s in path.segments.iter().rev() {
+                        // the first segment of an object wins, as `find` gives it
+                        by_object.insert(s.object, s);
+                    }
+                    by_object
+                })
+                .get(&object)
+                .copied();
             out[i] = provenance(a, path, el, seg)
                 .into_iter()
                 .map(|r| Effective {

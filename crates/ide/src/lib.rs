@@ -85,7 +85,7 @@ pub use semantic_delta::{apply_token_edit, relative_tokens, token_edit, RelToken
 pub use semantic_tokens::{semantic_tokens, SemToken, TOKEN_TYPES};
 pub use symbols::{document_symbols, workspace_symbols, Symbol};
 pub use toml_doc::{analyze as analyze_toml, is_toml};
-pub use toolpath::{toolpath, toolpath_html, toolpath_svg, toolpath_until};
+pub use toolpath::{toolpath, toolpath_html, toolpath_moves, toolpath_svg, toolpath_until};
 
 use millpath_core::build::traverse_memo::TraversalMemo;
 use millpath_core::diag::{Diagnostic, FileRef, Origin};

@@ -62,6 +62,22 @@ pub fn toolpath_until(
     Some(tp.and_then(|(t, moves)| toolpath_json(ws, path, t, moves, program)))
 }
 
+/// The moves of a path as [`toolpath`] finds them, without what only the page needs (no
+/// JSON, no written program, no cut part, no clamp hits): what `millpath diff` compares.
+pub fn toolpath_moves(
+    ws: &Workspace,
+    path: &Path,
+    name: Option<&str>,
+) -> Result<millpath_core::emit::Toolpath, String> {
+    let t = top_model_until(ws, path, name, &|| false)?;
+    millpath_core::emit::toolpath_until(&t.model, &t.controller, t.sweep_speed, None).map_err(|e| {
+        e.iter()
+            .map(|d| d.message(t.lang))
+            .collect::<Vec<_>>()
+            .join("; ")
+    })
+}
+
 /// The JSON of [`toolpath`] from the built model, its moves and its written program.
 fn toolpath_json(
     ws: &Workspace,

@@ -8,9 +8,12 @@ use crate::args::{lang_of, settings_for, MachineArgs};
 use crate::report;
 use millpath_core::diag::{Diagnostic, FileRef, Msg, Origin};
 use millpath_core::Lang;
+use millpath_core::MemFileSystem;
 use millpath_history::{report as out, Side, Version};
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use std::sync::Arc;
 
 #[derive(Clone, Copy, clap::ValueEnum, Default, PartialEq)]
 pub enum DiffFormat {
@@ -28,6 +31,9 @@ struct Source {
     file: PathBuf,
     /// Its bytes; `None`: the file does not exist in this version.
     bytes: Option<Vec<u8>>,
+    /// The files of its git revision (subpaths, `millpath.toml`) at their work-tree paths;
+    /// `None`: the work tree.
+    tree: Option<Arc<MemFileSystem>>,
 }
 
 pub struct Args {
@@ -85,10 +91,7 @@ pub fn run(a: &Args) -> u8 {
     let mut texts = Vec::new();
     let mut jsons = Vec::new();
     for (old, new) in &pairs {
-        let (o, n) = match (
-            version(old, &a.machine, lang),
-            version(new, &a.machine, lang),
-        ) {
+        let (o, n) = match both_versions(old, new, &a.machine, lang) {
             (Ok(o), Ok(n)) => (o, n),
             (Err(e), _) | (_, Err(e)) => {
                 eprintln!("{e}");
@@ -99,10 +102,12 @@ pub fn run(a: &Args) -> u8 {
             Side {
                 version: &o,
                 file: &old.file,
+                files: old.tree.clone(),
             },
             Side {
                 version: &n,
                 file: &new.file,
+                files: new.tree.clone(),
             },
             a.compile,
         );
@@ -195,6 +200,7 @@ pub fn difftool(
             label: merged.unwrap_or(p).display().to_string(),
             file: absolute(merged.unwrap_or(p)),
             bytes: Some(bytes),
+            tree: None,
         })
     };
     let (old, new) = match (source(local), source(remote)) {
@@ -204,7 +210,7 @@ pub fn difftool(
             return 2;
         }
     };
-    let (o, n) = match (version(&old, machine, lang), version(&new, machine, lang)) {
+    let (o, n) = match both_versions(&old, &new, machine, lang) {
         (Ok(o), Ok(n)) => (o, n),
         (Err(e), _) | (_, Err(e)) => {
             eprintln!("{e}");
@@ -215,10 +221,12 @@ pub fn difftool(
         Side {
             version: &o,
             file: &old.file,
+            files: None,
         },
         Side {
             version: &n,
             file: &new.file,
+            files: None,
         },
         true,
     );
@@ -255,6 +263,23 @@ pub fn difftool(
         }
     }
     0
+}
+
+/// Both versions read at once (a large drawing's conversion takes a while).
+fn both_versions(
+    old: &Source,
+    new: &Source,
+    m: &MachineArgs,
+    lang: Lang,
+) -> (Result<Version, String>, Result<Version, String>) {
+    std::thread::scope(|s| {
+        let o = s.spawn(|| version(old, m, lang));
+        let n = version(new, m, lang);
+        let o = o
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        (o, n)
+    })
 }
 
 /// A version from its source (an absent file: no paths).
@@ -302,6 +327,7 @@ fn sources(a: &Args, lang: Lang) -> Result<Vec<(Source, Source)>, String> {
                     .as_deref()
                     .map_or_else(|| dunce::canonicalize(&path).unwrap_or(path), absolute),
                 bytes: Some(bytes),
+                tree: None,
             })
         };
         return Ok(vec![(read(&a.revs[0])?, read(&a.revs[1])?)]);
@@ -337,11 +363,26 @@ fn sources(a: &Args, lang: Lang) -> Result<Vec<(Source, Source)>, String> {
     let cwd = std::env::current_dir().unwrap_or_default();
     let short = |p: PathBuf| p.strip_prefix(&cwd).map(Path::to_path_buf).unwrap_or(p);
     let mut out = Vec::new();
+    // each revision's files read once, for all drawings
+    let mut trees: HashMap<String, Arc<MemFileSystem>> = HashMap::new();
+    let mut tree_of = |rev: &str| -> Result<Arc<MemFileSystem>, String> {
+        if let Some(t) = trees.get(rev) {
+            return Ok(t.clone());
+        }
+        let t = Arc::new(revision_files(rev, lang)?);
+        trees.insert(rev.to_string(), t.clone());
+        Ok(t)
+    };
     for (old_file, new_file) in files {
         let (old_file, new_file) = (short(old_file), short(new_file));
-        let old = git_source(from, &old_file, lang)?;
+        let mut old = git_source(from, &old_file, lang)?;
+        old.tree = Some(tree_of(from)?);
         let new = match to {
-            Some(t) => git_source(t, &new_file, lang)?,
+            Some(t) => {
+                let mut s = git_source(t, &new_file, lang)?;
+                s.tree = Some(tree_of(t)?);
+                s
+            }
             None => Source {
                 label: new_file.display().to_string(),
                 file: absolute(&new_file),
@@ -350,6 +391,7 @@ fn sources(a: &Args, lang: Lang) -> Result<Vec<(Source, Source)>, String> {
                     Err(e) if e.kind() == std::io::ErrorKind::NotFound => None,
                     Err(e) => return Err(cannot_read(&new_file, e, lang)),
                 },
+                tree: None,
             },
         };
         if old.bytes.is_none() && new.bytes.is_none() {
@@ -424,7 +466,96 @@ fn git_source(rev: &str, file: &Path, lang: Lang) -> Result<Source, String> {
         label: format!("{shown}:{}", file.display()),
         file: abs,
         bytes,
+        tree: None,
     })
+}
+
+/// A file of a revision larger than this is left out of [`revision_files`] (drawings and
+/// settings are far smaller; a repository's large assets are not read).
+const MAX_REVISION_FILE: u64 = 32 << 20;
+/// Files of a revision are read up to this many bytes in all.
+const MAX_REVISION_BYTES: u64 = 512 << 20;
+
+/// The files of a git revision at their work-tree paths (`git ls-tree`, `git cat-file
+/// --batch`), and the `millpath.toml` files above the repository (not versioned) from the
+/// disk: what the compiler reads for a version of that revision, subpaths and settings as
+/// they were then.
+fn revision_files(rev: &str, lang: Lang) -> Result<MemFileSystem, String> {
+    use std::io::{BufRead, Read, Write};
+    let top = git(&["rev-parse", "--show-toplevel"], lang)?;
+    let top = PathBuf::from(String::from_utf8_lossy(&top).trim().to_string());
+    let top = dunce::canonicalize(&top).unwrap_or(top);
+    let mut files = MemFileSystem::default();
+    for dir in top.ancestors().skip(1) {
+        let toml = dir.join("millpath.toml");
+        if let Ok(bytes) = std::fs::read(&toml) {
+            files.add(toml, bytes);
+        }
+    }
+    let listed = git(&["ls-tree", "-r", "-z", "-l", "--full-tree", rev], lang)?;
+    // "MODE TYPE ID SIZE\tPATH"
+    let mut wanted: Vec<(String, PathBuf)> = Vec::new();
+    let mut total = 0u64;
+    for entry in listed.split(|&b| b == 0) {
+        let entry = String::from_utf8_lossy(entry);
+        let Some((meta, name)) = entry.split_once('\t') else {
+            continue;
+        };
+        let meta: Vec<&str> = meta.split_whitespace().collect();
+        let [_, "blob", id, size] = meta[..] else {
+            continue;
+        };
+        let Ok(size) = size.parse::<u64>() else {
+            continue;
+        };
+        if size > MAX_REVISION_FILE || total + size > MAX_REVISION_BYTES {
+            continue;
+        }
+        total += size;
+        wanted.push((id.to_string(), top.join(name)));
+    }
+    let mut child = Command::new("git")
+        .arg("-C")
+        .arg(&top)
+        .args(["cat-file", "--batch"])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .map_err(|e| cannot_read(Path::new("git"), e, lang))?;
+    let ids: String = wanted.iter().map(|(id, _)| format!("{id}\n")).collect();
+    let mut stdin = child.stdin.take();
+    // written while the answers are read: a pipe holds far less than a revision
+    let writer = std::thread::spawn(move || {
+        if let Some(s) = stdin.as_mut() {
+            let _ = s.write_all(ids.as_bytes());
+        }
+        drop(stdin);
+    });
+    let mut out = std::io::BufReader::new(child.stdout.take().ok_or("git cat-file")?);
+    for (_, path) in &wanted {
+        let mut header = String::new();
+        if out.read_line(&mut header).unwrap_or(0) == 0 {
+            break;
+        }
+        // "ID TYPE SIZE", or "ID missing"
+        let Some(size) = header
+            .split_whitespace()
+            .nth(2)
+            .and_then(|s| s.parse::<u64>().ok())
+            .filter(|&s| s <= MAX_REVISION_FILE)
+        else {
+            continue;
+        };
+        let mut bytes = Vec::with_capacity(size as usize);
+        if (&mut out).take(size + 1).read_to_end(&mut bytes).is_err() {
+            break;
+        }
+        bytes.truncate(size as usize);
+        files.add(path.clone(), bytes);
+    }
+    let _ = writer.join();
+    let _ = child.wait();
+    Ok(files)
 }
 
 /// The drawings (`*.dxf`, `*.mpath`) git lists as changed between the revisions (or the

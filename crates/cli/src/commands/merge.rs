@@ -10,7 +10,7 @@ use crate::{report, write};
 use millpath_core::diag::FileRef;
 use millpath_core::{args, Diagnostic, InputMode, Lang, Msg, Origin, Settings};
 use millpath_history::merge::drawing::{merge_drawings, DrawingMerge, OtherChanges, Version};
-use millpath_history::merge::{broken_paths, merge_texts, Conflict, ConflictKind, TextMerge};
+use millpath_history::merge::{broken_paths_at, merge_texts, Conflict, ConflictKind, TextMerge};
 use std::path::Path;
 
 /// The largest version the driver reads (a drawing of a million elements is far smaller).
@@ -50,6 +50,18 @@ pub fn run(base: &Path, ours: &Path, theirs: &Path, path: Option<&Path>, m: &Mac
     let Ok((b, o, t)) = bytes else {
         return 2;
     };
+    // where the text stands for the compile check: the drawing's place in the work tree
+    // (git's `%P`), where its subpaths and millpath.toml are
+    let at = path.map(|p| {
+        dunce::canonicalize(
+            p.parent()
+                .filter(|d| !d.as_os_str().is_empty())
+                .unwrap_or(Path::new(".")),
+        )
+        .map(|d| d.join(p.file_name().unwrap_or_default()))
+        .unwrap_or_else(|_| p.to_path_buf())
+        .with_extension("mpath")
+    });
     let is_drawing = name
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("dxf"));
@@ -73,7 +85,7 @@ pub fn run(base: &Path, ours: &Path, theirs: &Path, path: Option<&Path>, m: &Mac
                 file: FileRef::new(theirs.to_path_buf()),
             },
         );
-        match merge_drawings(&vb, &vo, &vt, &patterns, input, &settings) {
+        match merge_drawings(&vb, &vo, &vt, &patterns, input, &settings, at.as_deref()) {
             Err(diags) => {
                 diags
                     .iter()
@@ -102,6 +114,7 @@ pub fn run(base: &Path, ours: &Path, theirs: &Path, path: Option<&Path>, m: &Mac
             [(&b, base), (&o, ours), (&t, theirs)],
             ours,
             &settings,
+            at.as_deref(),
             lang,
         )
     }
@@ -114,6 +127,7 @@ fn merge_text_files(
     versions: [(&[u8], &Path); 3],
     ours: &Path,
     settings: &Settings,
+    at: Option<&Path>,
     lang: Lang,
 ) -> u8 {
     let mut texts = Vec::new();
@@ -134,7 +148,7 @@ fn merge_text_files(
     }
     let merged = merge_texts(&texts[0], &texts[1], &texts[2]);
     let broken = if merged.conflicts.is_empty() {
-        broken_paths(&texts[1], &texts[2], &merged.text, settings)
+        broken_paths_at(&texts[1], &texts[2], &merged.text, settings, at)
     } else {
         Vec::new()
     };

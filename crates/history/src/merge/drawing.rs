@@ -4,7 +4,7 @@
 //! blocks and dimensions stay. What the text cannot hold is compared on its own: other
 //! content changed on their side is a conflict that names it, never lost.
 
-use super::{broken_paths, merge_texts, TextMerge};
+use super::{broken_paths_at, merge_texts, TextMerge};
 use millpath_core::convert::{dxf_to_text, kept_entities, text_into_dxf, IntoOutcome};
 use millpath_core::diag::FileRef;
 use millpath_core::load::names::Patterns;
@@ -44,7 +44,9 @@ pub fn text_of(v: &Version, patterns: &Patterns, input: InputMode) -> Result<Str
     dxf_to_text(v.bytes, &v.file, patterns, input).map(|(text, _)| text)
 }
 
-/// The merged drawing of `ours` and `theirs` with their common `base`.
+/// The merged drawing of `ours` and `theirs` with their common `base`; `at`: where the
+/// drawing's text stands for the compile check (its `.mpath` twin in the work tree, see
+/// [`broken_paths_at`]).
 pub fn merge_drawings(
     base: &Version,
     ours: &Version,
@@ -52,6 +54,7 @@ pub fn merge_drawings(
     patterns: &Patterns,
     input: InputMode,
     settings: &Settings,
+    at: Option<&std::path::Path>,
 ) -> Result<DrawingMerge, Vec<Diagnostic>> {
     let texts = [base, ours, theirs].map(|v| text_of(v, patterns, input));
     let [b, o, t] = texts;
@@ -59,7 +62,7 @@ pub fn merge_drawings(
     let other = other_changes(base, ours, theirs, [&b, &o, &t], patterns, input)?;
     let text = merge_texts(&b, &o, &t);
     let broken = if text.conflicts.is_empty() {
-        broken_paths(&o, &t, &text.text, settings)
+        broken_paths_at(&o, &t, &text.text, settings, at)
     } else {
         Vec::new()
     };

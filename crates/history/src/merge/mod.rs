@@ -283,24 +283,36 @@ fn merge_line(b: &Line, o: &Line, t: &Line) -> Option<Line> {
 }
 
 /// The paths of the merged text that fail to compile while they compiled on both sides
-/// (a path only one side holds: on that side), in name order.
+/// (a path only one side holds: on that side), in name order; each version compiled alone.
 pub fn broken_paths(
     ours: &str,
     theirs: &str,
     merged: &str,
     settings: &millpath_core::Settings,
 ) -> Vec<String> {
+    broken_paths_at(ours, theirs, merged, settings, None)
+}
+
+/// [`broken_paths`] with each version standing at `at` (the drawing's place in the work
+/// tree, as a `.mpath`): its subpaths in other files and `millpath.toml` are found there.
+pub fn broken_paths_at(
+    ours: &str,
+    theirs: &str,
+    merged: &str,
+    settings: &millpath_core::Settings,
+    at: Option<&std::path::Path>,
+) -> Vec<String> {
     // one side's text as it is compiles as it did there
     if merged == ours || merged == theirs {
         return Vec::new();
     }
-    let after = failing_paths(merged, settings);
+    let after = failing_paths(merged, settings, at);
     if after.is_empty() {
         return Vec::new();
     }
     let (o, t) = (
-        failing_paths(ours, settings),
-        failing_paths(theirs, settings),
+        failing_paths(ours, settings, at),
+        failing_paths(theirs, settings, at),
     );
     after
         .into_iter()
