@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs every fuzz target for SECONDS each (default 600) under a 1 GB memory limit and a 10 s
 # per-input timeout; prints each target's executions and executions per second, and fails on
-# any crash, timeout or out-of-memory. `.ci/run` calls it with a short time as a smoke run.
+# any crash, timeout or out-of-memory. `.ci/run` calls it with a short time as a smoke run:
+# under a minute per target, one build serves every target (see `smoke` below).
 # `--coverage`: then the region and line coverage of crates/core/src, per stage folder, that
 # the corpora of `drawing` and `compile` reach (cargo fuzz coverage + llvm-cov of the rustup
 # component llvm-tools-preview); SECONDS = 0 skips the fuzzing and reports the coverage of the
@@ -23,14 +24,25 @@ command -v cargo-fuzz >/dev/null || cargo install cargo-fuzz --locked --quiet
 bash seed.sh
 # `drawing` runs safe Rust only (the one unsafe block, the DXF reader's line finder, is fuzzed
 # under AddressSanitizer by dxf_read and compile): without the sanitizer it runs 4x faster; its
-# bytes are decisions, not magic values, so comparisons are not traced either (a third faster)
+# bytes are decisions, not magic values, so comparisons are not traced either (a third faster).
+# A smoke run (under 60 s a target, as in CI) needs no speed: one build for all targets, all
+# under the sanitizer, at opt-level 1 with line tables only (one cheaper build instead of two)
+smoke=0
+[ "$secs" -gt 0 ] && [ "$secs" -lt 60 ] && [ $coverage = 0 ] && smoke=1
+if [ $smoke = 1 ]; then
+  export CARGO_PROFILE_RELEASE_OPT_LEVEL=1 CARGO_PROFILE_RELEASE_DEBUG=line-tables-only
+fi
 build_flags() {
-  if [ "$1" = drawing ]; then echo "--release -s none --no-trace-compares --target-dir target/nosan"; else echo "--release"; fi
+  if [ "$1" = drawing ] && [ $smoke = 0 ]; then
+    echo "--release -s none --no-trace-compares --target-dir target/nosan"
+  else
+    echo "--release"
+  fi
 }
 status=0
 if [ "$secs" -gt 0 ]; then
   cargo fuzz build --release >/dev/null
-  cargo fuzz build $(build_flags drawing) drawing >/dev/null
+  [ $smoke = 1 ] || cargo fuzz build $(build_flags drawing) drawing >/dev/null
   for t in "${targets[@]}"; do
     log=$(mktemp)
     cpu=$(mktemp)

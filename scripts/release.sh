@@ -51,9 +51,13 @@ mv editors/vscode/millpath-linux-x64.vsix editors/vscode/millpath-win32-x64.vsix
 # the same MinGW-w64 (PyO3 makes python3.dll's import library itself)
 venv=target/release-venv
 [ -x "$venv/bin/maturin" ] || { python3 -m venv "$venv" && "$venv/bin/pip" install -q 'maturin>=1.9.4,<2'; }
+# (the Linux one without --target: then it shares target/release with `pip install
+# ./crates/python` and tests/python.sh instead of a build of its own)
 for t in x86_64-unknown-linux-gnu x86_64-pc-windows-gnu; do
   t0=$SECONDS
-  "$venv/bin/maturin" build --quiet --release --locked --target "$t" \
+  target=(--target "$t")
+  [ "$t" != x86_64-unknown-linux-gnu ] || target=()
+  "$venv/bin/maturin" build --quiet --release --locked "${target[@]}" \
     -m crates/python/Cargo.toml --out "$out"
   echo "release: the Python wheel for $t built in $((SECONDS - t0)) s"
 done

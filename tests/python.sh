@@ -21,12 +21,15 @@ trap 'rm -rf "$tmp"' EXIT
 python3 -m venv "$tmp/venv" 2>/dev/null \
   || { apt-get update -q && apt-get install -y -q python3-venv && python3 -m venv "$tmp/venv"; }
 py=$tmp/venv/bin/python3
-# the README's command, the wheel kept to report its size
-"$py" -m pip install -q --disable-pip-version-check ./crates/python
+# the README's command, built once: the wheel's size from pip's own line ("Created wheel for
+# millpath: filename=… size=…"), not from a second build by `pip wheel`
+"$py" -m pip install --disable-pip-version-check ./crates/python >"$tmp/install.log" 2>&1 \
+  || { cat "$tmp/install.log"; exit 1; }
 built=$SECONDS
-"$py" -m pip wheel -q --disable-pip-version-check --no-deps -w "$tmp/wheel" ./crates/python >/dev/null
-wheel=$(ls "$tmp"/wheel/millpath-*.whl)
-echo "python: installed in $((built - start)) s; wheel $(basename "$wheel"): $(($(stat -c %s "$wheel") / 1024)) KiB"
+wheel=$(sed -n 's/.*Created wheel for millpath: filename=\([^ ]*\) size=\([0-9]*\).*/\1 \2/p' "$tmp/install.log")
+[ -n "$wheel" ] || { cat "$tmp/install.log"; echo "python: no wheel was built" >&2; exit 1; }
+set -- $wheel
+echo "python: installed in $((built - start)) s; wheel $1: $(($2 / 1024)) KiB"
 "$py" -m pip install -q --disable-pip-version-check pytest hypothesis
 # the import time of the package (its native module and the builder), best of five
 "$py" - <<'PY'
