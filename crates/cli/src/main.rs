@@ -13,6 +13,7 @@ mod interrupt;
 mod measured;
 mod numbers;
 mod output;
+mod overrides;
 mod png;
 mod read;
 mod report;

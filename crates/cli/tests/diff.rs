@@ -317,3 +317,60 @@ fn hostile_inputs() {
     assert_eq!(code, 1, "{text}");
     assert!(text.contains("2001.2P: renamed from 2001.1P"), "{text}");
 }
+
+/// The machine options count in the compiles, over each version's millpath.toml, as they
+/// count in `compile`: a slower feed makes both versions' estimate longer, and `--dialect`
+/// with `--spindle-rpm` changes the written program without changing the drawing.
+#[test]
+fn machine_options_count() {
+    let d = tempfile::tempdir().unwrap();
+    copy_text_examples(d.path());
+    write(d.path(), "new.mpath", &deeper_2001(d.path()));
+    let figures = |extra: &[&str]| {
+        let args = [
+            &["diff", "--format", "json", "2001.mpath", "new.mpath"][..],
+            extra,
+        ]
+        .concat();
+        let (code, text) = status_and_text(d.path(), &args);
+        assert_eq!(code, 1, "{text}");
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        let p = v["files"][0]["paths"][0].clone();
+        (
+            p["before"]["seconds"].as_f64().unwrap(),
+            p["after"]["seconds"].as_f64().unwrap(),
+        )
+    };
+    let (plain_before, plain_after) = figures(&[]);
+    let (slow_before, slow_after) = figures(&["--feed", "10"]);
+    assert!(
+        slow_before > plain_before * 2.0,
+        "{slow_before} vs {plain_before}"
+    );
+    assert!(
+        slow_after > plain_after * 2.0,
+        "{slow_after} vs {plain_after}"
+    );
+    // compile with the same option prints the same estimate (h:mm:ss)
+    let (code, text) = status_and_text(d.path(), &["compile", "--feed", "10", "2001.mpath"]);
+    assert_eq!(code, 0, "{text}");
+    let secs = slow_before.round() as u64;
+    let shown = format!("{}:{:02}:{:02}", secs / 3600, secs / 60 % 60, secs % 60);
+    assert!(
+        text.contains(&format!("Estimated time: {shown}")),
+        "{shown}: {text}"
+    );
+    // a bad value is refused before anything compiles (exit 2), as in compile
+    let (code, text) = status_and_text(
+        d.path(),
+        &["diff", "--feed", "-5", "2001.mpath", "new.mpath"],
+    );
+    assert_eq!(code, 2, "{text}");
+    // a settings file given by --config counts as well
+    write(d.path(), "slow.toml", "feed = 10\n");
+    let (cfg_before, _) = figures(&["--config", "slow.toml"]);
+    assert!(
+        (cfg_before - slow_before).abs() < 1e-9,
+        "{cfg_before} vs {slow_before}"
+    );
+}

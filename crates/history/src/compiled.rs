@@ -69,6 +69,14 @@ impl Compiled {
         }
     }
 
+    /// Settings over the version's own `millpath.toml` (the command line's options, as an
+    /// editor's settings): a relative post file is found from `options.base_dir`.
+    pub fn set_options(&mut self, options: &millpath_core::load::config::FileConfig) {
+        self.ws.client = options.clone();
+        self.ws.roots = vec![options.base_dir.clone()];
+        self.analysis = None;
+    }
+
     /// Compiles one path of the version (its moves and figures).
     pub fn outcome(&self, path: &str) -> Outcome {
         match millpath_ide::toolpath_moves(&self.ws, &self.at, Some(path)) {

@@ -129,6 +129,9 @@ pub struct Side<'a> {
     /// The files of the version's revision (a git commit) at their work-tree paths, read
     /// instead of the disk; `None`: the disk.
     pub files: Option<std::sync::Arc<millpath_core::MemFileSystem>>,
+    /// Settings given by the caller (the command line's options) over the version's own
+    /// `millpath.toml`, as an editor's settings are; `None`: the file's settings alone.
+    pub options: Option<&'a millpath_core::load::config::FileConfig>,
 }
 
 /// Diffs two versions; `compile`: also compile both and report the effect (without it the
@@ -140,6 +143,12 @@ pub struct Side<'a> {
 pub fn diff(old: Side, new: Side, compile: bool) -> Diff {
     let mut old_c = Compiled::new(old.version, old.file, old.files.clone());
     let mut new_c = Compiled::new(new.version, new.file, new.files.clone());
+    if let Some(o) = old.options {
+        old_c.set_options(o);
+    }
+    if let Some(o) = new.options {
+        new_c.set_options(o);
+    }
     let pairing = match_paths(old.version, new.version);
     let (mut before, mut after) = if compile {
         both_sides(

@@ -194,11 +194,13 @@ fn check(tmp: &Path, f: &Folder, k: usize, new_text: &str, new_toml: &str, what:
             version: &old,
             file: &old_file,
             files: None,
+            options: None,
         },
         Side {
             version: &new,
             file: &new_file,
             files: None,
+            options: None,
         },
         true,
     );

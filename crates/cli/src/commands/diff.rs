@@ -86,6 +86,13 @@ pub fn run(a: &Args) -> u8 {
         );
         return 2;
     }
+    let options = match crate::overrides::overrides(&a.machine, lang) {
+        Ok(o) => o,
+        Err(e) => {
+            eprintln!("{e}");
+            return 2;
+        }
+    };
     let mut changed = false;
     let mut status = 0;
     let mut texts = Vec::new();
@@ -103,11 +110,13 @@ pub fn run(a: &Args) -> u8 {
                 version: &o,
                 file: &old.file,
                 files: old.tree.clone(),
+                options: options.as_ref(),
             },
             Side {
                 version: &n,
                 file: &new.file,
                 files: new.tree.clone(),
+                options: options.as_ref(),
             },
             a.compile,
         );
@@ -217,16 +226,25 @@ pub fn difftool(
             return 2;
         }
     };
+    let options = match crate::overrides::overrides(machine, lang) {
+        Ok(o) => o,
+        Err(e) => {
+            eprintln!("{e}");
+            return 2;
+        }
+    };
     let d = millpath_history::diff(
         Side {
             version: &o,
             file: &old.file,
             files: None,
+            options: options.as_ref(),
         },
         Side {
             version: &n,
             file: &new.file,
             files: None,
+            options: options.as_ref(),
         },
         true,
     );
