@@ -227,26 +227,20 @@ def run(sim, speedup, settings, program, report=0.001):
             while pending:
                 answer()
                 pending.pop(0)
-            # the machine idle (its status report says so), the simulator is ended: it is asked
-            # to (end of input), and stopped when it does not (its GRBL thread may not end); the
-            # step file is flushed at every report
+            # the end of the input: the simulator ends once the machine is idle (its clock,
+            # which waits for the sender while the planner has room, then runs the rest)
+            p.stdin.close()
+            waited = 0.0
             while True:
-                p.stdin.write(b"?")
                 try:
-                    a = answers.get(timeout=10)
-                except queue.Empty:
+                    p.wait(timeout=2)
+                    break
+                except subprocess.TimeoutExpired:
+                    waited += 2
                     if stalled(steps, blocks, report):
                         raise Stalled()
-                    continue
-                if a is None or a.startswith("<Idle"):
-                    break
-                time.sleep(0.2)
-            p.stdin.close()
-            try:
-                p.wait(timeout=3)
-            except subprocess.TimeoutExpired:
-                p.kill()
-                p.wait()
+                    if waited >= float(os.environ.get("GRBL_SENDER_TIMEOUT", 600)):
+                        raise
         finally:
             if p.poll() is None:
                 p.kill()
@@ -258,7 +252,7 @@ def run(sim, speedup, settings, program, report=0.001):
         t = motion_time(steps, report)
         stutter, lost = starved(steps, report)
         with open(sim_log) as f:
-            stutter += sum(1 for l in f if l.startswith("starved"))
+            stutter += sum(1 for l in f if l.startswith(("starved", "waited")))
     return t - program_dwells(lines), stutter, lost, errors
 
 
