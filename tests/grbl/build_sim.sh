@@ -71,13 +71,13 @@ sed -i 's|^   while (sim.masterclock < simulated_ticks){$|&\
       uint32_t now = platform_ns();\
       simulate_write_interrupt();\
       if (!holding) { holding = 1; held_since = now; }\
-      if (now - held_since < 2000000000u) { simulated_ticks = sim.masterclock; break; }\
+      if (now - held_since < 2000000000u) { simulated_ticks = sim.masterclock; platform_sleep(20); break; }\
       if (holding == 1) { holding = 2; fprintf(stderr, "starved %u\\n", ++starved); }\
     } else { holding = 0; }\
     if (!no_wait \&\& sim_waiting_for_sender()) {\
       uint32_t now = platform_ns();\
       if (!waiting) { waiting = 1; waiting_since = now; }\
-      if (now - waiting_since < 3000000000u) { simulated_ticks = sim.masterclock; break; }\
+      if (now - waiting_since < 3000000000u) { simulated_ticks = sim.masterclock; platform_sleep(20); break; }\
       if (waiting == 1) { waiting = 2; fprintf(stderr, "waited %u\\n", ++waited); }\
     } else { waiting = 0; }\
     if (!single_ticks \&\& sim.masterclock + 2 < next_byte_tick \&\& sim.masterclock + 2 < simulated_ticks) {\
