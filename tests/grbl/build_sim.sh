@@ -53,6 +53,23 @@ void protocol_buffer_synchronize()
 }
 C
 sed -i 's|^void protocol_buffer_synchronize_grbl()$|void protocol_buffer_synchronize();\n&|' "$proto"
+# and when it waits for a probe move to end (G38.x: no contact here, the move runs out)
+mc=$b/grbl/motion_control.c
+grep -q '^uint8_t mc_probe_cycle(float \*target, plan_line_data_t \*pl_data, uint8_t parser_flags)$' "$mc"
+sed -i 's|^uint8_t mc_probe_cycle(float \*target, plan_line_data_t \*pl_data, uint8_t parser_flags)$|uint8_t mc_probe_cycle_grbl(float *target, plan_line_data_t *pl_data, uint8_t parser_flags)|' "$mc"
+cat >>"$mc" <<'C'
+
+/* millpath's GRBL oracle: the probe cycle waits for its move as a buffer synchronize does */
+extern volatile uint8_t sim_synchronizing;
+uint8_t mc_probe_cycle(float *target, plan_line_data_t *pl_data, uint8_t parser_flags)
+{
+  uint8_t r;
+  sim_synchronizing = 1;
+  r = mc_probe_cycle_grbl(target, pl_data, parser_flags);
+  sim_synchronizing = 0;
+  return r;
+}
+C
 sim=$b/grbl-sim/simulator.c
 sed -i 's/\r$//' "$sim" "$b/grbl-sim/platform_LINUX.c" "$b/grbl-sim/util/delay.c" # CR LF lines
 # the simulator's own stdin reader, dwell and clock rate are replaced (below)
@@ -103,7 +120,8 @@ sed -i 's|^  uint64_t simulated_ticks=0;$|&\
   uint32_t held_since = 0; int holding = 0; unsigned starved = 0;\
   uint32_t waiting_since = 0; int waiting = 0; unsigned waited = 0;\
   int single_ticks = getenv("GRBL_SIM_SINGLE_TICKS") != NULL, no_wait = getenv("GRBL_SIM_NO_WAIT") != NULL;\
-  extern __thread int sim_in_clock_thread; sim_in_clock_thread = 1;|' "$sim"
+  extern __thread int sim_in_clock_thread; sim_in_clock_thread = 1;\
+  void sim_probe_idle(void); sim_probe_idle();|' "$sim"
 cat >>"$sim" <<'C'
 
 /* millpath's GRBL oracle (tests/grbl/build_sim.sh) */
@@ -113,6 +131,10 @@ cat >>"$sim" <<'C'
 #include "../system.h"
 #include "../planner.h"
 __thread int sim_in_clock_thread = 0;
+
+/* the probe input idle (not touching), as a machine with $6=0 and an open probe has it:
+   G38.3 then runs its move out, G38.2 ends in ALARM:5 */
+void sim_probe_idle(void) { PROBE_PIN |= PROBE_MASK; }
 extern volatile uint8_t sim_synchronizing;
 
 /* stdin, read ahead into a buffer (one read for many bytes); GRBL still gets one byte per
@@ -139,14 +161,20 @@ uint8_t platform_poll_stdin(void)
   return in_eof ? 0xFF : 0; /* end of input: the simulator ends once GRBL is idle */
 }
 
-/* While a cycle runs, GRBL's planner has room, its main loop is not waiting for the planner
-   to empty and the sender has not ended its input, a real sender and main loop (ahead of the
-   machine by far) would be filling the planner: the clock waits for them. The answers GRBL
+/* While GRBL's planner has room and its main loop is not waiting for the planner to empty
+   (or in a dwell), a real main loop (ahead of the machine by far) reads every byte received
+   before the next arrives, and, while a cycle runs and the sender has not ended its input, a
+   real sender keeps the planner filled: the clock waits for them. The answers GRBL
    has written are sent meanwhile, or the sender could not go on. */
 void simulate_write_interrupt();
+extern volatile uint8_t serial_rx_buffer_head, serial_rx_buffer_tail;
+static volatile uint8_t sim_delaying = 0;
 int sim_waiting_for_sender(void)
 {
-  if (sys.state != STATE_CYCLE || sim_synchronizing || plan_check_full_buffer()) { return 0; }
+  if (sim_synchronizing || sim_delaying || plan_check_full_buffer()) { return 0; }
+  /* bytes GRBL has received and not read: its main loop reads them before the next comes */
+  if (serial_rx_buffer_head != serial_rx_buffer_tail) { simulate_write_interrupt(); return 1; }
+  if (sys.state != STATE_CYCLE) { return 0; }
   simulate_write_interrupt();
   return !in_fill() && !in_eof;
 }
@@ -157,7 +185,9 @@ static void wait_ticks(uint64_t ticks)
 {
   uint64_t end = sim.masterclock + ticks;
   if (sim_in_clock_thread) { return; }
+  sim_delaying = 1;
   while (*(volatile uint64_t *)&sim.masterclock < end && sim.exit != exit_OK) { platform_sleep(0); }
+  sim_delaying = 0;
 }
 void _delay_ms(int i) { wait_ticks((uint64_t)i * (F_CPU / 1000)); }
 void _delay_us(int i) { wait_ticks((uint64_t)i * (F_CPU / 1000000)); }

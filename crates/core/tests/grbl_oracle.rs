@@ -40,50 +40,80 @@ fn of_text(text: &str, s: &Settings) -> f64 {
     t.mill + t.drill + t.sweep
 }
 
+/// A row of `tests/grbl/drawings.tsv`: the drawing of a program, its path pattern, sweep
+/// height and output (`Milling`, `Clean` or `Probing`).
+struct Drawing {
+    file: std::path::PathBuf,
+    pattern: Option<String>,
+    sweep_height: Option<f64>,
+    output: String,
+}
+
+fn drawing_of(name: &str) -> Drawing {
+    let table = std::fs::read_to_string(root().join("tests/grbl/drawings.tsv")).unwrap();
+    let row = table
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| l.split('\t').collect::<Vec<_>>())
+        .find(|f| f[0] == name)
+        .unwrap_or_else(|| panic!("{name} is not in tests/grbl/drawings.tsv"));
+    let file = match row[1].strip_prefix("shared/") {
+        Some(rest) => root().join("../shared").join(rest),
+        None => root().join(row[1]),
+    };
+    Drawing {
+        file,
+        pattern: (row[2] != "-").then(|| row[2].to_string()),
+        sweep_height: (row[3] != "-").then(|| row[3].parse().unwrap()),
+        output: row[4].to_string(),
+    }
+}
+
 /// A program's estimate: a synthetic one read, a drawing compiled as the oracle script
-/// compiles it (its program read back as GRBL gets it); `None` without the drawing.
+/// compiles it (tests/grbl/drawings.tsv); `None` without the drawing. A milling program's is
+/// the compiler's own estimate; a probing program (which the compiler does not estimate: the
+/// contact is not known) is read back and planned with each probe move at its feed to its
+/// full depth, as GRBL's G38.3 without contact goes.
 fn estimate(name: &str, s: &Settings) -> Option<f64> {
     if let Some(file) = name.strip_prefix("synthetic/") {
         let text =
             std::fs::read_to_string(root().join("tests/planner/programs").join(file)).unwrap();
         return Some(of_text(&text, s));
     }
-    let (folder, file, pattern) = match name {
-        "examples/plate/1234.1P.gcode" => ("examples/plate", "1234.1P.dxf", None),
-        "examples/text/2001.gcode" => ("examples/text", "2001.mpath", None),
-        "examples/text/2010.gcode" => ("examples/text", "2010.mpath", None),
-        "shared/samples/2916.1P.gcode" => ("../shared/samples", "2916.1P.dxf", Some("2916\\.1P")),
-        _ => {
-            let stem = name
-                .strip_prefix("shared/conformance/")?
-                .strip_suffix(".gcode")?;
-            (
-                "../shared/conformance/fixtures",
-                Box::leak(format!("{stem}.dxf").into_boxed_str()) as &str,
-                None,
-            )
-        }
-    };
-    let dir = root().join(folder);
-    if !dir.join(file).exists() {
+    let d = drawing_of(name);
+    if !d.file.exists() {
         return None;
     }
+    let dir = d.file.parent().unwrap();
+    let file = d.file.file_name().unwrap().to_string_lossy().to_string();
     let mut fs = MemFileSystem::default();
-    for f in support::files_in(&dir, &["dxf", "mpath"]) {
+    for f in support::files_in(dir, &["dxf", "mpath"]) {
         let n = f.file_name().unwrap().to_string_lossy().to_string();
         fs.add(n.as_str(), std::fs::read(&f).unwrap());
     }
     let mut settings = s.clone();
-    if let Some(p) = pattern {
-        settings.path_pattern = p.to_string();
+    if let Some(p) = &d.pattern {
+        settings.path_pattern = p.clone();
     }
-    let mut session = Session::new(settings, &fs).expect("settings");
-    let outcome = compile_file(&mut session, Path::new(file), "grbl oracle");
+    if let Some(h) = d.sweep_height {
+        settings.sweep_height = h;
+    }
+    let mut session = Session::new(settings.clone(), &fs).expect("settings");
+    let outcome = compile_file(&mut session, Path::new(&file), "grbl oracle");
     assert!(
         !outcome.stats.is_empty(),
         "{file}: {:?}",
         session.diags.list
     );
+    if d.output == "Probing" {
+        let program = outcome
+            .outputs
+            .iter()
+            .find(|o| o.path.to_string_lossy().ends_with("_Probing.gcode"))
+            .expect("a probing program");
+        let text = program.content.replace("G38.3", "G01").replace("G38.2", "G01");
+        return Some(of_text(&text, &settings));
+    }
     // the compiler's own estimate, moves only (the oracle counts dwells apart)
     Some(
         outcome
@@ -159,18 +189,12 @@ fn print_the_estimates() {
         .map(|e| format!("synthetic/{}", e.unwrap().file_name().to_string_lossy()))
         .collect();
     names.sort();
+    let table = std::fs::read_to_string(root().join("tests/grbl/drawings.tsv")).unwrap();
     names.extend(
-        [
-            "examples/plate/1234.1P.gcode",
-            "examples/text/2001.gcode",
-            "examples/text/2010.gcode",
-            "shared/samples/2916.1P.gcode",
-            "shared/conformance/8999.02P.gcode",
-            "shared/conformance/8999.08P.gcode",
-            "shared/conformance/8999.14P.gcode",
-            "shared/conformance/8999.15P.gcode",
-        ]
-        .map(String::from),
+        table
+            .lines()
+            .filter(|l| !l.starts_with('#'))
+            .map(|l| l.split('\t').next().unwrap().to_string()),
     );
     for m in ["router", "light", "defaults"] {
         let s = settings(m);
