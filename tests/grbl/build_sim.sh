@@ -1,22 +1,34 @@
 #!/usr/bin/env bash
 # Builds GRBL's simulator for the GRBL oracle: ../shared/grbl/build.sh on a copy of its sources,
-# with one change to the simulator's clock (in the copy; nothing of GRBL is kept here).
+# with changes to the simulator's clock and I/O (in the copy; nothing of GRBL is kept here).
+# GRBL's planner, stepper and their arithmetic are untouched.
 #
-# grbl_sim runs its clock (timers and the stepper interrupt) in one thread and GRBL's main
-# loop in another. On a busy computer the main loop's thread waits for a CPU while the clock
-# runs on, and two things then happen that a real controller (whose main loop is never away
-# for more than microseconds) never sees:
-#  - the main loop was preempted inside a critical section (interrupts disabled, `cli()`):
-#    the stepper interrupt does not fire, and the steppers stand still from speed;
-#  - the main loop does not cut the planner's blocks into step segments in time: the
-#    segment buffer runs dry.
-# Measured here under load, the first happens hundreds of times in a 10 s program and adds
-# 10 to 20 % to GRBL's time; the second was not seen. The change holds the clock while
-# either holds during a cycle: while interrupts are disabled, or while at most one segment
-# (the one stepping) is left and the planner has a block not yet cut into segments. The
-# clock then waits for the main loop instead of outrunning it; GRBL's planner, stepper and
-# their arithmetic are untouched. A hold longer than 2 s of real time is given up (the run
-# goes on as the unchanged simulator's would) and told on stderr: `starved N`.
+# grbl_sim runs its clock (timers, the stepper interrupt, the serial line) in one thread,
+# ticking the AVR's 16 MHz one by one, and GRBL's main loop in another. Unchanged it runs at
+# a fifth of real time or slower on a busy computer, and its main loop falls behind the
+# clock in ways a real controller's (never away for more than microseconds) never does: the
+# stepper interrupt waits while the main loop was preempted inside cli(), the segment buffer
+# runs low, the planner holds fewer blocks than it would (10 to 20 % more GRBL time measured
+# under load; and up to 2 % from the clock factor `-t` alone). The changes:
+#  - quiet ticks counted at once: ticks in which no timer reaches a compare value, overflows
+#    or rolls over, no interrupt is pending, no serial byte is due and no report is printed
+#    change nothing but the counters (sim_quiet_ticks, sim_count_ticks);
+#  - the clock waits for the main loop (sim_main_loop_behind) during a cycle while interrupts
+#    are disabled, or while the segment buffer has room and a planner block is left to cut;
+#  - the clock waits for the main loop and the sender (sim_waiting_for_sender) while the
+#    planner has room and GRBL is not waiting for it to empty (G4, M3/M5, program end, a probe
+#    cycle) nor dwelling: while GRBL has received bytes it has not read, and during a cycle
+#    until the sender's next bytes come or its input ends;
+#  - stdin is read ahead with one read() for many bytes (GRBL still gets one per byte time);
+#    its end ends the simulator once GRBL is idle;
+#  - dwells (_delay_ms) wait on the simulated clock, not on the wall clock, and the clock
+#    stops at a dwell's end until the main loop has seen it;
+#  - the probe input is idle (G38.3 runs its move out; G38.2 ends in ALARM:5);
+#  - a clock factor of thousands no longer overflows the clock's 32-bit nanoseconds.
+# With `-t 1000` a program then takes a third to a half of its GRBL time here, and its time
+# is the same at -t 1, 10 and 1000 (within 0.05 %). A wait longer than 2 s (3 s for the
+# sender) of real time is given up and told on stderr (`starved N`, `waited N`); the sender
+# counts either as a stall and runs the program again.
 #
 #   build_sim.sh SHARED_GRBL_DIR OUT_DIR     -> OUT_DIR/grbl_sim, OUT_DIR/gvalidate
 set -euo pipefail
@@ -47,9 +59,9 @@ cat >>"$proto" <<'C'
 volatile uint8_t sim_synchronizing = 0;
 void protocol_buffer_synchronize()
 {
-  sim_synchronizing = 1;
+  sim_synchronizing++; /* a count: the probe cycle synchronizes inside its own wait */
   protocol_buffer_synchronize_grbl();
-  sim_synchronizing = 0;
+  sim_synchronizing--;
 }
 C
 sed -i 's|^void protocol_buffer_synchronize_grbl()$|void protocol_buffer_synchronize();\n&|' "$proto"
@@ -64,9 +76,9 @@ extern volatile uint8_t sim_synchronizing;
 uint8_t mc_probe_cycle(float *target, plan_line_data_t *pl_data, uint8_t parser_flags)
 {
   uint8_t r;
-  sim_synchronizing = 1;
+  sim_synchronizing++;
   r = mc_probe_cycle_grbl(target, pl_data, parser_flags);
-  sim_synchronizing = 0;
+  sim_synchronizing--;
   return r;
 }
 C
@@ -169,9 +181,12 @@ uint8_t platform_poll_stdin(void)
 void simulate_write_interrupt();
 extern volatile uint8_t serial_rx_buffer_head, serial_rx_buffer_tail;
 static volatile uint8_t sim_delaying = 0;
+static volatile uint64_t sim_delay_end = 0;
 int sim_waiting_for_sender(void)
 {
-  if (sim_synchronizing || sim_delaying || plan_check_full_buffer()) { return 0; }
+  /* a dwell's end: the clock waits until GRBL's main loop has seen it */
+  if (sim_delaying) { return sim.masterclock >= sim_delay_end; }
+  if (sim_synchronizing || plan_check_full_buffer()) { return 0; }
   /* bytes GRBL has received and not read: its main loop reads them before the next comes */
   if (serial_rx_buffer_head != serial_rx_buffer_tail) { simulate_write_interrupt(); return 1; }
   if (sys.state != STATE_CYCLE) { return 0; }
@@ -179,12 +194,14 @@ int sim_waiting_for_sender(void)
   return !in_fill() && !in_eof;
 }
 
-/* GRBL's delays (dwell G4) on the simulated clock; on the clock's own thread (a stepper
-   interrupt's delay) none, as the unchanged simulator's clock stands still there too */
+/* GRBL's delays (dwell G4) on the simulated clock, which stops at their end until the main
+   loop has seen it; on the clock's own thread (a stepper interrupt's delay) none, as the
+   unchanged simulator's clock stands still there too */
 static void wait_ticks(uint64_t ticks)
 {
   uint64_t end = sim.masterclock + ticks;
   if (sim_in_clock_thread) { return; }
+  sim_delay_end = end;
   sim_delaying = 1;
   while (*(volatile uint64_t *)&sim.masterclock < end && sim.exit != exit_OK) { platform_sleep(0); }
   sim_delaying = 0;

@@ -11,6 +11,7 @@
 
 mod support;
 
+use millpath_core::geom::P3;
 use millpath_core::load::config::{parse, Have};
 use millpath_core::load::fs::MemFileSystem;
 use millpath_core::{compile_file, Session, Settings};
@@ -38,6 +39,47 @@ fn of_text(text: &str, s: &Settings) -> f64 {
     let model = s.time_model().expect("a GRBL machine");
     let t = model.plan(&items_of(text, [start.x, start.y, start.z]), start);
     t.mill + t.drill + t.sweep
+}
+
+/// The estimated motion time (s) of a probing program: GRBL's probe cycle starts and ends at
+/// rest (it waits for the planner to empty first, and its move runs out without contact), so
+/// the moves before each probe, the probe move (at its feed) and those after are planned apart,
+/// each from rest where the one before ended.
+fn probing_estimate(text: &str, s: &Settings) -> f64 {
+    let model = s.time_model().expect("a GRBL machine");
+    let start = start_of(text, s.sweep_height);
+    let mut at = [start.x, start.y, start.z];
+    let plan = |chunk: &str, at: &mut [f64; 3]| {
+        let items = items_of(chunk, *at);
+        let from = P3 {
+            x: at[0],
+            y: at[1],
+            z: at[2],
+        };
+        if let Some(last) = items.last() {
+            let t = last.target;
+            *at = [
+                t.x.unwrap_or(at[0]),
+                t.y.unwrap_or(at[1]),
+                t.z.unwrap_or(at[2]),
+            ];
+        }
+        let t = model.plan(&items, from);
+        t.mill + t.drill + t.sweep
+    };
+    let (mut total, mut chunk) = (0.0, String::new());
+    for line in text.lines() {
+        if line.contains("G38") {
+            total += plan(&chunk, &mut at);
+            chunk.clear();
+            let probe = line.replace("G38.3", "G01").replace("G38.2", "G01");
+            total += plan(&probe, &mut at);
+        } else {
+            chunk.push_str(line);
+            chunk.push('\n');
+        }
+    }
+    total + plan(&chunk, &mut at)
 }
 
 /// A row of `tests/grbl/drawings.tsv`: the drawing of a program, its path pattern, sweep
@@ -111,8 +153,7 @@ fn estimate(name: &str, s: &Settings) -> Option<f64> {
             .iter()
             .find(|o| o.path.to_string_lossy().ends_with("_Probing.gcode"))
             .expect("a probing program");
-        let text = program.content.replace("G38.3", "G01").replace("G38.2", "G01");
-        return Some(of_text(&text, &settings));
+        return Some(probing_estimate(&program.content, &settings));
     }
     // the compiler's own estimate, moves only (the oracle counts dwells apart)
     Some(
