@@ -7,8 +7,8 @@
 # which the Rust test grbl_oracle holds millpath's GRBL time model to (within 2 %).
 #
 #   tests/grbl_oracle.sh [--all] [--jobs N]   time every program (every program of every
-#        shared drawing and example, under every machine: about 75 programs, 40 minutes of
-#        GRBL's time, 15 to 30 minutes here) and record them in the fixture
+#        shared drawing and example, under every machine: 70 programs, 34 minutes of GRBL's
+#        time, about 10 minutes here with --jobs 2) and record them in the fixture
 #   tests/grbl_oracle.sh --check              time the programs marked `*` again and compare
 #        with the recording (fails beyond 2 %; about a minute)
 #
