@@ -57,7 +57,7 @@ touch "$cache"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 # what a recorded time depends on besides the program and the machine
-tool_key=$(cat "$tools/grbl_sim" tests/grbl/sender.py tests/grbl_oracle.sh | sha1sum | cut -c1-12)
+tool_key=$(cat tests/grbl/build_sim.sh tests/grbl/sender.py | sha1sum | cut -c1-12)
 
 # program MACHINE NAME DIR: the program's file (a drawing's compiled into DIR); nothing when
 # its drawing is absent
