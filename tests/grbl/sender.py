@@ -4,10 +4,10 @@ sender does, and prints the motion time GRBL took.
 
 The sender counts characters as GRBL's own doc/script/stream.py does: at most 127 bytes
 that GRBL has not answered yet (its receive buffer is 128), one answer (`ok` or `error:N`)
-freeing the oldest line. The simulator polls its stdin for a byte with select() and reads it
-with getchar(): its stdin must be unbuffered (stdbuf -i0), or bytes wait in stdio's buffer
-where select() does not see them until the next write; its answers are unbuffered too
-(-o0), or a pipe holds them back. Comments and blanks are stripped, as stream.py does. Before the
+freeing the oldest line. The simulator's answers are unbuffered (stdbuf -o0), or a pipe holds
+them back. After the last answer the sender ends its input, and the simulator (that of
+tests/grbl/build_sim.sh) ends once GRBL is idle; its clock waits for the sender while GRBL's
+planner has room, so the sender's own reaction time is not GRBL's. Comments and blanks are stripped, as stream.py does. Before the
 program: the machine's `$` settings (each waiting for its `ok`) and `G10 L20 P1` making the
 tool's place the program's start (X0 Y0 at the first sweep height), where millpath's
 estimate starts it at rest.
@@ -19,8 +19,8 @@ after its first move, which an estimate counts separately.
   sender.py --sim grbl_sim [--speedup K] [--setting '$110=5000' ...] PROGRAM
 prints `SECONDS<TAB>STALLS<TAB>STALLED`: the shortest motion time of the clean runs, how often in
 that run the steppers stood still from speed because the simulator's GRBL thread fell behind
-its clock (0: clean; with the simulator of tests/grbl/build_sim.sh, which holds its clock for
-that thread, none were seen; a run with stalls is repeated, at most 3 times), and the seconds
+its clock, or the simulator gave up waiting for its GRBL thread or the sender (0: clean; a run
+with stalls is repeated, at most 3 times), and the seconds
 those stalls took; the errors GRBL answered go to stderr (exit 1 when there were any).
 """
 import argparse
@@ -142,7 +142,10 @@ def starved(step_file, report):
             still += 1
             if still == still_for and k - still_for - before >= 0:
                 a, b = rows[k - still_for - before][1], rows[k - still_for][1]
-                counted = max(abs(x - y) for x, y in zip(a, b)) >= 3
+                # steps in 5 ms by the report rows (a block's closing row, printed when the
+                # next block starts, spans more: a stop at a block's end, not a stall)
+                span = rows[k - still_for][0] - rows[k - still_for - before][0]
+                counted = max(abs(x - y) for x, y in zip(a, b)) >= 3 and span < (before + 1) * report
                 count += counted
         else:
             if counted and regular:
@@ -227,26 +230,20 @@ def run(sim, speedup, settings, program, report=0.001):
             while pending:
                 answer()
                 pending.pop(0)
-            # the machine idle (its status report says so), the simulator is ended: it is asked
-            # to (end of input), and stopped when it does not (its GRBL thread may not end); the
-            # step file is flushed at every report
+            # the end of the input: the simulator ends once the machine is idle (its clock,
+            # which waits for the sender while the planner has room, then runs the rest)
+            p.stdin.close()
+            waited = 0.0
             while True:
-                p.stdin.write(b"?")
                 try:
-                    a = answers.get(timeout=10)
-                except queue.Empty:
+                    p.wait(timeout=2)
+                    break
+                except subprocess.TimeoutExpired:
+                    waited += 2
                     if stalled(steps, blocks, report):
                         raise Stalled()
-                    continue
-                if a is None or a.startswith("<Idle"):
-                    break
-                time.sleep(0.2)
-            p.stdin.close()
-            try:
-                p.wait(timeout=3)
-            except subprocess.TimeoutExpired:
-                p.kill()
-                p.wait()
+                    if waited >= float(os.environ.get("GRBL_SENDER_TIMEOUT", 600)):
+                        raise
         finally:
             if p.poll() is None:
                 p.kill()
@@ -258,14 +255,14 @@ def run(sim, speedup, settings, program, report=0.001):
         t = motion_time(steps, report)
         stutter, lost = starved(steps, report)
         with open(sim_log) as f:
-            stutter += sum(1 for l in f if l.startswith("starved"))
+            stutter += sum(1 for l in f if l.startswith(("starved", "waited")))
     return t - program_dwells(lines), stutter, lost, errors
 
 
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--sim", required=True)
-    ap.add_argument("--speedup", type=float, default=10)
+    ap.add_argument("--speedup", type=float, default=1000)
     ap.add_argument("--setting", action="append", default=[])
     ap.add_argument("--runs", type=int, default=1,
                     help="time the program this often and print the shortest time (the "

@@ -11,6 +11,7 @@
 
 mod support;
 
+use millpath_core::geom::P3;
 use millpath_core::load::config::{parse, Have};
 use millpath_core::load::fs::MemFileSystem;
 use millpath_core::{compile_file, Session, Settings};
@@ -40,50 +41,120 @@ fn of_text(text: &str, s: &Settings) -> f64 {
     t.mill + t.drill + t.sweep
 }
 
+/// The estimated motion time (s) of a probing program: GRBL's probe cycle starts and ends at
+/// rest (it waits for the planner to empty first, and its move runs out without contact), so
+/// the moves before each probe, the probe move (at its feed) and those after are planned apart,
+/// each from rest where the one before ended.
+fn probing_estimate(text: &str, s: &Settings) -> f64 {
+    let model = s.time_model().expect("a GRBL machine");
+    let start = start_of(text, s.sweep_height);
+    let mut at = [start.x, start.y, start.z];
+    let plan = |chunk: &str, at: &mut [f64; 3]| {
+        let items = items_of(chunk, *at);
+        let from = P3 {
+            x: at[0],
+            y: at[1],
+            z: at[2],
+        };
+        if let Some(last) = items.last() {
+            let t = last.target;
+            *at = [
+                t.x.unwrap_or(at[0]),
+                t.y.unwrap_or(at[1]),
+                t.z.unwrap_or(at[2]),
+            ];
+        }
+        let t = model.plan(&items, from);
+        t.mill + t.drill + t.sweep
+    };
+    let (mut total, mut chunk) = (0.0, String::new());
+    for line in text.lines() {
+        if line.contains("G38") {
+            total += plan(&chunk, &mut at);
+            chunk.clear();
+            let probe = line.replace("G38.3", "G01").replace("G38.2", "G01");
+            total += plan(&probe, &mut at);
+        } else {
+            chunk.push_str(line);
+            chunk.push('\n');
+        }
+    }
+    total + plan(&chunk, &mut at)
+}
+
+/// A row of `tests/grbl/drawings.tsv`: the drawing of a program, its path pattern, sweep
+/// height and output (`Milling`, `Clean` or `Probing`).
+struct Drawing {
+    file: std::path::PathBuf,
+    pattern: Option<String>,
+    sweep_height: Option<f64>,
+    output: String,
+}
+
+fn drawing_of(name: &str) -> Drawing {
+    let table = std::fs::read_to_string(root().join("tests/grbl/drawings.tsv")).unwrap();
+    let row = table
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| l.split('\t').collect::<Vec<_>>())
+        .find(|f| f[0] == name)
+        .unwrap_or_else(|| panic!("{name} is not in tests/grbl/drawings.tsv"));
+    let file = match row[1].strip_prefix("shared/") {
+        Some(rest) => root().join("../shared").join(rest),
+        None => root().join(row[1]),
+    };
+    Drawing {
+        file,
+        pattern: (row[2] != "-").then(|| row[2].to_string()),
+        sweep_height: (row[3] != "-").then(|| row[3].parse().unwrap()),
+        output: row[4].to_string(),
+    }
+}
+
 /// A program's estimate: a synthetic one read, a drawing compiled as the oracle script
-/// compiles it (its program read back as GRBL gets it); `None` without the drawing.
+/// compiles it (tests/grbl/drawings.tsv); `None` without the drawing. A milling program's is
+/// the compiler's own estimate; a probing program (which the compiler does not estimate: the
+/// contact is not known) is read back and planned with each probe move at its feed to its
+/// full depth, as GRBL's G38.3 without contact goes.
 fn estimate(name: &str, s: &Settings) -> Option<f64> {
     if let Some(file) = name.strip_prefix("synthetic/") {
         let text =
             std::fs::read_to_string(root().join("tests/planner/programs").join(file)).unwrap();
         return Some(of_text(&text, s));
     }
-    let (folder, file, pattern) = match name {
-        "examples/plate/1234.1P.gcode" => ("examples/plate", "1234.1P.dxf", None),
-        "examples/text/2001.gcode" => ("examples/text", "2001.mpath", None),
-        "examples/text/2010.gcode" => ("examples/text", "2010.mpath", None),
-        "shared/samples/2916.1P.gcode" => ("../shared/samples", "2916.1P.dxf", Some("2916\\.1P")),
-        _ => {
-            let stem = name
-                .strip_prefix("shared/conformance/")?
-                .strip_suffix(".gcode")?;
-            (
-                "../shared/conformance/fixtures",
-                Box::leak(format!("{stem}.dxf").into_boxed_str()) as &str,
-                None,
-            )
-        }
-    };
-    let dir = root().join(folder);
-    if !dir.join(file).exists() {
+    let d = drawing_of(name);
+    if !d.file.exists() {
         return None;
     }
+    let dir = d.file.parent().unwrap();
+    let file = d.file.file_name().unwrap().to_string_lossy().to_string();
     let mut fs = MemFileSystem::default();
-    for f in support::files_in(&dir, &["dxf", "mpath"]) {
+    for f in support::files_in(dir, &["dxf", "mpath"]) {
         let n = f.file_name().unwrap().to_string_lossy().to_string();
         fs.add(n.as_str(), std::fs::read(&f).unwrap());
     }
     let mut settings = s.clone();
-    if let Some(p) = pattern {
-        settings.path_pattern = p.to_string();
+    if let Some(p) = &d.pattern {
+        settings.path_pattern = p.clone();
     }
-    let mut session = Session::new(settings, &fs).expect("settings");
-    let outcome = compile_file(&mut session, Path::new(file), "grbl oracle");
+    if let Some(h) = d.sweep_height {
+        settings.sweep_height = h;
+    }
+    let mut session = Session::new(settings.clone(), &fs).expect("settings");
+    let outcome = compile_file(&mut session, Path::new(&file), "grbl oracle");
     assert!(
         !outcome.stats.is_empty(),
         "{file}: {:?}",
         session.diags.list
     );
+    if d.output == "Probing" {
+        let program = outcome
+            .outputs
+            .iter()
+            .find(|o| o.path.to_string_lossy().ends_with("_Probing.gcode"))
+            .expect("a probing program");
+        return Some(probing_estimate(&program.content, &settings));
+    }
     // the compiler's own estimate, moves only (the oracle counts dwells apart)
     Some(
         outcome
@@ -159,18 +230,12 @@ fn print_the_estimates() {
         .map(|e| format!("synthetic/{}", e.unwrap().file_name().to_string_lossy()))
         .collect();
     names.sort();
+    let table = std::fs::read_to_string(root().join("tests/grbl/drawings.tsv")).unwrap();
     names.extend(
-        [
-            "examples/plate/1234.1P.gcode",
-            "examples/text/2001.gcode",
-            "examples/text/2010.gcode",
-            "shared/samples/2916.1P.gcode",
-            "shared/conformance/8999.02P.gcode",
-            "shared/conformance/8999.08P.gcode",
-            "shared/conformance/8999.14P.gcode",
-            "shared/conformance/8999.15P.gcode",
-        ]
-        .map(String::from),
+        table
+            .lines()
+            .filter(|l| !l.starts_with('#'))
+            .map(|l| l.split('\t').next().unwrap().to_string()),
     );
     for m in ["router", "light", "defaults"] {
         let s = settings(m);

@@ -574,6 +574,8 @@ fn emit_with<S: AsRef<str>>(
         (last_z - sx).abs(),
         0.0,
     );
+    // where it goes: a planner's estimate times it (GRBL's oracle, 8999.31P: 0.5 s missing)
+    em.to(Target::z(sx));
     let out_of_range = em.out_of_range;
     let sx_bad = !(sx.is_finite() && sx.abs() <= MAX_MAGNITUDE);
     if let Some((v, source)) = out_of_range.or(sx_bad.then_some((sx, None))) {
