@@ -1,7 +1,7 @@
 # `fmt` (and every command that rewrites a user's file in place) keeps what the user wrote:
 # every comment, also the one after a path's closing brace; a file with errors stays byte for
 # byte; a .mpath or a drawing reached through a symbolic link is rewritten where it lives and
-# the link stays a link; a read-only file is refused.
+# the link stays a link; a read-only file is refused; git's merge driver keeps the comments.
 source "$ROOT/tests/workflows/lib.bash"
 cat >2001.mpath <<'MP'
 # a head comment
@@ -62,4 +62,29 @@ expect_status 1 "$MILLPATH" fmt ro.mpath
 grep -q "read-only: not replaced" "$WORK/err" || fail "read-only: $(cat "$WORK/err")"
 cmp -s ro.mpath original.mpath || fail "a read-only file was changed"
 [ ! -w ro.mpath ] || [ "$(id -u)" = 0 ] || fail "ro.mpath became writable"
+
+# git's merge driver (docs/src/version-control.md): the comment after `}` survives a merge
+# of edits elsewhere, and the same comment changed both ways is a conflict
+mkdir repo && cd repo
+git init -q -b main && git config user.email t@t && git config user.name t
+git config merge.millpath.driver "$MILLPATH merge %O %A %B %P"
+printf '*.mpath merge=millpath\n' >.gitattributes
+cp ../original.mpath 2001.mpath
+git add -A && git commit -qm base
+git checkout -qb theirs
+sed -i 's/# the slot/# the slot, 0.2 deep/' 2001.mpath && git commit -qam theirs
+git checkout -q main
+sed -i 's/B-0,2   # the start/B-0,3   # the start/' 2001.mpath && git commit -qam ours
+git merge -q --no-edit theirs >/dev/null 2>&1 || fail "the merge failed: $(cat 2001.mpath)"
+grep -q "# the slot, 0.2 deep" 2001.mpath && grep -q "B-0,3" 2001.mpath || fail "merge: $(cat 2001.mpath)"
+grep -qx '}  # after the closing brace: 2001.1P is the slot of the lid' 2001.mpath ||
+  fail "the merge dropped the comment after }: $(cat 2001.mpath)"
+git checkout -qb theirs2
+sed -i 's/^}.*/}  # theirs/' 2001.mpath && git commit -qam theirs2
+git checkout -q main
+sed -i 's/^}.*/}  # ours/' 2001.mpath && git commit -qam ours2
+if git merge -q --no-edit theirs2 >/dev/null 2>&1; then fail "no conflict: $(cat 2001.mpath)"; fi
+grep -qx '}  # ours' 2001.mpath && grep -qx '}  # theirs' 2001.mpath || fail "conflict: $(cat 2001.mpath)"
+git merge --abort
+cd ..
 echo "ok: fmt keeps comments, links and read-only files"
