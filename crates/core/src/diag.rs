@@ -423,6 +423,8 @@ messages! {
     MergeBreaksCompile = "{0}: the merged path(s) {1} do not compile, while both sides did: a conflict; the merged text is in {2}", "{0}: die zusammengeführten Pfade {1} lassen sich nicht übersetzen, obwohl beide Seiten es taten: ein Konflikt; der zusammengeführte Text steht in {2}";
     // the operator's feed override in the time estimate (issue 33)
     FeedOverrideRange = "feed_override={0} must be a percentage from {1} to {2}", "feed_override={0} muss ein Prozentwert von {1} bis {2} sein";
+    // dxf2text -o over a text the user may have edited (issue 31 review): refused, not replaced
+    TextWouldBeReplaced = "{0} exists and is not the text of {1}: it may hold edits (or comments) not written back to the drawing. Nothing was written: write the edits back first (text2dxf {0} --into {1}), write elsewhere with -o, or replace it with --force", "{0} existiert und ist nicht der Text von {1}: er kann Änderungen (oder Kommentare) enthalten, die nicht in die Zeichnung zurückgeschrieben sind. Es wurde nichts geschrieben: die Änderungen erst zurückschreiben (text2dxf {0} --into {1}), mit -o anderswohin schreiben, oder mit --force ersetzen";
 }
 
 impl Msg {
