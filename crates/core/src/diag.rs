@@ -429,6 +429,8 @@ messages! {
     OutputsCollide = "{0} and {1} would write the same files ({2}_Milling.gcode …): neither was compiled, so that no program silently replaces the other's; compile the one you mean by name, or move the other away", "{0} und {1} würden dieselben Dateien schreiben ({2}_Milling.gcode …): keine wurde übersetzt, damit kein Programm stillschweigend das andere ersetzt; die gemeinte mit Namen übersetzen oder die andere wegräumen";
     // render --svg part.mpath: an output named like the drawing it is made of
     OutputIsInput = "{0} is the drawing this command reads: it is not overwritten by the {1}; name another file", "{0} ist die Zeichnung, die dieser Befehl liest: sie wird nicht mit {1} überschrieben; eine andere Datei angeben";
+    // pathdxf2gcode over a filled _Z.txt: the reference's empty file is written, the values kept beside
+    ZKeptForReference = "{0} held measured values: kept as {1} (pathdxf2gcode writes the reference's {0}, without values; millpath compile keeps them in place)", "{0} enthielt Messwerte: als {1} behalten (pathdxf2gcode schreibt die {0} der Referenz, ohne Werte; millpath compile behält sie an ihrem Platz)";
 }
 
 impl Msg {
