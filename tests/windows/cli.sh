@@ -213,5 +213,36 @@ ro_refused() {
 }
 check "read-only output: refused naming it, kept read-only" ro_refused
 
+# --- files staged by a compile that was killed (no chance to clean up): the next compile of
+# the drawing sweeps those whose process is gone, as on Linux, and keeps a live process's
+# file and an old output moved aside (the user's previous program)
+fresh "$work/stale" "$ex"/text/*.mpath "$ex/text/millpath.toml"
+touch "$work/stale/gone"
+# a process that ran and ended: its id
+dead=$(cd "$work/stale" && wine "$HOLDOPEN" 2010.mpath gone 2>/dev/null | sed -n 's/^held \([0-9]*\).*/\1/p')
+(cd "$work/stale" && wine "$HOLDOPEN" 2001.mpath release) >"$work/live.out" 2>&1 &
+live_holder=$!
+for _ in $(seq 100); do grep -q held "$work/live.out" 2>/dev/null && break; sleep 0.1; done
+live=$(sed -n 's/^held \([0-9]*\).*/\1/p' "$work/live.out")
+o=2010_Milling.gcode
+stale_swept() {
+  [ -n "$dead" ] && [ -n "$live" ] || { echo "no process ids: dead=$dead live=$live"; return 1; }
+  local f
+  for f in ".$o.$dead.stage1" "..$o.$dead.stage1.$dead.stage2" ".$o.$dead.tmp" ".$o.$live.stage1" ".$o.$dead.old"; do
+    echo partial >"$work/stale/$f"
+  done
+  (cd "$work/stale" && "$W" compile 2010.mpath) >"$work/stale.log" 2>&1 || { cat "$work/stale.log"; return 1; }
+  for f in ".$o.$dead.stage1" "..$o.$dead.stage1.$dead.stage2" ".$o.$dead.tmp"; do
+    [ ! -e "$work/stale/$f" ] || { echo "not swept: $f"; ls -A "$work/stale"; return 1; }
+  done
+  for f in ".$o.$live.stage1" ".$o.$dead.old"; do
+    [ -e "$work/stale/$f" ] || { echo "swept, but it is not dead: $f"; return 1; }
+  done
+  grep -q G00 "$work/stale/$o"
+}
+check "a killed compile's staged files: swept when their process is gone, kept while it runs" stale_swept
+touch "$work/stale/release"
+wait "$live_holder"
+
 echo "windows cli: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

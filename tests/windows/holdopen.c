@@ -1,7 +1,8 @@
 /* Test harness only: holds a file open the way a G-code sender does (read access; others may
  * read it but neither write, rename nor delete it), so tests/windows/cli.sh can show what
  * millpath.exe does when it must replace a file another program has open.
- * Usage: holdopen FILE RELEASE. Prints "held" once FILE is open, keeps it open until a file
+ * Usage: holdopen FILE RELEASE. Prints "held PID" once FILE is open (its process id: a
+ * live process for the stale-file sweep's test), keeps it open until a file
  * RELEASE exists (at most a minute), then closes it. */
 #include <windows.h>
 #include <stdio.h>
@@ -18,7 +19,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "holdopen: cannot open %s (error %lu)\n", argv[1], GetLastError());
         return 1;
     }
-    printf("held\n");
+    printf("held %lu\n", (unsigned long)GetCurrentProcessId());
     fflush(stdout);
     for (int i = 0; i < 600 && GetFileAttributesA(argv[2]) == INVALID_FILE_ATTRIBUTES; i++)
         Sleep(100);

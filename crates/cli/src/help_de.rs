@@ -51,6 +51,7 @@ fn arg(cmd: &str, id: &str) -> Option<&'static str> {
         ("adjust-z", "files") => Some("Die angetasteten Programme: NAME_Clean.gcode (oder NAME; NAME_Z.txt wird daneben gelesen)"),
         ("dxf2text", "file") => Some("Die auszugebende DXF-Zeichnung"),
         ("dxf2text", "output") => Some("In diese Datei schreiben statt auf die Standardausgabe (`-`: Standardausgabe)"),
+        ("dxf2text", "force") => Some("Eine vorhandene Datei von -o ersetzen, die nicht der Text dieser Zeichnung ist (nicht zurückgeschriebene Änderungen gingen verloren)"),
         ("dxf2text", "extended") => Some("Polylinien und Blöcke werden zu einfachen Elementen (oder `input = \"extended\"`)"),
         ("dxf2text" | "text2dxf", "config") => Some("Einstellungsdatei (Standard: die nächste millpath.toml über der Eingabe)"),
         ("text2dxf", "file") => Some("Der zu wandelnde MillPath-Text (.mpath)"),

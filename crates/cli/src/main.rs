@@ -158,6 +158,10 @@ enum Command {
         /// (exit 0), so that `git diff` goes on
         #[arg(long)]
         textconv: bool,
+        /// Replace an existing -o file that is not this drawing's text (edits not written
+        /// back would be lost)
+        #[arg(long)]
+        force: bool,
         #[command(flatten)]
         names: NameArgs,
     },
@@ -485,8 +489,14 @@ fn main() -> ExitCode {
             file,
             output,
             textconv,
+            force,
             names,
-        } => commands::dxf2text::run(&file, stdout_dash(output), textconv, &names.machine()),
+        } => commands::dxf2text::run(
+            &file,
+            stdout_dash(output),
+            (textconv, force),
+            &names.machine(),
+        ),
         Command::Text2dxf {
             file,
             output,

@@ -103,6 +103,45 @@ fn keep_as(z: &Path, side: &Path, bytes: Option<&[u8]>) -> std::io::Result<()> {
     }
 }
 
+/// `pathdxf2gcode` over a `_Z.txt` the machinist filled in: it writes the reference's file
+/// (the values empty, byte for byte the reference's), so the old one is kept beside first as
+/// `NAME_Z.N.txt`. `Ok(None)`: nothing to keep (no file, the same text, or every line
+/// unfilled, `#51=`); `Ok(Some(side))`: kept there; `Err`: it could not be kept (nothing of
+/// the drawing may be written then).
+pub fn keep_filled_for_reference(z: &Path, new_z: &str) -> Result<Option<PathBuf>, Diagnostic> {
+    if !std::fs::metadata(z).is_ok_and(|m| m.is_file()) {
+        return Ok(None);
+    }
+    let bytes = read_bounded(z).ok();
+    let text = bytes
+        .as_deref()
+        .and_then(|b| millpath_core::load::text_file::decode(b).ok())
+        .map(|d| d.text.replace("\r\n", "\n"));
+    // unreadable, or any line that is more than `… #n=`: a value, or not a _Z.txt line
+    let filled = text.as_deref().is_none_or(|t| {
+        t.lines()
+            .map(str::trim_end)
+            .any(|l| !l.is_empty() && !l.ends_with('='))
+    });
+    if !filled || text.as_deref() == Some(new_z) {
+        return Ok(None);
+    }
+    let side = free_side(z);
+    let kept = match &side {
+        Some(s) => keep_as(z, s, bytes.as_deref()).map_err(|e| e.to_string()),
+        None => Err(format!("{MAX_SIDE} earlier copies")),
+    };
+    let side = side.unwrap_or_else(|| z.with_extension("N.txt"));
+    match kept {
+        Ok(()) => Ok(Some(side)),
+        Err(e) => Err(Diagnostic::error(
+            Msg::ZCannotKeepAside,
+            Origin::File(FileRef::new(z.to_path_buf())),
+            millpath_core::args![z.display(), side.display(), e],
+        )),
+    }
+}
+
 /// What to write for the `_Z.txt` at `z` (compile's new one: `new_z`, its probing program
 /// `new_probing`). `Err`: the old file may hold measured values and could not be kept beside;
 /// nothing of the set may be written. `ours`: the new set's digest; `lang`: the words of an

@@ -221,6 +221,16 @@ fn names_its_file(msg: millpath_core::Msg) -> bool {
     )
 }
 
+/// Each diagnostic once: a subpath embedded by several checked files is read, and its
+/// warnings found, once per file; the report (and the warning count) names each place once.
+pub fn once_each(diags: Vec<Diagnostic>) -> Vec<Diagnostic> {
+    let mut seen = std::collections::HashSet::new();
+    diags
+        .into_iter()
+        .filter(|d| seen.insert(format!("{d:?}")))
+        .collect()
+}
+
 /// Where a report locates a diagnostic: a file that cannot be read, written or removed at
 /// that file, not at "Options"/"Input" (the reference's `****` lines keep those).
 pub fn shown_origin(d: &Diagnostic) -> std::borrow::Cow<'_, Origin> {

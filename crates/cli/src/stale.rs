@@ -3,7 +3,8 @@
 //! the outputs it is about to write. A file is taken only when it is provably ours and
 //! dead: its name is one `core::stage::sibling` gives an output of this compile
 //! (`.NAME.PID.stage1`, `..NAME.PID.stage1.PID.stage2`, `.NAME.PID.tmp`), and the process
-//! PID is not running (or is this one, which has not made it). An old output moved aside
+//! PID is not running (or is this one, which has not made it): asked of the system on Unix
+//! (kill 0) and on Windows (OpenProcess). An old output moved aside
 //! (`.NAME.PID.old`) is the user's previous file: it is never swept.
 
 use millpath_core::temporaries;
@@ -105,7 +106,7 @@ fn dead(pid: u32, path: &Path) -> bool {
 }
 
 /// Whether a process `pid` runs now; `None` where it cannot be told.
-#[cfg(target_os = "linux")]
+#[cfg(unix)]
 fn running(pid: u32) -> Option<bool> {
     let pid = libc::pid_t::try_from(pid).ok()?;
     if pid <= 0 {
@@ -123,8 +124,43 @@ fn running(pid: u32) -> Option<bool> {
     }
 }
 
+/// Whether a process `pid` runs now (Windows). Only a clear "no such process" is `false`:
+/// OpenProcess refuses an id no process has with ERROR_INVALID_PARAMETER; a process object
+/// still open somewhere after its process ended answers an exit code other than
+/// STILL_ACTIVE. Any other answer (access denied: it runs, as another user) counts as
+/// running, and so does a process that exited with code 259 (STILL_ACTIVE): its file stays.
+/// An id given again to another process also counts as running: only a dead file is taken.
+#[cfg(windows)]
+fn running(pid: u32) -> Option<bool> {
+    use windows_sys::Win32::Foundation::{
+        CloseHandle, GetLastError, ERROR_INVALID_PARAMETER, STILL_ACTIVE,
+    };
+    use windows_sys::Win32::System::Threading::{
+        GetExitCodeProcess, OpenProcess, PROCESS_QUERY_LIMITED_INFORMATION,
+    };
+    if pid == 0 {
+        // the System Idle Process
+        return None;
+    }
+    // SAFETY: plain Win32 calls with no pointers but the exit code's, which lives here; the
+    // handle is closed before returning
+    unsafe {
+        let handle = OpenProcess(PROCESS_QUERY_LIMITED_INFORMATION, 0, pid);
+        if handle.is_null() {
+            return Some(GetLastError() != ERROR_INVALID_PARAMETER);
+        }
+        let mut code = 0u32;
+        let asked = GetExitCodeProcess(handle, &mut code);
+        CloseHandle(handle);
+        if asked == 0 {
+            return Some(true);
+        }
+        Some(code == STILL_ACTIVE as u32)
+    }
+}
+
 /// Elsewhere only this process's own leftovers are swept (see [`dead`]).
-#[cfg(not(target_os = "linux"))]
+#[cfg(not(any(unix, windows)))]
 fn running(_pid: u32) -> Option<bool> {
     None
 }
@@ -156,7 +192,8 @@ mod tests {
         }
     }
 
-    #[cfg(target_os = "linux")]
+    // Windows: tests/windows/cli.sh, under Wine
+    #[cfg(unix)]
     #[test]
     fn dead_leftovers_go_and_live_ones_stay() {
         let dir = tempfile::tempdir().unwrap();

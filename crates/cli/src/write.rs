@@ -108,6 +108,8 @@ pub fn write_atomic(path: &Path, content: &str) -> std::io::Result<()> {
 
 /// [`write_atomic`] for bytes (pictures).
 pub fn write_atomic_bytes(path: &Path, content: &[u8]) -> std::io::Result<()> {
+    let target = link_target(path);
+    let path = target.as_deref().unwrap_or(path);
     refuse_read_only(path)?;
     let tmp = sibling(path, "tmp");
     let result = (|| {
@@ -123,6 +125,18 @@ pub fn write_atomic_bytes(path: &Path, content: &[u8]) -> std::io::Result<()> {
         }
         result
     })
+}
+
+/// The file a symbolic link `path` points to (`None`: not a link, or a link to nothing): a
+/// file written in place through a link (`fmt` of a linked `.mpath`, `text2dxf --into` a
+/// drawing linked from a library) changes that file and keeps the link, as an editor does;
+/// a rename onto the link would replace the link by a copy and leave the file unchanged.
+fn link_target(path: &Path) -> Option<std::path::PathBuf> {
+    let meta = std::fs::symlink_metadata(path).ok()?;
+    if !meta.file_type().is_symlink() {
+        return None;
+    }
+    dunce::canonicalize(path).ok()
 }
 
 /// What one file of a set holds: a text, or a temporary file it was written to already

@@ -423,6 +423,14 @@ messages! {
     MergeBreaksCompile = "{0}: the merged path(s) {1} do not compile, while both sides did: a conflict; the merged text is in {2}", "{0}: die zusammengeführten Pfade {1} lassen sich nicht übersetzen, obwohl beide Seiten es taten: ein Konflikt; der zusammengeführte Text steht in {2}";
     // the operator's feed override in the time estimate (issue 33)
     FeedOverrideRange = "feed_override={0} must be a percentage from {1} to {2}", "feed_override={0} muss ein Prozentwert von {1} bis {2} sein";
+    // dxf2text -o over a text the user may have edited (issue 31 review): refused, not replaced
+    TextWouldBeReplaced = "{0} exists and is not the text of {1}: it may hold edits (or comments) not written back to the drawing. Nothing was written: write the edits back first (text2dxf {0} --into {1}), write elsewhere with -o, or replace it with --force", "{0} existiert und ist nicht der Text von {1}: er kann Änderungen (oder Kommentare) enthalten, die nicht in die Zeichnung zurückgeschrieben sind. Es wurde nichts geschrieben: die Änderungen erst zurückschreiben (text2dxf {0} --into {1}), mit -o anderswohin schreiben, oder mit --force ersetzen";
+    // compile of a folder holding part.dxf and part.mpath: both would write part_Milling.gcode
+    OutputsCollide = "{0} and {1} would write the same files ({2}_Milling.gcode …): neither was compiled, so that no program silently replaces the other's; compile the one you mean by name, or move the other away", "{0} und {1} würden dieselben Dateien schreiben ({2}_Milling.gcode …): keine wurde übersetzt, damit kein Programm stillschweigend das andere ersetzt; die gemeinte mit Namen übersetzen oder die andere wegräumen";
+    // render --svg part.mpath: an output named like the drawing it is made of
+    OutputIsInput = "{0} is the drawing this command reads: it is not overwritten by the {1}; name another file", "{0} ist die Zeichnung, die dieser Befehl liest: sie wird nicht mit {1} überschrieben; eine andere Datei angeben";
+    // pathdxf2gcode over a filled _Z.txt: the reference's empty file is written, the values kept beside
+    ZKeptForReference = "{0} held measured values: kept as {1} (pathdxf2gcode writes the reference's {0}, without values; millpath compile keeps them in place)", "{0} enthielt Messwerte: als {1} behalten (pathdxf2gcode schreibt die {0} der Referenz, ohne Werte; millpath compile behält sie an ihrem Platz)";
 }
 
 impl Msg {

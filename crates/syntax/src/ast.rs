@@ -37,6 +37,8 @@ pub struct PathBlock {
     /// Comment after `{`.
     pub comment: Option<Spanned<String>>,
     pub items: Vec<PathItem>,
+    /// Comment after the closing `}`.
+    pub close_comment: Option<Spanned<String>>,
     pub span: Span,
 }
 

@@ -85,7 +85,10 @@ pub fn format(file: &File, src: &str) -> String {
                 while out.last().is_some_and(String::is_empty) {
                     out.pop();
                 }
-                out.push("}".into());
+                match &p.close_comment {
+                    Some(c) => out.push(format!("}}  {}", c.value.trim_end())),
+                    None => out.push("}".into()),
+                }
             }
         }
     }

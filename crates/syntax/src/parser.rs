@@ -43,6 +43,7 @@ enum RawItem {
         /// Finished as they are parsed: a list of raw items beside the finished ones
         /// would hold a long path twice.
         items: Vec<PathItem>,
+        close_comment: Option<Spanned<String>>,
         span: Span,
     },
     Error(Span),
@@ -257,15 +258,16 @@ fn file_parser<'t, 's: 't>(
     }
     .labelled("path name")
     .map_with(|n, e| Spanned::new(n, range(e.span())));
+    // the comment after `}` is kept: the formatter writes it back
     let close = just(Token::RBrace)
-        .ignored()
-        .then(comment.or_not())
+        .ignore_then(comment.or_not())
         .then_ignore(newline.ignored().or(end()))
         .or_not()
         .validate(|c, e, emitter| {
             if c.is_none() {
                 emitter.emit(Rich::custom(e.span(), MISSING_BRACE));
             }
+            c.flatten()
         });
     let path = kw("path")
         .ignore_then(name)
@@ -273,13 +275,16 @@ fn file_parser<'t, 's: 't>(
         .then(comment.or_not())
         .then_ignore(newline)
         .then(path_item.repeated().collect::<Pieces<_>>().map(|p| p.0))
-        .then_ignore(close)
-        .map_with(|((name, comment), items), e| RawItem::Path {
-            name,
-            comment,
-            items,
-            span: range(e.span()),
-        });
+        .then(close)
+        .map_with(
+            |(((name, comment), items), close_comment), e| RawItem::Path {
+                name,
+                comment,
+                items,
+                close_comment,
+                span: range(e.span()),
+            },
+        );
     let item = choice((
         newline.to(RawItem::Blank),
         comment
@@ -455,11 +460,13 @@ fn finish_item(i: RawItem) -> Item {
             name,
             comment,
             items,
+            close_comment,
             span,
         } => Item::Path(PathBlock {
             name,
             comment,
             items,
+            close_comment,
             span,
         }),
     }

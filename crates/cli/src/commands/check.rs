@@ -103,7 +103,7 @@ pub fn run(m: &MachineArgs, format: Format, options: (bool, Option<u32>), paths:
                         .or_else(|| inputs.first().and_then(|i| crate::config::find(i)))
                         .filter(|f| e.starts_with(&f.display().to_string()));
                     let at = match file {
-                        Some(f) => Origin::File(millpath_core::diag::FileRef::new(f)),
+                        Some(f) => settings_error_at(f, &e),
                         None => Origin::Options,
                     };
                     let d = Diagnostic::error(Msg::SettingsUnusable, at, millpath_core::args![e]);
@@ -178,7 +178,7 @@ pub fn run(m: &MachineArgs, format: Format, options: (bool, Option<u32>), paths:
         }
     }
     eprint!("{info}");
-    let all = report::tidy(all);
+    let all = report::once_each(report::tidy(all));
     let errors = all.iter().filter(|d| d.severity == Severity::Error).count();
     match format {
         Format::Human => {
@@ -221,6 +221,44 @@ pub fn run(m: &MachineArgs, format: Format, options: (bool, Option<u32>), paths:
         _ => false,
     };
     u8::from(errors > 0 || too_many)
+}
+
+/// Where in millpath.toml its error is: at the line and column the TOML reader names
+/// ("at line 2, column 15", in German "in Zeile 2, Spalte 15"), else the file as a whole.
+fn settings_error_at(file: PathBuf, error: &str) -> Origin {
+    use millpath_core::diag::FileRef;
+    let number_after = |word: &str| -> Option<u32> {
+        let rest = &error[error.find(word)? + word.len()..];
+        let digits = rest.split(|c: char| !c.is_ascii_digit()).next()?;
+        digits.parse().ok().filter(|n| *n > 0)
+    };
+    let line = number_after(" at line ").or_else(|| number_after(" in Zeile "));
+    let col = number_after(", column ")
+        .or_else(|| number_after(", Spalte "))
+        .unwrap_or(1);
+    let Some(line) = line else {
+        return Origin::File(FileRef::new(file));
+    };
+    // the byte offset of that place, for the JSON report's span (the file was read a moment
+    // ago; if it is gone now, the line start of nothing is 0)
+    let text = crate::read::text(&file).unwrap_or_default();
+    let line_start: usize = text
+        .split_inclusive('\n')
+        .take(line as usize - 1)
+        .map(str::len)
+        .sum();
+    let start = text[line_start.min(text.len())..]
+        .char_indices()
+        .nth(col as usize - 1)
+        .map_or(text.len(), |(i, _)| line_start + i);
+    let start = u32::try_from(start).unwrap_or(u32::MAX);
+    Origin::Span {
+        file: FileRef::new(file),
+        start,
+        end: start,
+        line,
+        col,
+    }
 }
 
 /// The line that says why a check with no error failed.

@@ -6,9 +6,10 @@ use crate::inputs::compile_inputs;
 use crate::output::{flush_info, print_human, print_stats, write_drawing_outputs};
 use crate::report;
 use crate::stale::Sweeper;
-use millpath_core::diag::{Diags, Severity};
-use millpath_core::{compile_file, Lang, OsFileSystem, Session, Settings};
-use std::path::Path;
+use millpath_core::diag::{Diags, FileRef, Severity};
+use millpath_core::{compile_file, Diagnostic, Lang, Msg, Origin, OsFileSystem, Session, Settings};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
 
 pub fn run(m: &MachineArgs, files: &[String]) -> u8 {
     // the language of every message, also of those before the settings are read
@@ -51,7 +52,22 @@ pub fn run(m: &MachineArgs, files: &[String]) -> u8 {
     let lang = each.first().map_or(early, |s| s.lang);
     let mut not_written = Vec::new();
     let mut sweeper = Sweeper::default();
-    for (input, settings) in inputs.iter().zip(&each) {
+    let colliding = same_outputs(&inputs);
+    for (i, (input, settings)) in inputs.iter().zip(&each).enumerate() {
+        if let Some(other) = colliding.get(&i) {
+            let d = Diagnostic::error(
+                Msg::OutputsCollide,
+                Origin::File(FileRef::new(input.clone())),
+                millpath_core::args![
+                    input.display(),
+                    inputs[*other].display(),
+                    millpath_core::output_prefix(input, "").display()
+                ],
+            );
+            print_human(&[d], settings.lang);
+            not_written.push(input.as_path());
+            continue;
+        }
         if !compile_one(settings, input, &mut sweeper) {
             not_written.push(input.as_path());
         }
@@ -60,6 +76,44 @@ pub fn run(m: &MachineArgs, files: &[String]) -> u8 {
         eprintln!("{}", summary(inputs.len(), &not_written, lang));
     }
     u8::from(!not_written.is_empty())
+}
+
+/// The inputs whose outputs would be the same files as another input's (`part.dxf` and
+/// `part.mpath` in one folder, as the two-ways workflow leaves them: both write
+/// `part_Milling.gcode`), each with one of the others. The later one's program would replace
+/// the earlier one's without a word, so neither is compiled. One file given twice is no
+/// such pair. On Windows and macOS file names ignore case, and so does the comparison.
+fn same_outputs(inputs: &[PathBuf]) -> HashMap<usize, usize> {
+    let key = |input: &Path| -> Option<(PathBuf, String)> {
+        let dir = match input.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d,
+            _ => Path::new("."),
+        };
+        let stem = input.file_stem()?.to_string_lossy().into_owned();
+        let stem = if cfg!(any(windows, target_os = "macos")) {
+            stem.to_lowercase()
+        } else {
+            stem
+        };
+        Some((dunce::canonicalize(dir).ok()?, stem))
+    };
+    let mut first: HashMap<(PathBuf, String), (usize, Option<PathBuf>)> = HashMap::new();
+    let mut pairs = HashMap::new();
+    for (i, input) in inputs.iter().enumerate() {
+        let Some(k) = key(input) else { continue };
+        let me = dunce::canonicalize(input).ok();
+        match first.get(&k) {
+            Some((j, theirs)) if me.is_none() || *theirs != me => {
+                pairs.insert(i, *j);
+                pairs.entry(*j).or_insert(i);
+            }
+            Some(_) => {}
+            None => {
+                first.insert(k, (i, me));
+            }
+        }
+    }
+    pairs
 }
 
 /// The files a compile writes beside a drawing.

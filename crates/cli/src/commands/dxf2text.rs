@@ -4,10 +4,13 @@ use crate::args::{lang_of, settings_for, MachineArgs};
 use crate::inputs::conversion_input;
 use crate::output::{emit, print_human};
 use crate::report;
-use millpath_core::Lang;
+use millpath_core::diag::FileRef;
+use millpath_core::{args, Diagnostic, Lang, Msg, Origin};
 use std::path::{Path, PathBuf};
 
-pub fn run(file: &Path, output: Option<PathBuf>, textconv: bool, m: &MachineArgs) -> u8 {
+/// `flags`: `--textconv` and `--force`.
+pub fn run(file: &Path, output: Option<PathBuf>, flags: (bool, bool), m: &MachineArgs) -> u8 {
+    let (textconv, force) = flags;
     let output = output.as_deref();
     let (patterns, lang, bytes) = match conversion_input(file, m) {
         Ok(x) => x,
@@ -27,13 +30,24 @@ pub fn run(file: &Path, output: Option<PathBuf>, textconv: bool, m: &MachineArgs
         }
         Err(code) => return code,
     };
-    let fref = millpath_core::diag::FileRef::new(file.to_path_buf());
+    let fref = FileRef::new(file.to_path_buf());
     // conversion_input has already reported settings that do not load
     let input = settings_for(m, Some(file), false).map_or_else(|_| Default::default(), |s| s.input);
     match millpath_core::convert::dxf_to_text(&bytes, &fref, &patterns, input) {
         Ok((text, diags)) => {
             // what the text cannot carry (texts that belong to no element, …) is reported
             print_human(&diags, lang);
+            if let (Some(out), false) = (output, force) {
+                if other_text_there(out, &text) {
+                    let d = Diagnostic::error(
+                        Msg::TextWouldBeReplaced,
+                        Origin::File(FileRef::new(out.to_path_buf())),
+                        args![out.display(), file.display()],
+                    );
+                    eprintln!("{}", report::human(&d, lang));
+                    return 1;
+                }
+            }
             emit(output, &text, lang)
         }
         Err(d) if textconv => {
@@ -50,5 +64,22 @@ pub fn run(file: &Path, output: Option<PathBuf>, textconv: bool, m: &MachineArgs
             eprintln!("{}", report::human(&d, lang));
             1
         }
+    }
+}
+
+/// Whether `out` is a file that holds something else than `text`: a text the user edited
+/// after an earlier `dxf2text` (the edits not yet written back with `text2dxf --into`), or
+/// comments, which a drawing does not keep. Replacing it would lose them without a word.
+/// (The same text again is written as before, so a read-only file is still refused.)
+fn other_text_there(out: &Path, text: &str) -> bool {
+    match std::fs::read(out) {
+        Ok(bytes) => {
+            // the same text in another encoding or with CRLF line ends is no edit
+            let same = millpath_core::load::text_file::decode(&bytes)
+                .is_ok_and(|d| d.text.replace("\r\n", "\n") == text);
+            !same && !bytes.is_empty()
+        }
+        // nothing there (or a folder, which the write then reports)
+        Err(_) => false,
     }
 }

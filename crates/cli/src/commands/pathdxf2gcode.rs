@@ -2,7 +2,7 @@
 
 use crate::compat;
 use crate::output::{flush_info, print_stats, write_outputs};
-use millpath_core::diag::{Diagnostic, Diags, Msg, Severity};
+use millpath_core::diag::{Diagnostic, Diags, FileRef, Msg, Origin, Severity};
 use millpath_core::{compile_file, complete_input, OsFileSystem, Session};
 
 /// `millpath pathdxf2gcode …`: the reference command line.
@@ -37,8 +37,40 @@ pub fn run(args: &[String]) -> u8 {
         let input = complete_input(f);
         let outcome = compile_file(&mut session, &input, &millpath_core::banner());
         flush_info(&mut session);
+        // a _Z.txt with measured values is kept beside before the reference's empty one
+        // replaces it (the files written stay the reference's)
+        let mut kept = Vec::new();
+        let mut keep_failed = false;
+        for z in outcome
+            .outputs
+            .iter()
+            .filter(|o| o.path.to_string_lossy().ends_with("_Z.txt"))
+        {
+            match crate::measured::keep_filled_for_reference(&z.path, &z.content) {
+                Ok(Some(side)) => kept.push(Diagnostic::warning(
+                    Msg::ZKeptForReference,
+                    Origin::File(FileRef::new(z.path.clone())),
+                    millpath_core::args![z.path.display(), side.display()],
+                )),
+                Ok(None) => {}
+                Err(d) => {
+                    keep_failed = true;
+                    write_errors.push(d);
+                }
+            }
+        }
+        if keep_failed {
+            for tmp in outcome.outputs.iter().filter_map(|o| o.staged.as_ref()) {
+                let _ = std::fs::remove_file(tmp);
+            }
+            continue;
+        }
         if write_outputs(&outcome.outputs, lang, &mut write_errors) {
             print_stats(&outcome, lang);
+        }
+        // not a `****`/`++++` line: the reference has no such words
+        for d in kept {
+            eprintln!("{}", crate::report::human(&d, lang));
         }
     }
     let mut failed = false;

@@ -83,6 +83,8 @@ pub struct PathDoc {
     pub elements: Vec<(Key, Line)>,
     /// Comment lines after the last element.
     pub tail: Vec<String>,
+    /// The comment after the closing `}`.
+    pub close: String,
 }
 
 impl PathDoc {
@@ -106,7 +108,17 @@ impl PathDoc {
             out.push_str(c);
             out.push('\n');
         }
-        out.push_str("}\n");
+        out.push_str(&close(&self.close));
+        out.push('\n');
+    }
+}
+
+/// `}` with the comment after it.
+pub fn close(comment: &str) -> String {
+    if comment.is_empty() {
+        "}".into()
+    } else {
+        format!("}}  {comment}")
     }
 }
 
@@ -198,6 +210,11 @@ pub fn doc_of(file: &File) -> Doc {
                         .unwrap_or_default(),
                     elements: numbered(elements),
                     tail: el_lead,
+                    close: p
+                        .close_comment
+                        .as_ref()
+                        .map(|c| c.value.trim_end().to_string())
+                        .unwrap_or_default(),
                 };
                 paths.push(((String::from("path"), p.name.value.clone()), doc));
             }

@@ -245,7 +245,16 @@ impl Writer {
                 &comment_lines(&t.tail, "  "),
             ),
         }
-        self.line("}");
+        match pick(&b.close, &o.close, &t.close) {
+            Some(c) => self.line(&doc::close(c)),
+            None => self.conflict(
+                o.name.clone(),
+                None,
+                ConflictKind::BothChanged,
+                &format!("{}\n", doc::close(&o.close)),
+                &format!("{}\n", doc::close(&t.close)),
+            ),
+        }
     }
 
     fn element_conflict(&mut self, path: &str, kind: ConflictKind, slot: &Slot<Line>) {
