@@ -374,3 +374,40 @@ fn machine_options_count() {
         "{cfg_before} vs {slow_before}"
     );
 }
+
+/// `--svg NEW` for `--svg new.svg` would replace a drawing by its picture: refused (exit 2),
+/// the drawing byte-identical, in git mode too (the work-tree file).
+#[test]
+fn pictures_never_replace_a_drawing() {
+    let d = tempfile::tempdir().unwrap();
+    copy_text_examples(d.path());
+    write(d.path(), "new.mpath", &deeper_2001(d.path()));
+    let before = std::fs::read(d.path().join("new.mpath")).unwrap();
+    for flag in ["--svg", "--png", "--html"] {
+        let (code, text) = status_and_text(
+            d.path(),
+            &["diff", "2001.mpath", "new.mpath", flag, "new.mpath"],
+        );
+        assert_eq!(code, 2, "{flag}: {text}");
+        assert!(text.contains("is the drawing this command reads"), "{text}");
+        assert_eq!(std::fs::read(d.path().join("new.mpath")).unwrap(), before);
+    }
+    git(d.path(), &["init", "-q"]);
+    git(d.path(), &["add", "."]);
+    git(d.path(), &["commit", "-qm", "one"]);
+    write(d.path(), "2001.mpath", &deeper_2001(d.path()));
+    let edited = std::fs::read(d.path().join("2001.mpath")).unwrap();
+    let (code, text) = status_and_text(
+        d.path(),
+        &["diff", "HEAD", "--svg", "2001.mpath", "--", "2001.mpath"],
+    );
+    assert_eq!(code, 2, "{text}");
+    assert_eq!(std::fs::read(d.path().join("2001.mpath")).unwrap(), edited);
+    // another name is written
+    let (code, text) = status_and_text(
+        d.path(),
+        &["diff", "2001.mpath", "new.mpath", "--svg", "change.svg"],
+    );
+    assert!(code <= 1, "{text}");
+    assert!(d.path().join("change.svg").exists());
+}

@@ -86,6 +86,30 @@ pub fn run(a: &Args) -> u8 {
         );
         return 2;
     }
+    // `--svg part.mpath` for `--svg part.svg`: no drawing is replaced by its picture
+    let inputs: Vec<PathBuf> = pairs
+        .iter()
+        .flat_map(|(o, n)| [&o.file, &n.file])
+        .chain(a.at.as_ref())
+        .filter_map(|f| dunce::canonicalize(f).ok())
+        .collect();
+    let outputs = [
+        (&a.pictures.html, "HTML"),
+        (&a.pictures.svg, "SVG"),
+        (&a.pictures.png, "PNG"),
+    ];
+    for (out, what) in outputs {
+        let Some(out) = out else { continue };
+        if dunce::canonicalize(out).is_ok_and(|o| inputs.contains(&o)) {
+            let d = Diagnostic::error(
+                Msg::OutputIsInput,
+                Origin::File(FileRef::new(out.clone())),
+                millpath_core::args![out.display(), what],
+            );
+            eprintln!("{}", report::human(&d, lang));
+            return 2;
+        }
+    }
     let options = match crate::overrides::overrides(&a.machine, lang) {
         Ok(o) => o,
         Err(e) => {
