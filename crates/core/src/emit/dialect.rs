@@ -268,10 +268,18 @@ impl Controller {
     /// The lines after the body (and the statistics).
     pub(crate) fn epilogue(&self, spindle: bool, g: &Globals) -> Vec<String> {
         let mut v = Vec::new();
+        let mut end = Vec::new();
+        self.lines(Event::ProgramEnd, &[], g, &mut end);
         if spindle && self.spindle_rpm().is_some() {
-            self.lines(Event::SpindleOff, &[], g, &mut v);
+            let mut off = Vec::new();
+            self.lines(Event::SpindleOff, &[], g, &mut off);
+            // a program end that starts by stopping the spindle (Marlin's `M5`, which has
+            // no end of its own) says it once
+            if !end.starts_with(&off) {
+                v.extend(off);
+            }
         }
-        self.lines(Event::ProgramEnd, &[], g, &mut v);
+        v.extend(end);
         if self.post.format.percent {
             v.push("%".into());
         }
