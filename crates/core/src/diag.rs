@@ -423,6 +423,9 @@ messages! {
     MergeBreaksCompile = "{0}: the merged path(s) {1} do not compile, while both sides did: a conflict; the merged text is in {2}", "{0}: die zusammengeführten Pfade {1} lassen sich nicht übersetzen, obwohl beide Seiten es taten: ein Konflikt; der zusammengeführte Text steht in {2}";
     // the operator's feed override in the time estimate (issue 33)
     FeedOverrideRange = "feed_override={0} must be a percentage from {1} to {2}", "feed_override={0} muss ein Prozentwert von {1} bis {2} sein";
+    // a post change (issue 32): the program of this drawing for the earlier post
+    OtherPostProgramRemoved = "Removed {0}: this drawing's program of an earlier compile for another post; this compile wrote {1}", "{0} entfernt: das Programm dieser Zeichnung aus einer früheren Übersetzung für einen anderen Post; diese Übersetzung hat {1} geschrieben";
+    OtherPostProgramKept = "{0} is this drawing's program for another post and holds measured heights (adjust-z): kept, but it is not the program of this compile ({1}); delete it once you no longer need it", "{0} ist das Programm dieser Zeichnung für einen anderen Post und enthält gemessene Höhen (adjust-z): behalten, aber es ist nicht das Programm dieser Übersetzung ({1}); löschen, sobald es nicht mehr gebraucht wird";
 }
 
 impl Msg {
