@@ -184,6 +184,9 @@ EOF
       sed -i 's/B-0,3/B-0,1/' part.mpath
       millpath text2dxf part.mpath --into part.dxf && git commit -qam "ours: B-0,1"
       rm part.mpath ;;
+    posts)
+      # the drawing the page compiles for two posts
+      cp "$examples/text/2001.mpath" "$examples/text/millpath.toml" . ;;
     probes)
       # the NAME of the page: a compiled height-map set, its _Z.txt filled in, the logs
       heightmap_set

@@ -12,6 +12,7 @@ mod inputs;
 mod interrupt;
 mod measured;
 mod numbers;
+mod other_post;
 mod output;
 mod overrides;
 mod png;
@@ -479,9 +480,9 @@ fn main() -> ExitCode {
                 }
                 Ok(post) => match probe_log {
                     Some(log) => {
-                        commands::adjust_z::run_with_log(max, &log, tolerance, lang, &files, post)
+                        commands::adjust_z::run_with_log(max, &log, tolerance, lang, &files, &post)
                     }
-                    None => commands::adjust_z::run(max, None, lang, &files, false, post),
+                    None => commands::adjust_z::run(max, None, lang, &files, false, &post),
                 },
             }
         }

@@ -76,6 +76,10 @@ pub fn write_drawing_outputs(
     lang: Lang,
     diags: &mut Diags,
 ) -> bool {
+    let drawing = input
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
     if outcome.outputs.is_empty() {
         // a drawing that is not there (a mistyped name) has no outputs of its own
         if !input.is_file() {
@@ -85,6 +89,7 @@ pub fn write_drawing_outputs(
         for end in ["_Milling.gcode", "_Probing.gcode", "_Clean.gcode"] {
             remove_stale(&with_end(&prefix, end), diags);
         }
+        other_posts(&prefix, &drawing, None, diags);
         return false;
     }
     let ends = |o: &millpath_core::OutputFile, end: &str| o.path.to_string_lossy().ends_with(end);
@@ -160,7 +165,16 @@ pub fn write_drawing_outputs(
         for end in ["_Probing.gcode", "_Clean.gcode"] {
             remove_stale(&with_end(&prefix, end), diags);
         }
+        let program = outcome
+            .outputs
+            .iter()
+            .find(|o| o.path.to_string_lossy().contains("_Milling."));
+        other_posts(&prefix, &drawing, program.map(|o| o.path.as_path()), diags);
     } else if let Some(prefix) = written(PROBING[2]) {
+        // `_Milling.gcode` beside a probing set follows the digest rule below
+        for found in crate::other_post::find(&prefix, &drawing, None, &["gcode"]) {
+            apply(found, diags);
+        }
         // an adjusted program of this very set (same digest) is still right; its banner
         // line is among its first lines (the program may be long)
         let milling = with_end(&prefix, MILLING[0]);
@@ -171,6 +185,23 @@ pub fn write_drawing_outputs(
         }
     }
     true
+}
+
+/// The programs of this drawing for another post (`other_post.rs`): stale ones removed,
+/// measured ones kept, each said.
+fn other_posts(prefix: &Path, drawing: &str, written: Option<&Path>, diags: &mut Diags) {
+    // after a failed compile `_Milling.gcode` was handled above
+    let skip: &[&str] = if written.is_none() { &["gcode"] } else { &[] };
+    for found in crate::other_post::find(prefix, drawing, written, skip) {
+        apply(found, diags);
+    }
+}
+
+fn apply(found: crate::other_post::Found, diags: &mut Diags) {
+    match found {
+        crate::other_post::Found::Stale(path, said) => remove_with(&path, said, diags),
+        crate::other_post::Found::Measured(said) => diags.push(said),
+    }
 }
 
 fn with_end(prefix: &Path, end: &str) -> PathBuf {

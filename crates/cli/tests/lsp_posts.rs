@@ -241,6 +241,41 @@ fn a_post_file_gets_the_loaders_located_errors() {
     assert!(c.shutdown().success());
 }
 
+/// The diagnostics of an open post file and millpath.toml come back under the URI the
+/// client opened them with, spelled as the client spelled it (a percent-encoded letter here;
+/// under Windows `Z%3A` against `z:`), not the server's own spelling of the path.
+#[test]
+fn diagnostics_go_back_under_the_clients_uri() {
+    let (dir, mut c) = project("en");
+    let broken = mine().replace("tool = \"T{tool_number}\"", "tool = \"T{tool_numbr}\"");
+    for (file, text) in [
+        ("posts/mine.toml", broken.as_str()),
+        ("millpath.toml", "feed = 300\npost = \"nosuch\"\n"),
+    ] {
+        let plain = uri(&dir.path().join(file));
+        let at = plain.rfind("/m").unwrap();
+        let spelled = format!("{}/%6D{}", &plain[..at], &plain[at + 2..]);
+        assert_ne!(spelled, plain);
+        c.notify(
+            "textDocument/didOpen",
+            json!({ "textDocument": { "uri": spelled, "languageId": "toml", "version": 1, "text": text } }),
+        );
+        let n = c.wait_diagnostics(&spelled, T).expect("diagnostics");
+        assert_eq!(n["params"]["uri"], spelled.as_str(), "{file}: {n}");
+        assert!(
+            !n["params"]["diagnostics"].as_array().unwrap().is_empty(),
+            "{file}: {n}"
+        );
+        c.notify(
+            "textDocument/didClose",
+            json!({ "textDocument": { "uri": spelled } }),
+        );
+        let n = c.wait_diagnostics(&spelled, T).expect("cleared on close");
+        assert_eq!(n["params"]["uri"], spelled.as_str(), "{file}: {n}");
+    }
+    assert!(c.shutdown().success());
+}
+
 #[test]
 fn post_errors_are_german_with_lang_de() {
     let (dir, mut c) = project("de");

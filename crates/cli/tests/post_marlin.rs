@@ -1,7 +1,7 @@
 //! The built-in `marlin` post end to end (issue 32): every example and every shared drawing
 //! compiled with it is read by `millpath verify --dialect marlin` with no finding, in the
 //! shape Marlin reads (`;` comments, one command a line, no `%`, no T word, `G4 S`, the end
-//! at `M5`), with arcs and with `arcs = "lines"`; probes are refused, located (MP207); a
+//! at one `M5`, also after a spindle), with arcs and with `arcs = "lines"`; probes are refused, located (MP207); a
 //! mutated Marlin program is caught; a Marlin post file with absurd values gives a located
 //! error and writes nothing.
 
@@ -48,6 +48,8 @@ fn verify(dir: &Path, file: &Path) -> (bool, String) {
 fn assert_marlin_shape(name: &str, text: &str) {
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(lines.last(), Some(&"M5"), "{name}: ends with M5");
+    let stops = lines.iter().filter(|l| **l == "M5").count();
+    assert_eq!(stops, 1, "{name}: M5 once (the spindle's stop is the end)");
     for l in &lines {
         let code = l.trim_start();
         if code.starts_with(';') {
@@ -108,6 +110,10 @@ fn every_example_and_shared_drawing_compiled_for_marlin_checks_clean() {
     );
     let text = std::fs::read_to_string(d.join("2010_Milling.gcode")).unwrap();
     assert!(text.contains("\nM3 S255\nG4 S2\n"), "{text}");
+    assert!(
+        text.ends_with("\nM5\n") && text.matches("M5").count() == 1,
+        "{text}"
+    );
     assert!(text.contains("\n; tool 1: change it by hand\n"), "{text}");
     // probes: refused at the first one, nothing written
     let out = millpath(d, &["compile", "--post", "marlin", "2020.mpath"]);

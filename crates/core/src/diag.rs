@@ -431,6 +431,9 @@ messages! {
     OutputIsInput = "{0} is the drawing this command reads: it is not overwritten by the {1}; name another file", "{0} ist die Zeichnung, die dieser Befehl liest: sie wird nicht mit {1} überschrieben; eine andere Datei angeben";
     // pathdxf2gcode over a filled _Z.txt: the reference's empty file is written, the values kept beside
     ZKeptForReference = "{0} held measured values: kept as {1} (pathdxf2gcode writes the reference's {0}, without values; millpath compile keeps them in place)", "{0} enthielt Messwerte: als {1} behalten (pathdxf2gcode schreibt die {0} der Referenz, ohne Werte; millpath compile behält sie an ihrem Platz)";
+    // a post change (issue 32): the program of this drawing for the earlier post
+    OtherPostProgramRemoved = "Removed {0}: this drawing's program of an earlier compile for another post; this compile wrote {1}", "{0} entfernt: das Programm dieser Zeichnung aus einer früheren Übersetzung für einen anderen Post; diese Übersetzung hat {1} geschrieben";
+    OtherPostProgramKept = "{0} is this drawing's program for another post and holds measured heights (adjust-z): kept, but it is not the program of this compile ({1}); delete it once you no longer need it", "{0} ist das Programm dieser Zeichnung für einen anderen Post und enthält gemessene Höhen (adjust-z): behalten, aber es ist nicht das Programm dieser Übersetzung ({1}); löschen, sobald es nicht mehr gebraucht wird";
 }
 
 impl Msg {

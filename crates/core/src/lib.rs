@@ -272,7 +272,7 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
         (Output::Probing { probing, z_txt, .. }, Some(mut staged)) => {
             // the digest of a staged set: over the file, stamped into it and the probing program
             let post = emit::Controller::of(&session.settings).post;
-            match staged.stamp_set(banner, &z_txt, post) {
+            match staged.stamp_set(banner, &z_txt, &post) {
                 Ok(stamped) => vec![
                     output(
                         with("_Probing.gcode"),
@@ -380,7 +380,7 @@ fn generate_and_review_as(
         ctl: Controller::for_model(&session.settings, model),
         stop: session.stop,
     };
-    let reading = machine::Reading::checked(session.settings.dialect, job.ctl.post);
+    let reading = machine::Reading::checked(session.settings.dialect, &job.ctl.post);
     let reviewer = || {
         second_opinion::Reviewer::new(
             model,

@@ -39,7 +39,7 @@ pub fn cut_json(
     cell: Option<f64>,
 ) -> Option<Value> {
     // a family the checker cannot read was refused with the settings: no cut part
-    let reading = Reading::of(controller.dialect, controller.post).ok()?;
+    let reading = Reading::of(controller.dialect, &controller.post).ok()?;
     let report = verify(
         program,
         &Options {

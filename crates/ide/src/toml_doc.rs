@@ -6,8 +6,8 @@
 //!
 //! The buffer's text is checked as typed, but the programs (preview, diagnostics of the
 //! drawings) are written with the saved post file, as `millpath compile` reads it: a save
-//! re-checks the documents that use it (each saved version of a post is kept for the rest of
-//! the process, `emit::dialect::select_post`; every keystroke would keep one).
+//! re-checks the documents that use it (a loaded post lives as long as the settings and
+//! programs that share it, `emit::dialect::select_post`).
 
 use crate::{Analysis, DocSettings, LineIndex, Workspace};
 use millpath_core::diag::{Diagnostic, FileRef, Origin};

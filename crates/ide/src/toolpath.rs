@@ -289,7 +289,7 @@ fn clamp_hits(
         program,
         model,
         controller.dialect,
-        controller.post,
+        &controller.post,
         clamps,
     );
     for (line, k) in found {

@@ -256,6 +256,7 @@ pub fn service() -> (LspService<Backend>, tower_lsp_server::ClientSocket) {
             ws: Workspace::default(),
             generation: HashMap::new(),
             versions: HashMap::new(),
+            uris: HashMap::new(),
             entries: HashMap::new(),
             last: HashMap::new(),
             debounce: Duration::ZERO,

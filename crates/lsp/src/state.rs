@@ -32,6 +32,9 @@ pub(crate) struct State {
     pub(crate) generation: HashMap<PathBuf, u64>,
     /// The client's version of each open document (sent back with its diagnostics).
     pub(crate) versions: HashMap<PathBuf, i32>,
+    /// The URI each open document was opened under, spelled as the client spelled it
+    /// (`Z%3A` or `z:`, percent-encoded letters …): its diagnostics go back under it.
+    pub(crate) uris: HashMap<PathBuf, Uri>,
     /// The analysis of the current (or last requested) generation of each open document.
     pub(crate) entries: HashMap<PathBuf, Arc<Entry>>,
     /// The last completed analysis of each open document: its dependencies (which files it
@@ -253,16 +256,19 @@ impl Backend {
     /// Debounced analysis and publication of the current generation of an open document;
     /// a newer change makes it stale (abandoned, never published).
     pub(crate) fn publish_later(&self, path: PathBuf) {
-        let Some(uri) = to_uri(&path) else { return };
-        // the client's version of exactly this generation
-        let Ok((generation, debounce, version, pull)) = self.state.lock().map(|s| {
+        // the client's version of exactly this generation, under the client's URI
+        let Ok((generation, debounce, version, pull, opened)) = self.state.lock().map(|s| {
             (
                 s.generation.get(&path).copied().unwrap_or(0),
                 s.debounce,
                 s.versions.get(&path).copied(),
                 s.results.pull,
+                s.uris.get(&path).cloned(),
             )
         }) else {
+            return;
+        };
+        let Some(uri) = opened.or_else(|| to_uri(&path)) else {
             return;
         };
         // the client asks for them (`textDocument/diagnostic`)

@@ -7,10 +7,12 @@
 //! position is measured) or a non-motion G-code of the motion group (`G80`).
 
 use crate::{LineEnd, Post};
+use std::ops::Deref;
 
-/// Writes a program's lines: numbers, modal state and line ends.
-pub struct LineWriter<'p> {
-    post: &'p Post,
+/// Writes a program's lines: numbers, modal state and line ends. `P` holds the post: a
+/// borrow, or a shared `Arc` where the writer lives as long as its program.
+pub struct LineWriter<P: Deref<Target = Post>> {
+    post: P,
     next: u64,
     /// Last written value text of each word letter (`A`–`Z`); `motion`: the G0–G3 in force.
     last: [Option<String>; 26],
@@ -18,16 +20,16 @@ pub struct LineWriter<'p> {
     plain: bool,
 }
 
-impl<'p> LineWriter<'p> {
-    pub fn new(post: &'p Post) -> LineWriter<'p> {
+impl<P: Deref<Target = Post>> LineWriter<P> {
+    pub fn new(post: P) -> LineWriter<P> {
         LineWriter {
-            post,
             next: post.line_numbers.as_ref().map_or(0, |l| l.start),
             last: Default::default(),
             motion: None,
             plain: post.line_numbers.is_none()
                 && post.format.modal.is_empty()
                 && post.format.line_end == LineEnd::Lf,
+            post,
         }
     }
 

@@ -3,7 +3,7 @@
 
 use millpath_core::load::clamps::errors as clamp_errors;
 use millpath_core::machine::checked::Reading;
-use millpath_core::{Dialect, Lang};
+use millpath_core::Lang;
 use millpath_verify::{Clamp, Options, Report};
 use std::path::Path;
 
@@ -28,8 +28,8 @@ pub fn options_for(dialect_or_post: &str, lang: Lang) -> Result<Options, String>
     let none = |_: &Path| Err::<String, String>("no post files here".into());
     let (dialect, post) =
         millpath_core::emit::dialect::select_post(dialect_or_post, Path::new(""), &none, lang)?;
-    let post = post.unwrap_or_else(|| dialect_post(dialect));
-    let reading = Reading::of(dialect, post).map_err(|family| {
+    let post = post.unwrap_or_else(|| dialect.shared_post());
+    let reading = Reading::of(dialect, &post).map_err(|family| {
         format!("{dialect_or_post}: the checker cannot read the {family:?} family")
     })?;
     Ok(Options {
@@ -37,10 +37,6 @@ pub fn options_for(dialect_or_post: &str, lang: Lang) -> Result<Options, String>
         arcs_as_lines: reading.arcs_as_lines,
         ..Default::default()
     })
-}
-
-fn dialect_post(d: Dialect) -> &'static millpath_post::Post {
-    d.post()
 }
 
 /// Checks the program; `Err`: unusable options or clamps (the messages).

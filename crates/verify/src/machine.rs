@@ -118,10 +118,11 @@ enum Group {
     Other,
 }
 
-/// G codes ×10 Marlin reads (G17–G19, G20, G38, G53–G59 and G80 with their options).
-const MARLIN_G: [u32; 23] = [
+/// G codes ×10 Marlin reads (G17–G19, G20, G38, G53–G59 and G80 with their options; G92 set
+/// position and, with `CNC_COORDINATE_SYSTEMS`, G92.1: marlinfw.org/docs/gcode/G092.html).
+const MARLIN_G: [u32; 25] = [
     0, 10, 20, 30, 40, 170, 180, 190, 200, 210, 280, 382, 383, 530, 540, 550, 560, 570, 580, 590,
-    800, 900, 910,
+    800, 900, 910, 920, 921,
 ];
 
 /// The M codes a family's checker knows besides the program end; others are not modelled.

@@ -529,6 +529,52 @@ fn each_family_reads_its_own_style_clean() {
     }
 }
 
+/// Marlin's G92 (set position, marlinfw.org/docs/gcode/G092.html) and G92.1 are Marlin
+/// commands: read as in the rs274 family (the position is not followed: a warning, and the
+/// next move must name every axis), not refused as codes Marlin lacks; LinuxCNC's G92.2
+/// and G92.3 are.
+#[test]
+fn marlin_reads_g92_as_marlin_does() {
+    let mut rng = Rng(0x0000_6092);
+    let lines = write(Style::Marlin, &drawing(&mut rng), false);
+    let at = lines.iter().position(|l| l == "G0 Z5.000").unwrap() + 1;
+    let no_such = |r: &Report| {
+        r.findings.iter().any(|f| {
+            matches!(
+                &f.kind,
+                FindingKind::Family {
+                    problem: FamilyProblem::NoSuchCode { .. },
+                    ..
+                }
+            )
+        })
+    };
+    for set in ["G92 X0 Y0 Z5", "G92 Z5", "G92.1"] {
+        let mut with = lines.clone();
+        with.insert(at, set.to_string());
+        with.insert(at + 1, "G0 X0.000 Y0.000 Z5.000".into());
+        let r = verify(&text(&with), &Style::Marlin.options());
+        assert!(!no_such(&r), "{set}: {:#?}", r.findings);
+        assert!(
+            r.findings.iter().all(|f| f.severity != Severity::Error),
+            "{set}: {:#?}",
+            r.findings
+        );
+        assert!(
+            r.findings
+                .iter()
+                .any(|f| matches!(f.kind, FindingKind::Unsupported { .. })),
+            "{set}: the position after it is not followed, said so"
+        );
+    }
+    for lacking in ["G92.2", "G92.3"] {
+        let mut with = lines.clone();
+        with.insert(at, lacking.to_string());
+        let r = verify(&text(&with), &Style::Marlin.options());
+        assert!(no_such(&r), "{lacking}: {:#?}", r.findings);
+    }
+}
+
 #[test]
 fn six_hundred_mutations_per_family_are_caught() {
     for style in STYLES {

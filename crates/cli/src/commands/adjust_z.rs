@@ -29,31 +29,33 @@ pub fn post_of(
     option: Option<&str>,
     first: Option<&Path>,
     lang: Lang,
-) -> Result<&'static Post, String> {
+) -> Result<std::sync::Arc<Post>, String> {
     use millpath_core::Dialect;
     let read = |p: &Path| std::fs::read_to_string(p).map_err(|e| e.to_string());
     let select = |name: &str, base: &Path| {
         millpath_core::emit::dialect::select_post(name, base, &read, lang)
-            .map(|(dialect, post)| post.unwrap_or_else(|| dialect.post()))
+            .map(|(dialect, post)| post.unwrap_or_else(|| dialect.shared_post()))
     };
     let chosen = match (option, first.and_then(crate::config::find)) {
         (Some(name), _) => select(name, Path::new("")).map_err(|e| format!("--post: {e}"))?,
-        (None, None) => Dialect::LinuxCnc.post(),
+        (None, None) => Dialect::LinuxCnc.shared_post(),
         (None, Some(path)) => {
             let cfg = crate::config::load_in(&path, lang)?;
             match (&cfg.post, cfg.dialect) {
                 (Some(name), _) => select(name, &cfg.base_dir)
                     .map_err(|e| format!("{}: post: {e}", path.display()))?,
-                (None, Some(dialect)) => dialect.post(),
-                (None, None) => Dialect::LinuxCnc.post(),
+                (None, Some(dialect)) => dialect.shared_post(),
+                (None, None) => Dialect::LinuxCnc.shared_post(),
             }
         }
     };
-    Ok(if std::ptr::eq(chosen, Dialect::Reference.post()) {
-        Dialect::LinuxCnc.post()
-    } else {
-        chosen
-    })
+    Ok(
+        if std::sync::Arc::ptr_eq(&chosen, &Dialect::Reference.shared_post()) {
+            Dialect::LinuxCnc.shared_post()
+        } else {
+            chosen
+        },
+    )
 }
 
 /// `adjust-z --probe-log LOG`: the measured heights of the one program come from the log.

@@ -27,6 +27,6 @@ pub fn run(args: &[String]) -> u8 {
         lang,
         &parsed.files,
         true,
-        post,
+        &post,
     )
 }

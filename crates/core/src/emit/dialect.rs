@@ -12,12 +12,36 @@ use crate::model::Model;
 use crate::probe::heightmap::Heightmap;
 use crate::stock::stock_of;
 use millpath_post::{Event, Globals, Post, Value, Var};
+use std::sync::Arc;
 
 impl Dialect {
     /// The built-in post that writes this dialect's programs.
     pub fn post(self) -> &'static Post {
         millpath_post::builtin::get(self.name()).expect("every dialect has its built-in post")
     }
+
+    /// [`Dialect::post`] shared, as a [`Controller`] holds it.
+    pub fn shared_post(self) -> Arc<Post> {
+        builtin_shared(self.name()).expect("every dialect has its built-in post")
+    }
+}
+
+/// A built-in post shared: each one once per process (a fixed number), so that every
+/// program of a built-in shares it.
+fn builtin_shared(name: &str) -> Option<Arc<Post>> {
+    use std::sync::{Mutex, OnceLock};
+    static SHARED: OnceLock<Mutex<Vec<Arc<Post>>>> = OnceLock::new();
+    let post = millpath_post::builtin::get(name)?;
+    let mut all = SHARED
+        .get_or_init(Default::default)
+        .lock()
+        .unwrap_or_else(|e| e.into_inner());
+    if let Some(p) = all.iter().find(|p| p.origin == post.origin) {
+        return Some(p.clone());
+    }
+    let p = Arc::new(post.clone());
+    all.push(p.clone());
+    Some(p)
 }
 
 /// The dialect and post a `post =` setting or `--post` option names: a built-in post's name
@@ -31,7 +55,7 @@ pub fn select_post(
     base: &std::path::Path,
     read: &dyn Fn(&std::path::Path) -> Result<String, String>,
     lang: crate::diag::Lang,
-) -> Result<(Dialect, Option<&'static Post>), String> {
+) -> Result<(Dialect, Option<Arc<Post>>), String> {
     let post_lang = match lang {
         crate::diag::Lang::De => millpath_post::Lang::De,
         _ => millpath_post::Lang::En,
@@ -48,40 +72,22 @@ pub fn select_post(
         // settings' checks (`machine::Reading`)
         (None, _) => Dialect::Grbl,
     };
-    // a built-in post without a dialect of its own (mach3, fluidnc …): its family's rules
-    let kept = match builtin
-        .then(|| millpath_post::builtin::get(&post.name))
-        .flatten()
-    {
+    // a built-in post without a dialect of its own (mach3, fluidnc …): its family's rules;
+    // a post file is shared by the settings and programs that use it, and dropped with the
+    // last of them (an editor reloading an edited post keeps no old version)
+    let shared = match builtin.then(|| builtin_shared(&post.name)).flatten() {
         Some(p) => p,
-        None => intern(post),
+        None => Arc::new(post),
     };
-    Ok((dialect, Some(kept)))
-}
-
-/// A loaded post kept for the rest of the process (a `Controller` is `Copy`): each distinct
-/// post file once, so an editor that reloads the same file does not keep copies.
-fn intern(post: Post) -> &'static Post {
-    use std::sync::Mutex;
-    static KEPT: Mutex<Vec<&'static Post>> = Mutex::new(Vec::new());
-    let mut kept = KEPT.lock().unwrap_or_else(|e| e.into_inner());
-    if let Some(p) = kept
-        .iter()
-        .find(|p| p.source == post.source && p.origin == post.origin)
-    {
-        return p;
-    }
-    let p: &'static Post = Box::leak(Box::new(post));
-    kept.push(p);
-    p
+    Ok((dialect, Some(shared)))
 }
 
 /// What the program writer needs to know about the controller.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Controller {
     pub dialect: Dialect,
     /// The post that writes the text (the dialect's built-in, or a post file).
-    pub post: &'static Post,
+    pub post: Arc<Post>,
     /// Feed of plunges (mm/min); `None`: half the element's feed.
     pub plunge_feed: Option<f64>,
     /// Spindle speed; `None`: the program does not switch the spindle.
@@ -110,7 +116,7 @@ impl Controller {
     pub fn reference() -> Controller {
         Controller {
             dialect: Dialect::Reference,
-            post: Dialect::Reference.post(),
+            post: Dialect::Reference.shared_post(),
             plunge_feed: None,
             spindle_rpm: None,
             spindle_dwell: DEFAULT_SPINDLE_DWELL,
@@ -124,7 +130,7 @@ impl Controller {
     pub fn of(s: &Settings) -> Controller {
         Controller {
             dialect: s.dialect,
-            post: s.post.unwrap_or_else(|| s.dialect.post()),
+            post: s.post.clone().unwrap_or_else(|| s.dialect.shared_post()),
             plunge_feed: s.plunge_feed,
             spindle_rpm: s.spindle_rpm,
             spindle_dwell: s.spindle_dwell,
@@ -268,10 +274,18 @@ impl Controller {
     /// The lines after the body (and the statistics).
     pub(crate) fn epilogue(&self, spindle: bool, g: &Globals) -> Vec<String> {
         let mut v = Vec::new();
+        let mut end = Vec::new();
+        self.lines(Event::ProgramEnd, &[], g, &mut end);
         if spindle && self.spindle_rpm().is_some() {
-            self.lines(Event::SpindleOff, &[], g, &mut v);
+            let mut off = Vec::new();
+            self.lines(Event::SpindleOff, &[], g, &mut off);
+            // a program end that starts by stopping the spindle (Marlin's `M5`, which has
+            // no end of its own) says it once
+            if !end.starts_with(&off) {
+                v.extend(off);
+            }
         }
-        self.lines(Event::ProgramEnd, &[], g, &mut v);
+        v.extend(end);
         if self.post.format.percent {
             v.push("%".into());
         }
@@ -282,6 +296,52 @@ impl Controller {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// An editor reloads a post file at every save: each version is freed with the last
+    /// settings and programs that use it, none is kept for the process (issue 32).
+    #[test]
+    fn a_reloaded_post_file_is_freed_with_its_last_user() {
+        let mut versions = Vec::new();
+        for k in 0..200 {
+            let text = millpath_post::builtin::source("linuxcnc")
+                .unwrap()
+                .replace("name = \"linuxcnc\"", &format!("name = \"mine{k}\""));
+            let read = |_: &std::path::Path| Ok(text.clone());
+            let base = std::path::Path::new("/project");
+            let (dialect, post) =
+                select_post("posts/mine.toml", base, &read, crate::diag::Lang::En).unwrap();
+            assert_eq!(dialect, Dialect::LinuxCnc);
+            let post = post.unwrap();
+            assert_eq!(post.name, format!("mine{k}"));
+            let s = Settings {
+                post: Some(post.clone()),
+                ..Settings::default()
+            };
+            let c = Controller::of(&s);
+            assert!(Arc::ptr_eq(&c.post, &post), "the settings' post is shared");
+            versions.push(Arc::downgrade(&post));
+        }
+        assert!(
+            versions.iter().all(|v| v.upgrade().is_none()),
+            "every version freed once its settings and controllers are gone"
+        );
+        // a built-in is shared, not copied per use
+        let (_, a) = select_post(
+            "mach3",
+            std::path::Path::new(""),
+            &|_| unreachable!(),
+            crate::diag::Lang::En,
+        )
+        .unwrap();
+        let (_, b) = select_post(
+            "mach3",
+            std::path::Path::new(""),
+            &|_| unreachable!(),
+            crate::diag::Lang::En,
+        )
+        .unwrap();
+        assert!(Arc::ptr_eq(&a.unwrap(), &b.unwrap()));
+    }
 
     #[test]
     fn plunge_feeds() {

@@ -520,7 +520,7 @@ fn emit_with<S: AsRef<str>>(
         Moves::Kept | Moves::Folded(_) => expected_moves(model),
         Moves::Counted => 2,
     };
-    let mut rec = Record::new(dry, prefix, expected, sink, ctl.post);
+    let mut rec = Record::new(dry, prefix, expected, sink, ctl.post.clone());
     match moves {
         Moves::Kept => {}
         Moves::Folded(sweep_speed) => rec.fold_moves(sweep_speed),
@@ -543,7 +543,7 @@ fn emit_with<S: AsRef<str>>(
         sources: Vec::with_capacity(model.elements.len() + segments(model)),
         source: None,
         shape: Shape::Mill,
-        ctl: *ctl,
+        ctl: ctl.clone(),
         globals: Controller::globals(model, &model.raw.file.name),
         stop,
         stopped: false,

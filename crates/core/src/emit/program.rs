@@ -280,11 +280,11 @@ fn generate_job(
     let streamed = sink.is_some();
     let set = |z_lines: &[String], probing: &[String], clean: String| {
         let z_txt = join(z_lines);
-        let probing = join_program(ctl.post, probing);
+        let probing = join_program(&ctl.post, probing);
         let (probing, clean) = if streamed {
             (probing, clean)
         } else {
-            stamp_set(ctl.post, banner, &z_txt, probing, clean)
+            stamp_set(&ctl.post, banner, &z_txt, probing, clean)
         };
         Output::Probing {
             probing,

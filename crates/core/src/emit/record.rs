@@ -20,6 +20,7 @@ use crate::emit::stats::Stats;
 use crate::emit::{Item, Kind};
 use millpath_post::{Event, Globals, LineWriter, Post, Value, Var};
 use std::any::Any;
+use std::sync::Arc;
 
 /// Where a program's lines go instead of a text: a consumer that reads each line as it is
 /// written (the checker), so a long program is never held whole.
@@ -55,8 +56,8 @@ pub(crate) struct Record {
     fold: Option<Fold>,
     /// The post: its `disabled` template, and its line writer (numbers, modal words, line
     /// ends) where it changes lines.
-    post: Option<&'static Post>,
-    writer: Option<LineWriter<'static>>,
+    post: Option<Arc<Post>>,
+    writer: Option<LineWriter<Arc<Post>>>,
 }
 
 struct Fold {
@@ -90,9 +91,9 @@ impl Record {
         prefix: &[S],
         moves: usize,
         sink: Option<Box<dyn LineSink>>,
-        post: &'static Post,
+        post: Arc<Post>,
     ) -> Record {
-        let writer = Some(LineWriter::new(post)).filter(|w| !w.is_plain());
+        let writer = Some(LineWriter::new(post.clone())).filter(|w| !w.is_plain());
         let text_too = !dry && sink.is_none();
         let mut r = Record {
             items: Vec::with_capacity(moves),
@@ -281,7 +282,7 @@ impl Record {
         if self.dry {
             return;
         }
-        let disabled = match self.post {
+        let disabled = match &self.post {
             Some(post) => post.text(
                 Event::Disabled,
                 &[(Var::Line, Value::Text(line))],
@@ -294,8 +295,8 @@ impl Record {
 }
 
 #[cfg(test)]
-fn post() -> &'static Post {
-    crate::emit::Dialect::LinuxCnc.post()
+fn post() -> Arc<Post> {
+    crate::emit::Dialect::LinuxCnc.shared_post()
 }
 
 #[cfg(test)]

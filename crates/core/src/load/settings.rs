@@ -62,7 +62,7 @@ pub struct Settings {
     pub dialect: Dialect,
     /// A post file (`post = "posts/mymachine.toml"`, `--post FILE`) that writes the text
     /// instead of the dialect's built-in post; the dialect is then the post's family's.
-    pub post: Option<&'static millpath_post::Post>,
+    pub post: Option<std::sync::Arc<millpath_post::Post>>,
     /// Feed of plunges in the `linuxcnc` and `grbl` dialects; `None`: half the feed of the
     /// element (a set value is never faster than the element's feed either).
     pub plunge_feed: Option<f64>,
@@ -372,7 +372,7 @@ impl Settings {
     /// these settings: a height map, a spindle speed, a dwell (the built-in posts write what
     /// their dialect allows).
     fn post_errors(&self) -> Vec<Diagnostic> {
-        let Some(post) = self.post else {
+        let Some(post) = &self.post else {
             return Vec::new();
         };
         // the second opinion reads every program: a family it cannot read is refused here

@@ -23,6 +23,7 @@ pub(crate) async fn did_open(b: &Backend, params: DidOpenTextDocumentParams) {
     if let Ok(mut st) = b.state.lock() {
         st.ws.overlays.insert(p.clone(), params.text_document.text);
         st.versions.insert(p.clone(), params.text_document.version);
+        st.uris.insert(p.clone(), uri.clone());
         st.generation.entry(p.clone()).or_insert(0);
         Backend::bump(&mut st, &p);
     }
@@ -62,6 +63,7 @@ pub(crate) async fn did_close(b: &Backend, params: DidCloseTextDocumentParams) {
         st.ws.overlays.remove(&p);
         st.generation.remove(&p);
         st.versions.remove(&p);
+        st.uris.remove(&p);
         st.entries.remove(&p);
         st.last.remove(&p);
         drop(st);
