@@ -553,7 +553,7 @@ fn emit_with<S: AsRef<str>>(
         quick_steps: 0,
         at: pass_state::start_position(sx),
         passes: pass_state::Passes::default(),
-        written: written_events(ctl.post),
+        written: written_events(&ctl.post),
     };
     em.comment(2, || format!("Model {}", model.label()));
     em.emit_model(Frame {
