@@ -285,3 +285,22 @@ pub fn emit(output: Option<&Path>, content: &str, lang: Lang) -> u8 {
         }
     }
 }
+
+/// An output named like a drawing the command reads (`--svg part.mpath` for `--svg
+/// part.svg`): printed as MP215 and `true`, so the command writes nothing. `outputs` are
+/// (file, what it holds: "SVG"); `inputs` are canonical paths.
+pub fn output_is_input(outputs: &[(Option<&Path>, &str)], inputs: &[PathBuf], lang: Lang) -> bool {
+    for &(out, what) in outputs {
+        let Some(out) = out else { continue };
+        if dunce::canonicalize(out).is_ok_and(|o| inputs.contains(&o)) {
+            let d = Diagnostic::error(
+                Msg::OutputIsInput,
+                Origin::File(millpath_core::diag::FileRef::new(out.to_path_buf())),
+                millpath_core::args![out.display(), what],
+            );
+            eprintln!("{}", report::human(&d, lang));
+            return true;
+        }
+    }
+    false
+}

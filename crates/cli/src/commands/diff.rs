@@ -93,22 +93,14 @@ pub fn run(a: &Args) -> u8 {
         .chain(a.at.as_ref())
         .filter_map(|f| dunce::canonicalize(f).ok())
         .collect();
+    let p = &a.pictures;
     let outputs = [
-        (&a.pictures.html, "HTML"),
-        (&a.pictures.svg, "SVG"),
-        (&a.pictures.png, "PNG"),
+        (p.html.as_deref(), "HTML"),
+        (p.svg.as_deref(), "SVG"),
+        (p.png.as_deref(), "PNG"),
     ];
-    for (out, what) in outputs {
-        let Some(out) = out else { continue };
-        if dunce::canonicalize(out).is_ok_and(|o| inputs.contains(&o)) {
-            let d = Diagnostic::error(
-                Msg::OutputIsInput,
-                Origin::File(FileRef::new(out.clone())),
-                millpath_core::args![out.display(), what],
-            );
-            eprintln!("{}", report::human(&d, lang));
-            return 2;
-        }
+    if crate::output::output_is_input(&outputs, &inputs, lang) {
+        return 2;
     }
     let options = match crate::overrides::overrides(&a.machine, lang) {
         Ok(o) => o,

@@ -98,17 +98,13 @@ pub fn run(
         Lang::De => "Schreiben von",
     };
     // `--svg part.mpath` for `--svg part.svg`: the drawing is not replaced by its picture
-    for (out, what) in [(&html, "HTML"), (&svg, "SVG"), (&png, "PNG")] {
-        let Some(out) = out else { continue };
-        if dunce::canonicalize(out).is_ok_and(|o| o == abs) {
-            let d = Diagnostic::error(
-                Msg::OutputIsInput,
-                Origin::File(millpath_core::diag::FileRef::new(out.clone())),
-                millpath_core::args![out.display(), what],
-            );
-            eprintln!("{}", report::human(&d, lang));
-            return 1;
-        }
+    let outputs = [
+        (html.as_deref(), "HTML"),
+        (svg.as_deref(), "SVG"),
+        (png.as_deref(), "PNG"),
+    ];
+    if crate::output::output_is_input(&outputs, std::slice::from_ref(&abs), lang) {
+        return 1;
     }
     let html = html.or_else(|| {
         (svg.is_none() && png.is_none()).then(|| {
