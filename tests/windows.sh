@@ -123,10 +123,14 @@ PY
 for d in reference linuxcnc grbl; do
   mkdir -p "$tmp/cli/$d"
   for ex in "${examples[@]}"; do
-    w=$tmp/cli-work && rm -rf "$w" && mkdir "$w" && cp "$ex"/* "$w/"
+    # the drawings and their settings only: an earlier step may have compiled in $ex
+    w=$tmp/cli-work && rm -rf "$w" && mkdir "$w"
+    (shopt -s nullglob && cp "$ex"/*.dxf "$ex"/*.mpath "$ex"/millpath.toml "$w/")
     echo "dialect = \"$d\"" >>"$w/millpath.toml"
     (cd "$w" && shopt -s nullglob && "$ROOT/target/release/millpath" compile *.dxf *.mpath >"$tmp/cli.log" 2>&1) || { cat "$tmp/cli.log"; exit 1; }
-    for f in "$w"/*; do [ -e "$ex/$(basename "$f")" ] || mv "$f" "$tmp/cli/$d/"; done
+    for f in "$w"/*; do
+      case $f in *.dxf | *.mpath | */millpath.toml) ;; *) mv "$f" "$tmp/cli/$d/" ;; esac
+    done
   done
 done
 wheel_failed=0
