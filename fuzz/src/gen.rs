@@ -357,6 +357,7 @@ fn path(
     let block = PathBlock {
         name: sp(name.to_string()),
         comment: None,
+        close_comment: None,
         items: w.items,
         span: 0..0,
     };
