@@ -40,12 +40,23 @@ pub struct Outcome {
     pub elsewhere: std::collections::BTreeMap<String, Vec<MoveKey>>,
 }
 
+/// The command line's settings over each version's own.
+#[derive(Debug, Clone, Default)]
+pub struct Options {
+    /// As an editor's settings over the version's `millpath.toml`.
+    pub config: millpath_core::load::config::FileConfig,
+    /// `--heightmap-step` and `--heightmap-margin` over the version's `[heightmap]`.
+    pub heightmap: (Option<f64>, Option<f64>),
+}
+
 /// One version ready to compile.
 pub struct Compiled {
     ws: Workspace,
     /// Where the canonical text stands (in memory).
     pub at: PathBuf,
     analysis: Option<Analysis>,
+    /// The version's parsed text, for its analysis.
+    tree: Option<std::sync::Arc<millpath_syntax::File>>,
 }
 
 impl Compiled {
@@ -66,20 +77,38 @@ impl Compiled {
             ws,
             at,
             analysis: None,
+            tree: version.tree.clone(),
         }
     }
 
     /// Settings over the version's own `millpath.toml` (the command line's options, as an
-    /// editor's settings): a relative post file is found from `options.base_dir`.
-    pub fn set_options(&mut self, options: &millpath_core::load::config::FileConfig) {
-        self.ws.client = options.clone();
-        self.ws.roots = vec![options.base_dir.clone()];
+    /// editor's settings): a relative post file is found from `options.config.base_dir`.
+    pub fn set_options(&mut self, options: &Options) {
+        self.ws.client = options.config.clone();
+        self.ws.roots = vec![options.config.base_dir.clone()];
+        self.ws.heightmap_options = options.heightmap;
         self.analysis = None;
     }
 
+    /// The version's analysis, made once: the compiles of its paths and the effective
+    /// values all read the text it parsed.
+    fn analysis(&mut self) -> &Analysis {
+        let (ws, at, tree) = (&self.ws, &self.at, &mut self.tree);
+        self.analysis.get_or_insert_with(|| match tree.take() {
+            // the tree is the version's text, which stands at `at`
+            Some(t) => {
+                let t = std::sync::Arc::try_unwrap(t).unwrap_or_else(|t| (*t).clone());
+                millpath_ide::analyze_parsed(ws, at, t)
+            }
+            None => millpath_ide::analyze(ws, at),
+        })
+    }
+
     /// Compiles one path of the version (its moves and figures).
-    pub fn outcome(&self, path: &str) -> Outcome {
-        match millpath_ide::toolpath_moves(&self.ws, &self.at, Some(path)) {
+    pub fn outcome(&mut self, path: &str) -> Outcome {
+        self.analysis();
+        let a = self.analysis.as_ref().expect("analysed");
+        match millpath_ide::toolpath_moves_of(&self.ws, a, path) {
             Ok(tp) => outcome_of(&tp, &self.at),
             Err(e) => Outcome {
                 error: Some(e),
@@ -93,10 +122,7 @@ impl Compiled {
         if offsets.is_empty() {
             return Vec::new();
         }
-        let a = self
-            .analysis
-            .get_or_insert_with(|| millpath_ide::analyze(&self.ws, &self.at));
-        millpath_ide::effective_values(a, offsets)
+        millpath_ide::effective_values(self.analysis(), offsets)
     }
 }
 
