@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 
 /// A move as the diff compares it: kind, end points, arc centre and feed, rounded to the
 /// output precision (3 decimals) as integers.
-pub type MoveKey = (String, [i64; 6], Option<(i64, i64, bool)>, i64);
+pub type MoveKey = (&'static str, [i64; 6], Option<(i64, i64, bool)>, i64);
 
 /// The compiled result of one path.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -148,24 +148,20 @@ fn shown(v: f64) -> f64 {
 /// Where a move comes from: the element's line in our text (`Ok`, 1-based), or the label
 /// of an element of another file (`Err`, `2001.mpath:7`).
 fn source_of(o: &Origin, own: &Path) -> Result<usize, String> {
-    let (file, line, label) = match o {
-        Origin::Span { file, line, .. } => (
-            Some(&file.path),
-            *line as usize,
-            format!("{}:{line}", file.name),
-        ),
-        Origin::Entity(e) => (
-            Some(&e.file.path),
-            e.line.max(1),
-            format!("{}:{}", e.file.name, e.line),
-        ),
-        o => (o.file().map(|f| &f.path), 1, o.context()),
+    let (file, line) = match o {
+        Origin::Span { file, line, .. } => (Some(&file.path), *line as usize),
+        Origin::Entity(e) => (Some(&e.file.path), e.line.max(1)),
+        o => (o.file().map(|f| &f.path), 1),
     };
     if file.is_some_and(|f| f == own) {
-        Ok(line)
-    } else {
-        Err(label)
+        return Ok(line);
     }
+    // the label only for an element of another file (most moves are the text's own)
+    Err(match o {
+        Origin::Span { file, line, .. } => format!("{}:{line}", file.name),
+        Origin::Entity(e) => format!("{}:{}", e.file.name, e.line),
+        o => o.context(),
+    })
 }
 
 /// The figures and moves of a toolpath.
@@ -190,7 +186,7 @@ fn outcome_of(tp: &Toolpath, at: &Path) -> Outcome {
         }
         m.gcode.hash(&mut hasher);
         let key: MoveKey = (
-            m.kind.to_string(),
+            m.kind,
             [
                 r3(from[0]),
                 r3(from[1]),
@@ -204,7 +200,7 @@ fn outcome_of(tp: &Toolpath, at: &Path) -> Outcome {
         );
         let source = m.source.as_ref().map(|o| source_of(o, at));
         out.sequence.push((
-            key.clone(),
+            key,
             match &source {
                 Some(Ok(line)) => *line,
                 _ => 0,

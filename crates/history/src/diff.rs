@@ -456,6 +456,9 @@ fn moves_of(o: &Option<Outcome>, line: usize) -> Option<&Vec<MoveKey>> {
 
 /// Whether two written values are the same (numbers compare as numbers: `-0,2` = `-0.2`).
 fn same_value(a: &str, b: &str) -> bool {
+    if a == b {
+        return true;
+    }
     match (parse_number(a), parse_number(b)) {
         (Some(x), Some(y)) => x == y,
         _ => a == b,

@@ -75,6 +75,9 @@ pub(crate) fn provenance(
         _ => Vec::new(),
     };
     let settings = &a.settings;
+    // O and T of the start, for the defaults made of them (read once, not per key)
+    let o = start.and_then(|t| t.raw('O')).and_then(parse_number);
+    let t_ = start.and_then(|t| t.raw('T')).and_then(parse_number);
     for k in keys {
         if !is_start {
             if let Some(v) = get(own, k) {
@@ -126,8 +129,6 @@ pub(crate) fn provenance(
                 continue;
             }
         }
-        let o = start.and_then(|t| t.raw('O')).and_then(parse_number);
-        let t_ = start.and_then(|t| t.raw('T')).and_then(parse_number);
         match k {
             'F' => push(
                 k,
