@@ -13,6 +13,9 @@
 # The machine may be shared: CPU seconds are the steadier figure; wall on a quiet machine is
 # about max(CPU / cores used, the longer of the two compiles).
 #   bash bench/diff_merge_100k.sh [N]      (default 100000; MILLPATH=… to use a built binary)
+# Figures at 100,000 (2 shared cores, load 7–10, so CPU seconds above an idle machine's):
+# diff 9.4 s CPU before one analysis per version, 4.7–6.1 s after; diff-many 11.8 → 5.3 s.
+# Instructions (callgrind, 5,000 elements): 2.06 G → 0.87 G.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 n=${1:-100000}
