@@ -65,6 +65,34 @@ pub fn load_in(path: &Path, lang: millpath_core::Lang) -> Result<FileConfig, Str
     })
 }
 
+/// The nearest `millpath.toml` above `input` in `files` (a git revision's files at their
+/// work-tree paths) and its settings, read as [`load_in`] reads one from the disk; `None`
+/// when the revision has none.
+pub fn load_from(
+    files: &dyn millpath_core::load::fs::FileSystem,
+    input: &Path,
+    lang: millpath_core::Lang,
+) -> Option<Result<FileConfig, String>> {
+    let (path, bytes) = input.ancestors().skip(1).find_map(|dir| {
+        let p = dir.join(FILE_NAME);
+        files.read(&p).ok().map(|b| (p, b))
+    })?;
+    let text = match millpath_core::load::text_file::decode(&bytes) {
+        Ok(d) => d.text.into_owned(),
+        Err(_) => String::from_utf8_lossy(&bytes).into_owned(),
+    };
+    let base = path.parent().unwrap_or(Path::new("."));
+    Some(
+        millpath_core::load::config::parse(&text, base).map_err(|e| {
+            let e = format!("{}: {e}", path.display());
+            match lang {
+                millpath_core::Lang::En => e,
+                millpath_core::Lang::De => toml_error_de(&e),
+            }
+        }),
+    )
+}
+
 fn toml_error_de(e: &str) -> String {
     const WORDS: &[(&str, &str)] = &[
         ("TOML parse error at line ", "TOML-Fehler in Zeile "),

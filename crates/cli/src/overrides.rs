@@ -5,13 +5,16 @@
 
 use crate::args::MachineArgs;
 use crate::config;
-use millpath_core::load::config::{FileConfig, HeightmapConfig};
+use millpath_core::load::config::FileConfig;
 use millpath_core::{InputMode, Lang};
+use millpath_history::Options;
 use std::path::{Path, PathBuf};
 
 /// The settings the options give; `None` when none is given (each file's own settings
-/// alone).
-pub fn overrides(m: &MachineArgs, lang: Lang) -> Result<Option<FileConfig>, String> {
+/// alone). `--heightmap-step` and `--heightmap-margin` go over each version's own
+/// `[heightmap]` as `compile` takes them (the step keeps its other keys, a margin alone
+/// widens its grid).
+pub fn overrides(m: &MachineArgs, lang: Lang) -> Result<Option<Options>, String> {
     let cwd = std::env::current_dir().unwrap_or_default();
     let mut c = match &m.config {
         Some(p) => {
@@ -57,16 +60,8 @@ pub fn overrides(m: &MachineArgs, lang: Lang) -> Result<Option<FileConfig>, Stri
         c.input = Some(InputMode::Extended);
         any = true;
     }
-    if let Some(step) = m.heightmap_step {
-        c.heightmap = Some(HeightmapConfig {
-            step,
-            margin: m.heightmap_margin,
-            area: None,
-            probe_feed: None,
-            probe_depth: None,
-        });
-        any = true;
-    }
+    let heightmap = (m.heightmap_step, m.heightmap_margin);
+    any |= heightmap != (None, None);
     if !m.search_dirs.is_empty() {
         c.search_dirs
             .extend(m.search_dirs.iter().map(|d| absolute(&cwd, d)));
@@ -78,7 +73,10 @@ pub fn overrides(m: &MachineArgs, lang: Lang) -> Result<Option<FileConfig>, Stri
         c.restrictions.extend(m.restrictions.iter().cloned());
         any = true;
     }
-    Ok(any.then_some(c))
+    Ok(any.then_some(Options {
+        config: c,
+        heightmap,
+    }))
 }
 
 fn absolute(base: &Path, p: &Path) -> PathBuf {

@@ -411,3 +411,39 @@ fn pictures_never_replace_a_drawing() {
     assert!(code <= 1, "{text}");
     assert!(d.path().join("change.svg").exists());
 }
+
+/// In git mode a drawing of a revision is read with that revision's `millpath.toml`: its
+/// path-name pattern (`/n`) finds the paths of a DXF, whatever the work tree's settings are.
+#[test]
+fn a_revision_is_read_with_its_own_settings() {
+    let d = tempfile::tempdir().unwrap();
+    let toml = "feed = 300\nsweep_speed = 1000\nsweep_height = 10\npath_pattern = \"([A-Z]{2})[.]([0-9]+)([A-Z])\"\n";
+    write(d.path(), "millpath.toml", toml);
+    let drawing = |depth: &str| {
+        let text = format!("path AB.1P {{\n  start (0, 0)  M3x40 O2 T3 I1,5 B{depth} D2,5\n  end (80, 0)\n  mill (0, 0) -> (40, 0)\n  mill (40, 0) -> (80, 0)\n}}\n");
+        write(d.path(), "AB.mpath", &text);
+        let (code, text) = status_and_text(d.path(), &["text2dxf", "AB.mpath", "-o", "AB.dxf"]);
+        assert_eq!(code, 0, "{text}");
+        std::fs::remove_file(d.path().join("AB.mpath")).unwrap();
+    };
+    drawing("-0,2");
+    git(d.path(), &["init", "-q"]);
+    git(d.path(), &["add", "."]);
+    git(d.path(), &["commit", "-qm", "one"]);
+    drawing("-0,5");
+    git(d.path(), &["commit", "-qam", "two"]);
+    // the work tree's settings name paths otherwise: the DXF has none by them
+    write(
+        d.path(),
+        "millpath.toml",
+        "feed = 300\nsweep_speed = 1000\nsweep_height = 10\n",
+    );
+    let (code, text) = status_and_text(d.path(), &["diff", "HEAD~1..HEAD"]);
+    assert_eq!(code, 1, "{text}");
+    assert!(text.contains("AB.1P: changed"), "{text}");
+    assert!(text.contains("B -0,2 → -0,5 on 2 elements"), "{text}");
+    // the work tree itself is read with its own settings: no path of that name
+    let (code, text) = status_and_text(d.path(), &["diff", "HEAD", "--", "AB.dxf"]);
+    assert_eq!(code, 1, "{text}");
+    assert!(text.contains("AB.1P: removed"), "{text}");
+}

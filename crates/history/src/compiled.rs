@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 
 /// A move as the diff compares it: kind, end points, arc centre and feed, rounded to the
 /// output precision (3 decimals) as integers.
-pub type MoveKey = (String, [i64; 6], Option<(i64, i64, bool)>, i64);
+pub type MoveKey = (&'static str, [i64; 6], Option<(i64, i64, bool)>, i64);
 
 /// The compiled result of one path.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -40,12 +40,23 @@ pub struct Outcome {
     pub elsewhere: std::collections::BTreeMap<String, Vec<MoveKey>>,
 }
 
+/// The command line's settings over each version's own.
+#[derive(Debug, Clone, Default)]
+pub struct Options {
+    /// As an editor's settings over the version's `millpath.toml`.
+    pub config: millpath_core::load::config::FileConfig,
+    /// `--heightmap-step` and `--heightmap-margin` over the version's `[heightmap]`.
+    pub heightmap: (Option<f64>, Option<f64>),
+}
+
 /// One version ready to compile.
 pub struct Compiled {
     ws: Workspace,
     /// Where the canonical text stands (in memory).
     pub at: PathBuf,
     analysis: Option<Analysis>,
+    /// The version's parsed text, for its analysis.
+    tree: Option<std::sync::Arc<millpath_syntax::File>>,
 }
 
 impl Compiled {
@@ -66,20 +77,38 @@ impl Compiled {
             ws,
             at,
             analysis: None,
+            tree: version.tree.clone(),
         }
     }
 
     /// Settings over the version's own `millpath.toml` (the command line's options, as an
-    /// editor's settings): a relative post file is found from `options.base_dir`.
-    pub fn set_options(&mut self, options: &millpath_core::load::config::FileConfig) {
-        self.ws.client = options.clone();
-        self.ws.roots = vec![options.base_dir.clone()];
+    /// editor's settings): a relative post file is found from `options.config.base_dir`.
+    pub fn set_options(&mut self, options: &Options) {
+        self.ws.client = options.config.clone();
+        self.ws.roots = vec![options.config.base_dir.clone()];
+        self.ws.heightmap_options = options.heightmap;
         self.analysis = None;
     }
 
+    /// The version's analysis, made once: the compiles of its paths and the effective
+    /// values all read the text it parsed.
+    fn analysis(&mut self) -> &Analysis {
+        let (ws, at, tree) = (&self.ws, &self.at, &mut self.tree);
+        self.analysis.get_or_insert_with(|| match tree.take() {
+            // the tree is the version's text, which stands at `at`
+            Some(t) => {
+                let t = std::sync::Arc::try_unwrap(t).unwrap_or_else(|t| (*t).clone());
+                millpath_ide::analyze_parsed(ws, at, t)
+            }
+            None => millpath_ide::analyze(ws, at),
+        })
+    }
+
     /// Compiles one path of the version (its moves and figures).
-    pub fn outcome(&self, path: &str) -> Outcome {
-        match millpath_ide::toolpath_moves(&self.ws, &self.at, Some(path)) {
+    pub fn outcome(&mut self, path: &str) -> Outcome {
+        self.analysis();
+        let a = self.analysis.as_ref().expect("analysed");
+        match millpath_ide::toolpath_moves_of(&self.ws, a, path) {
             Ok(tp) => outcome_of(&tp, &self.at),
             Err(e) => Outcome {
                 error: Some(e),
@@ -93,10 +122,7 @@ impl Compiled {
         if offsets.is_empty() {
             return Vec::new();
         }
-        let a = self
-            .analysis
-            .get_or_insert_with(|| millpath_ide::analyze(&self.ws, &self.at));
-        millpath_ide::effective_values(a, offsets)
+        millpath_ide::effective_values(self.analysis(), offsets)
     }
 }
 
@@ -122,24 +148,20 @@ fn shown(v: f64) -> f64 {
 /// Where a move comes from: the element's line in our text (`Ok`, 1-based), or the label
 /// of an element of another file (`Err`, `2001.mpath:7`).
 fn source_of(o: &Origin, own: &Path) -> Result<usize, String> {
-    let (file, line, label) = match o {
-        Origin::Span { file, line, .. } => (
-            Some(&file.path),
-            *line as usize,
-            format!("{}:{line}", file.name),
-        ),
-        Origin::Entity(e) => (
-            Some(&e.file.path),
-            e.line.max(1),
-            format!("{}:{}", e.file.name, e.line),
-        ),
-        o => (o.file().map(|f| &f.path), 1, o.context()),
+    let (file, line) = match o {
+        Origin::Span { file, line, .. } => (Some(&file.path), *line as usize),
+        Origin::Entity(e) => (Some(&e.file.path), e.line.max(1)),
+        o => (o.file().map(|f| &f.path), 1),
     };
     if file.is_some_and(|f| f == own) {
-        Ok(line)
-    } else {
-        Err(label)
+        return Ok(line);
     }
+    // the label only for an element of another file (most moves are the text's own)
+    Err(match o {
+        Origin::Span { file, line, .. } => format!("{}:{line}", file.name),
+        Origin::Entity(e) => format!("{}:{}", e.file.name, e.line),
+        o => o.context(),
+    })
 }
 
 /// The figures and moves of a toolpath.
@@ -164,7 +186,7 @@ fn outcome_of(tp: &Toolpath, at: &Path) -> Outcome {
         }
         m.gcode.hash(&mut hasher);
         let key: MoveKey = (
-            m.kind.to_string(),
+            m.kind,
             [
                 r3(from[0]),
                 r3(from[1]),
@@ -178,7 +200,7 @@ fn outcome_of(tp: &Toolpath, at: &Path) -> Outcome {
         );
         let source = m.source.as_ref().map(|o| source_of(o, at));
         out.sequence.push((
-            key.clone(),
+            key,
             match &source {
                 Some(Ok(line)) => *line,
                 _ => 0,

@@ -131,7 +131,7 @@ pub struct Side<'a> {
     pub files: Option<std::sync::Arc<millpath_core::MemFileSystem>>,
     /// Settings given by the caller (the command line's options) over the version's own
     /// `millpath.toml`, as an editor's settings are; `None`: the file's settings alone.
-    pub options: Option<&'a millpath_core::load::config::FileConfig>,
+    pub options: Option<&'a crate::compiled::Options>,
 }
 
 /// Diffs two versions; `compile`: also compile both and report the effect (without it the
@@ -150,10 +150,26 @@ pub fn diff(old: Side, new: Side, compile: bool) -> Diff {
         new_c.set_options(o);
     }
     let pairing = match_paths(old.version, new.version);
-    let (mut before, mut after) = if compile {
+    // the same text read in the same place with the same files and settings: one compile
+    let same = old.version.text == new.version.text
+        && old_c.at == new_c.at
+        && match (&old.files, &new.files) {
+            (None, None) => true,
+            (Some(a), Some(b)) => std::sync::Arc::ptr_eq(a, b),
+            _ => false,
+        }
+        && match (old.options, new.options) {
+            (None, None) => true,
+            (Some(a), Some(b)) => std::ptr::eq(a, b),
+            _ => false,
+        };
+    let (mut before, mut after) = if compile && same {
+        let both = outcomes(&mut old_c, old.version);
+        (both.clone(), both)
+    } else if compile {
         both_sides(
-            || outcomes(&old_c, old.version),
-            || outcomes(&new_c, new.version),
+            || outcomes(&mut old_c, old.version),
+            || outcomes(&mut new_c, new.version),
         )
     } else {
         (
@@ -215,7 +231,7 @@ fn both_sides<A: Send, B: Send>(
 }
 
 /// The compiled outcome of every path of a version, by its index.
-fn outcomes(c: &Compiled, v: &Version) -> Vec<Option<Outcome>> {
+fn outcomes(c: &mut Compiled, v: &Version) -> Vec<Option<Outcome>> {
     v.paths.iter().map(|p| Some(c.outcome(&p.name))).collect()
 }
 
@@ -440,6 +456,9 @@ fn moves_of(o: &Option<Outcome>, line: usize) -> Option<&Vec<MoveKey>> {
 
 /// Whether two written values are the same (numbers compare as numbers: `-0,2` = `-0.2`).
 fn same_value(a: &str, b: &str) -> bool {
+    if a == b {
+        return true;
+    }
     match (parse_number(a), parse_number(b)) {
         (Some(x), Some(y)) => x == y,
         _ => a == b,

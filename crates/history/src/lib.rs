@@ -21,6 +21,7 @@ pub mod picture;
 pub mod report;
 pub mod version;
 
+pub use compiled::Options;
 pub use diff::{diff, ChangeKind, Diff, EffectGroup, ElementChange, PathDiff, PathStatus, Side};
 pub use matching::{match_elements, match_paths, ElementMatch, Pairing, PathPairing, Relation};
 pub use version::{Element, PathVersion, Version};

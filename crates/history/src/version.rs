@@ -38,6 +38,9 @@ pub struct Version {
     pub text: String,
     /// Paths sorted by name.
     pub paths: Vec<PathVersion>,
+    /// The parsed text when it has no syntax errors (the compile of the version reads it
+    /// instead of parsing again).
+    pub tree: Option<std::sync::Arc<millpath_syntax::File>>,
 }
 
 impl Version {
@@ -60,7 +63,11 @@ impl Version {
                 )]
             })?;
             // the canonical form with LF line ends: a CRLF checkout compares as its LF twin
-            let text = millpath_core::convert::format_text(&decoded.text, &file)?;
+            let (text, tree) = millpath_core::convert::format_text_parsed(&decoded.text, &file)?;
+            if text == decoded.text && !text.contains('\r') {
+                // canonical already: its tree is the version's (one parse)
+                return Ok(Version::of_parsed(text, tree, true));
+            }
             text.replace("\r\n", "\n")
         } else {
             millpath_core::convert::dxf_to_text(bytes, &file, patterns, input)
@@ -72,7 +79,13 @@ impl Version {
 
     /// A version from canonical text (a text that does not parse gives the paths it has).
     pub fn of_text(text: String) -> Version {
-        let (ast, _) = millpath_syntax::parse(&text);
+        let (ast, errors) = millpath_syntax::parse(&text);
+        let clean = errors.is_empty();
+        Version::of_parsed(text, ast, clean)
+    }
+
+    /// A version from canonical text and its tree (`clean`: without syntax errors).
+    fn of_parsed(text: String, ast: millpath_syntax::File, clean: bool) -> Version {
         let starts = line_starts(&text);
         let mut paths: Vec<PathVersion> = Vec::new();
         for block in ast.paths() {
@@ -92,7 +105,11 @@ impl Version {
             }
         }
         paths.sort_by(|a, b| a.name.cmp(&b.name));
-        Version { text, paths }
+        Version {
+            text,
+            paths,
+            tree: clean.then(|| std::sync::Arc::new(ast)),
+        }
     }
 
     /// The path of this name.

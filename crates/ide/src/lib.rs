@@ -85,7 +85,9 @@ pub use semantic_delta::{apply_token_edit, relative_tokens, token_edit, RelToken
 pub use semantic_tokens::{semantic_tokens, SemToken, TOKEN_TYPES};
 pub use symbols::{document_symbols, workspace_symbols, Symbol};
 pub use toml_doc::{analyze as analyze_toml, is_toml};
-pub use toolpath::{toolpath, toolpath_html, toolpath_moves, toolpath_svg, toolpath_until};
+pub use toolpath::{
+    toolpath, toolpath_html, toolpath_moves, toolpath_moves_of, toolpath_svg, toolpath_until,
+};
 
 use millpath_core::build::traverse_memo::TraversalMemo;
 use millpath_core::diag::{Diagnostic, FileRef, Origin};
@@ -94,6 +96,7 @@ use millpath_core::front::text::objects_of;
 use millpath_core::front::text_edit::{objects_after_edit, LineEdit, PrevObjects};
 use millpath_core::load::config::{self, FileConfig, Have};
 use millpath_core::load::fs::{is_text_file, FileSystem};
+use millpath_core::probe::heightmap::Heightmap;
 use millpath_core::{compile_file, Diags, Session, Settings};
 use millpath_syntax::{parse, File};
 use std::collections::{BTreeSet, HashMap};
@@ -118,6 +121,10 @@ pub struct Workspace {
     /// Files held in memory instead of the disk (the browser playground: there is no disk);
     /// the overlays still win over them.
     pub memory: Option<Arc<millpath_core::MemFileSystem>>,
+    /// `--heightmap-step` and `--heightmap-margin` over the file's `[heightmap]` (`millpath
+    /// diff`), as `compile` takes them: the step keeps the other keys, a margin alone widens
+    /// the file's grid.
+    pub heightmap_options: (Option<f64>, Option<f64>),
 }
 
 /// The file system as the editor sees it: open text buffers over the disk. A DXF drawing is
@@ -310,6 +317,16 @@ impl Workspace {
             dir = d.parent();
         }
         self.client.apply(&mut s, &mut have);
+        let (step, margin) = self.heightmap_options;
+        if let Some(step) = step {
+            let hm = s.heightmap.unwrap_or(Heightmap::with_step(step));
+            s.heightmap = Some(Heightmap { step, ..hm });
+            s.heightmap_options.0 = true;
+        }
+        if let (Some(margin), Some(hm)) = (margin, s.heightmap.as_mut()) {
+            hm.margin = margin;
+            s.heightmap_options.1 = true;
+        }
         if self.client.feed.is_some() {
             ds.feed = SettingSource::Editor;
         }
@@ -510,6 +527,23 @@ pub fn analyze_from(
     prev: Option<&Analysis>,
     cancelled: &dyn Fn() -> bool,
 ) -> Option<Analysis> {
+    analyze_source(ws, path, prev, None, cancelled)
+}
+
+/// [`analyze`] of a text document whose tree the caller has parsed already (`tree`: the
+/// tree of the document's text as the workspace has it, without syntax errors): the text
+/// is not parsed again (`millpath diff` reads each version's text once).
+pub fn analyze_parsed(ws: &Workspace, path: &Path, tree: File) -> Analysis {
+    analyze_source(ws, path, None, Some(tree), &|| false).expect("not cancelled")
+}
+
+fn analyze_source(
+    ws: &Workspace,
+    path: &Path,
+    prev: Option<&Analysis>,
+    tree: Option<File>,
+    cancelled: &dyn Fn() -> bool,
+) -> Option<Analysis> {
     let is_text = is_text_file(path);
     let src = if is_text {
         ws.text(path).unwrap_or_default()
@@ -522,7 +556,9 @@ pub fn analyze_from(
     };
     let settings = ws.settings_for(path);
     let prev = prev.filter(|p| p.path == path);
-    let (ast, syntax_errors, splice) = if is_text {
+    let (ast, syntax_errors, splice) = if let Some(tree) = tree.filter(|_| is_text) {
+        (tree, Vec::new(), None)
+    } else if is_text {
         let prev = prev.filter(|p| p.syntax_ok).map(|p| reparse::Previous {
             src: &p.src,
             ast: &p.ast,
@@ -682,6 +718,13 @@ pub fn analyze_from(
 }
 
 impl Analysis {
+    /// An error is reported in the document (syntax or compiler).
+    pub fn has_errors(&self) -> bool {
+        self.diagnostics
+            .iter()
+            .any(|d| d.severity == millpath_core::diag::Severity::Error)
+    }
+
     /// The drawn object of the element starting at `offset`.
     pub(crate) fn object_at(&self, offset: usize) -> Option<usize> {
         let map = self.object_at.get_or_init(|| {

@@ -33,6 +33,20 @@ pub(crate) fn top_model_until(
     name: Option<&str>,
     stop: &dyn Fn() -> bool,
 ) -> Result<TopModel, String> {
+    top_model_from(ws, path, None, name, stop)
+}
+
+/// [`top_model_until`] that takes the document's paths from its analysis (`analysed`)
+/// instead of reading and parsing the file again. Only an analysis without errors in the
+/// document is taken (a path `compile` refuses for an error of the text is refused alike
+/// by the fresh read); the caller checks that (`Analysis::has_errors`).
+pub(crate) fn top_model_from(
+    ws: &Workspace,
+    path: &Path,
+    analysed: Option<&Analysis>,
+    name: Option<&str>,
+    stop: &dyn Fn() -> bool,
+) -> Result<TopModel, String> {
     let ds = ws.settings_for(path);
     let missing = ds.missing_message();
     let lang = ds.settings.lang;
@@ -46,7 +60,10 @@ pub(crate) fn top_model_until(
     };
     let mut session = Session::new(ds.settings, &fs).map_err(|e| joined(&e))?;
     session.stop = Some(stop);
-    let names = session.load_file(path);
+    let names = match analysed {
+        Some(a) => session.add_shared_paths(path, a.paths.clone()),
+        None => session.load_file(path),
+    };
     let name = match name {
         Some(n) => n.to_string(),
         None => names.first().cloned().ok_or(match lang {

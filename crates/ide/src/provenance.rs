@@ -46,12 +46,18 @@ pub(crate) fn provenance(
         object_index(a, el).and_then(|i| a.objects[i].text.as_deref())
     });
     let start = path.start_text.as_ref();
+    // the start's text is one for every key it gives: its label made once
+    let start_label = std::cell::OnceCell::new();
     let start_src = |t: &ParamText| {
-        let base = if german { "Pfadanfang" } else { "path start" };
-        match &path.at_ref {
-            Some(r) => format!("{base} (@{r}, {})", line_of(t, german)),
-            None => format!("{base} ({})", line_of(t, german)),
-        }
+        start_label
+            .get_or_init(|| {
+                let base = if german { "Pfadanfang" } else { "path start" };
+                match &path.at_ref {
+                    Some(r) => format!("{base} (@{r}, {})", line_of(t, german)),
+                    None => format!("{base} ({})", line_of(t, german)),
+                }
+            })
+            .clone()
     };
     let own_src = if german { "eigener Text" } else { "own text" }.to_string();
     let mut rows = Vec::new();
@@ -69,6 +75,9 @@ pub(crate) fn provenance(
         _ => Vec::new(),
     };
     let settings = &a.settings;
+    // O and T of the start, for the defaults made of them (read once, not per key)
+    let o = start.and_then(|t| t.raw('O')).and_then(parse_number);
+    let t_ = start.and_then(|t| t.raw('T')).and_then(parse_number);
     for k in keys {
         if !is_start {
             if let Some(v) = get(own, k) {
@@ -120,8 +129,6 @@ pub(crate) fn provenance(
                 continue;
             }
         }
-        let o = start.and_then(|t| t.raw('O')).and_then(parse_number);
-        let t_ = start.and_then(|t| t.raw('T')).and_then(parse_number);
         match k {
             'F' => push(
                 k,

@@ -5,7 +5,7 @@
 //! settings; `clamps` and each move's `hits`; `cut`), the standalone page
 //! (`editors/toolpath/toolpath.html` by `include_str!`), the SVG top view.
 
-use crate::preview::{top_model_until, TopModel};
+use crate::preview::{top_model_from, top_model_until, TopModel};
 use crate::Workspace;
 use millpath_core::diag::Origin;
 use std::path::{Path, PathBuf};
@@ -70,6 +70,24 @@ pub fn toolpath_moves(
     name: Option<&str>,
 ) -> Result<millpath_core::emit::Toolpath, String> {
     let t = top_model_until(ws, path, name, &|| false)?;
+    millpath_core::emit::toolpath_until(&t.model, &t.controller, t.sweep_speed, None).map_err(|e| {
+        e.iter()
+            .map(|d| d.message(t.lang))
+            .collect::<Vec<_>>()
+            .join("; ")
+    })
+}
+
+/// [`toolpath_moves`] of a document already analysed: its paths are taken from the
+/// analysis (read and parsed once for any number of paths and for the effective values);
+/// an analysis with errors in the document reads the file again, as `compile` would.
+pub fn toolpath_moves_of(
+    ws: &Workspace,
+    a: &crate::Analysis,
+    name: &str,
+) -> Result<millpath_core::emit::Toolpath, String> {
+    let analysed = (crate::is_text_file(&a.path) && !a.has_errors()).then_some(a);
+    let t = top_model_from(ws, &a.path, analysed, Some(name), &|| false)?;
     millpath_core::emit::toolpath_until(&t.model, &t.controller, t.sweep_speed, None).map_err(|e| {
         e.iter()
             .map(|d| d.message(t.lang))

@@ -7,8 +7,8 @@
 use crate::args::{lang_of, settings_for, MachineArgs};
 use crate::report;
 use millpath_core::diag::{Diagnostic, FileRef, Msg, Origin};
-use millpath_core::Lang;
 use millpath_core::MemFileSystem;
+use millpath_core::{InputMode, Lang};
 use millpath_history::{report as out, Side, Version};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -321,14 +321,33 @@ fn version(s: &Source, m: &MachineArgs, lang: Lang) -> Result<Version, String> {
     let Some(bytes) = &s.bytes else {
         return Ok(Version::of_text(String::new()));
     };
-    let settings = settings_for(m, Some(&s.file), false)?;
-    let patterns = millpath_core::load::names::Patterns::shared(
-        &settings.path_pattern,
-        &settings.file_pattern,
-    )
-    .map_err(|(c, p, e)| format!("/{c} '{p}': {e}"))?;
+    let (path_pattern, file_pattern, input) = match (&s.tree, &m.config) {
+        // a revision's drawing is read with the revision's millpath.toml (and the options)
+        (Some(tree), None) => {
+            let mut settings = millpath_core::Settings::default();
+            if let Some(cfg) = crate::config::load_from(&**tree, &s.file, lang) {
+                cfg?.apply(&mut settings, &mut crate::config::Have::default());
+            }
+            let input = if m.extended {
+                InputMode::Extended
+            } else {
+                settings.input
+            };
+            (
+                m.path_pattern.clone().unwrap_or(settings.path_pattern),
+                m.file_pattern.clone().unwrap_or(settings.file_pattern),
+                input,
+            )
+        }
+        _ => {
+            let settings = settings_for(m, Some(&s.file), false)?;
+            (settings.path_pattern, settings.file_pattern, settings.input)
+        }
+    };
+    let patterns = millpath_core::load::names::Patterns::shared(&path_pattern, &file_pattern)
+        .map_err(|(c, p, e)| format!("/{c} '{p}': {e}"))?;
     // messages name what the user gave (the label), not the file it stands for
-    Version::read(&PathBuf::from(&s.label), bytes, &patterns, settings.input).map_err(|diags| {
+    Version::read(&PathBuf::from(&s.label), bytes, &patterns, input).map_err(|diags| {
         diags
             .iter()
             .map(|d| report::human(d, lang))

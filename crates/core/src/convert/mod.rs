@@ -485,6 +485,15 @@ fn text_objects(
 
 /// `fmt`: the canonical form of a text file; `Err` with the syntax errors when it does not parse.
 pub fn format_text(src: &str, file: &Arc<FileRef>) -> Result<String, Vec<crate::Diagnostic>> {
+    format_text_parsed(src, file).map(|(text, _)| text)
+}
+
+/// [`format_text`] with the tree of `src` it parsed (a caller whose `src` is canonical
+/// already has the tree of the result without a second parse).
+pub fn format_text_parsed(
+    src: &str,
+    file: &Arc<FileRef>,
+) -> Result<(String, millpath_syntax::File), Vec<crate::Diagnostic>> {
     let (ast, errors) = millpath_syntax::parse(src);
     if !errors.is_empty() {
         return Err(errors
@@ -497,10 +506,8 @@ pub fn format_text(src: &str, file: &Arc<FileRef>) -> Result<String, Vec<crate::
     }
     // the file's own line ends (a CRLF checkout stays CRLF)
     let crlf = crate::load::text_file::LineEnds::of(src).written_crlf();
-    Ok(crate::load::text_file::with_line_ends(
-        millpath_syntax::format(&ast, src),
-        crlf,
-    ))
+    let text = crate::load::text_file::with_line_ends(millpath_syntax::format(&ast, src), crlf);
+    Ok((text, ast))
 }
 
 #[cfg(test)]

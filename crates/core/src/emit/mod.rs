@@ -114,6 +114,9 @@ pub(crate) struct Emitter<'a> {
     pub(crate) full: bool,
     /// Check only: no texts are made.
     pub(crate) dry: bool,
+    /// Comment lines get their text; without it they are empty lines (the moves' texts and
+    /// lines stay as written: for the toolpath, which reads the moves only).
+    pub(crate) comment_texts: bool,
     /// Origins of the elements emitted so far, and the current one.
     pub(crate) sources: Vec<Origin>,
     pub(crate) source: Option<u32>,
@@ -183,7 +186,7 @@ impl<'a> Emitter<'a> {
         if self.at_capacity() {
             return;
         }
-        let text = if self.dry {
+        let text = if self.dry || !self.comment_texts {
             String::new()
         } else {
             self.ctl.post.comment(indent, &text(), &self.globals)
@@ -387,15 +390,27 @@ fn missing_values(model: &Model, out: &mut Vec<Diagnostic>, depth: usize) {
     }
 }
 
-/// The body moves of a model (dry: without texts) for a controller, its probes and start
-/// height; gives up when `stop()` turns true: `Err` without diagnostics then.
+/// The body moves of a model (dry: without texts; comment lines empty) for a controller, its
+/// probes and start height; gives up when `stop()` turns true: `Err` without diagnostics then.
 pub(crate) fn emit_until(
     model: &Model,
     dry: bool,
     ctl: &Controller,
     stop: Option<&dyn Fn() -> bool>,
 ) -> Result<Emitted, Vec<Diagnostic>> {
-    emit_after(model, dry, ctl, stop, &[] as &[&str])
+    // its callers read the moves (and their lines), never a comment's text
+    let no_prefix: &[&str] = &[];
+    emit_with(
+        model,
+        dry,
+        ctl,
+        stop,
+        no_prefix,
+        false,
+        None,
+        Moves::Kept,
+        false,
+    )
 }
 
 /// The start height of a model's program (the start height S, a little above).
@@ -422,7 +437,7 @@ pub(crate) fn emit_quick(
     } else {
         Moves::Counted
     };
-    match emit_with(model, true, ctl, stop, no_prefix, true, None, moves) {
+    match emit_with(model, true, ctl, stop, no_prefix, true, None, moves, true) {
         Ok(e)
             if e.quick_steps.saturating_mul(SWEEP_LINES)
                 < MAX_ITEMS - e.rec.move_count().min(MAX_ITEMS) =>
@@ -434,27 +449,16 @@ pub(crate) fn emit_quick(
         Err(errs) if errs.iter().any(|d| d.msg == Msg::TooManyMoves) => {}
         Err(errs) => return Err(errs),
     }
-    emit_with(model, true, ctl, stop, no_prefix, false, None, moves)
+    emit_with(model, true, ctl, stop, no_prefix, false, None, moves, true)
 }
 
 /// Lines one sweep between two passes can take at most (`safe_sweep`: its comment, two
 /// drills or pulls of a comment and three moves each, the rapid), with room to spare.
 const SWEEP_LINES: usize = 16;
 
-/// [`emit_until`] whose text starts with the lines `prefix` (a program's prologue).
-pub(crate) fn emit_after<S: AsRef<str>>(
-    model: &Model,
-    dry: bool,
-    ctl: &Controller,
-    stop: Option<&dyn Fn() -> bool>,
-    prefix: &[S],
-) -> Result<Emitted, Vec<Diagnostic>> {
-    emit_with(model, dry, ctl, stop, prefix, false, None, Moves::Kept)
-}
-
-/// [`emit_after`] whose lines go to `sink` instead of a text (it comes back in the record).
-/// `fold`: the moves are summed for the statistics at this sweep speed instead of kept
-/// ([`Record::fold_moves`]).
+/// A program's emission after the lines `prefix` (its prologue), its lines going to `sink`
+/// instead of a text (it comes back in the record). `fold`: the moves are summed for the
+/// statistics at this sweep speed instead of kept ([`Record::fold_moves`]).
 pub(crate) fn emit_into<S: AsRef<str>>(
     model: &Model,
     ctl: &Controller,
@@ -464,7 +468,7 @@ pub(crate) fn emit_into<S: AsRef<str>>(
     fold: Option<f64>,
 ) -> Result<Emitted, Vec<Diagnostic>> {
     let moves = fold.map_or(Moves::Kept, Moves::Folded);
-    emit_with(model, false, ctl, stop, prefix, false, sink, moves)
+    emit_with(model, false, ctl, stop, prefix, false, sink, moves, true)
 }
 
 /// What the record keeps of the moves.
@@ -488,6 +492,7 @@ fn emit_with<S: AsRef<str>>(
     quick_order: bool,
     sink: Option<Box<dyn LineSink>>,
     moves: Moves,
+    comments: bool,
 ) -> Result<Emitted, Vec<Diagnostic>> {
     if model.elements.is_empty() {
         return Err(vec![Diagnostic::error(
@@ -526,8 +531,11 @@ fn emit_with<S: AsRef<str>>(
         Moves::Folded(sweep_speed) => rec.fold_moves(sweep_speed),
         Moves::Counted => rec.count_moves(),
     }
+    // a post that numbers its lines numbers the comments too: their lines are written
+    let comment_texts = comments || !rec.plain();
     let mut em = Emitter {
         rec,
+        comment_texts,
         out_of_range: None,
         pos: P3 {
             x: 0.0,

@@ -118,6 +118,11 @@ impl Record {
         r
     }
 
+    /// The post writes the lines as they are (no numbers, modal words or other line ends).
+    pub(crate) fn plain(&self) -> bool {
+        self.writer.is_none()
+    }
+
     /// From now on the moves are summed for the statistics (at `sweep_speed`) instead of
     /// kept; only the last stays in `items`. For a program whose statistics are all that is
     /// asked of its moves (no planner, no height map, no toolpath).
