@@ -10,6 +10,7 @@
 //! `text2dxf --into` through `dxf::splice` on the path layers (the pattern's and the text's), and
 //! `overwrite_losses`: what a plain `text2dxf` would destroy in an existing drawing.
 
+use super::keep::{layer_key, layer_of, old_layers, path_key, unchanged_paths};
 use super::{front_options, layer_name, plan, settle, text_objects, texts_match};
 use crate::diag::{FileRef, Lang};
 use crate::front::drawing::DrawnObject;
@@ -80,10 +81,11 @@ pub enum IntoOutcome {
 }
 
 /// `text2dxf --into`: the drawing `target` with the paths of the text in place of its path
-/// objects. A target that is no readable DXF is a located error; nothing is half-written
-/// because the result is returned whole. The objects of paths the text does not define
-/// would be deleted: refused naming them ([`Msg::IntoWouldDeletePaths`]) unless
-/// `delete_missing`.
+/// objects. A path the text leaves as the drawing has it keeps its entities byte for byte;
+/// a changed one is written on its old layer (`keep.rs`). A target that is no readable DXF
+/// is a located error; nothing is half-written because the result is returned whole. The
+/// objects of paths the text does not define would be deleted: refused naming them
+/// ([`Msg::IntoWouldDeletePaths`]) unless `delete_missing`.
 pub fn text_into_dxf(
     src: &str,
     file: &Arc<FileRef>,
@@ -97,7 +99,9 @@ pub fn text_into_dxf(
     let t = scan(target).map_err(|e| vec![load_error(target_file, e)])?;
     let paths: Vec<String> = objects.iter().map(|o| o.path.to_string()).collect();
     let layers = PathLayers::new(patterns, &paths);
-    let remove = |r: &Record| layers.replaces(r, input);
+    let unchanged = unchanged_paths(target, &objects, patterns, input);
+    let remove =
+        |r: &Record| layers.replaces(r, input) && !unchanged.contains(&layer_key(&r.layer));
     let missing = missing_paths(&t, &layers, input);
     if !missing.is_empty() && !delete_missing {
         return Err(vec![Diagnostic::error(
@@ -110,8 +114,19 @@ pub fn text_into_dxf(
             ],
         )]);
     }
-    let out = settle(&objects, patterns, &|suffixes| {
-        t.splice(&remove, &plan(&objects, suffixes).1)
+    let changed: Vec<DrawnObject> = objects
+        .iter()
+        .filter(|o| !unchanged.contains(&path_key(&layer_name(&o.path, None))))
+        .cloned()
+        .collect();
+    if changed.is_empty() && missing.is_empty() {
+        return Ok(IntoOutcome::Unchanged);
+    }
+    let old = old_layers(t.entities().iter().filter(|r| remove(r)));
+    let layer = |path: &str, suffix: Option<&str>| layer_of(path, suffix, &old);
+    let ours = |path: &str| !unchanged.contains(&path_key(path));
+    let out = settle(&changed, patterns, &ours, &|suffixes| {
+        t.splice(&remove, &plan(&changed, suffixes, &layer).1)
     });
     let all_read = paths.iter().all(|p| {
         let layer = path_name_of_layer(&layer_name(p, None));

@@ -9,6 +9,7 @@
 //! elsewhere to `PATH~A` layers.
 
 mod into;
+mod keep;
 pub use into::{
     kept_entities, kept_extended_geometry, overwrite_losses, text_into_dxf, IntoOutcome, Losses,
 };
@@ -196,10 +197,6 @@ fn front_options(patterns: &Patterns, input: InputMode) -> FrontOptions<'_> {
 
 /// The canonical text of a drawing: paths sorted by name.
 pub fn objects_to_text(objects: &[DrawnObject], paths: &[RawPath], header: Option<&str>) -> String {
-    let mut by_path: BTreeMap<&str, Vec<usize>> = BTreeMap::new();
-    for (i, o) in objects.iter().enumerate() {
-        by_path.entry(&*o.path).or_default().push(i);
-    }
     let mut out = String::new();
     if let Some(h) = header {
         for line in h.lines() {
@@ -207,21 +204,28 @@ pub fn objects_to_text(objects: &[DrawnObject], paths: &[RawPath], header: Optio
         }
         out.push('\n');
     }
-    let mut first = true;
+    let blocks: Vec<String> = path_texts(objects, paths).into_values().collect();
+    out.push_str(&blocks.join("\n"));
+    out
+}
+
+/// The canonical text of each path (`path NAME { … }`), by path name.
+fn path_texts<'a>(objects: &'a [DrawnObject], paths: &[RawPath]) -> BTreeMap<&'a str, String> {
+    let mut by_path: BTreeMap<&str, Vec<usize>> = BTreeMap::new();
+    for (i, o) in objects.iter().enumerate() {
+        by_path.entry(&*o.path).or_default().push(i);
+    }
+    let mut texts = BTreeMap::new();
     for (name, indices) in by_path {
         let raw = paths.iter().find(|p| p.name == name);
         let path_o = raw
             .and_then(|r| r.start_text.as_ref())
             .and_then(|t| t.raw('O'))
             .and_then(parse_number);
-        if !first {
-            out.push('\n');
-        }
-        first = false;
-        out.push_str(&format!(
+        let mut out = format!(
             "path {} {{\n",
             millpath_syntax::lexer::quote_if_needed(name)
-        ));
+        );
         for i in ordered(&indices, objects, raw, path_o) {
             let o = &objects[i];
             let kind = kind_of(o, path_o);
@@ -248,8 +252,9 @@ pub fn objects_to_text(objects: &[DrawnObject], paths: &[RawPath], header: Optio
             out.push('\n');
         }
         out.push_str("}\n");
+        texts.insert(name, out);
     }
-    out
+    texts
 }
 
 /// Layer name of a path as CAD programs export it (`.` → `_`), with an optional
@@ -284,10 +289,18 @@ fn mtext_escape(s: &str) -> String {
 
 const TEXT_HEIGHT: f64 = 0.35;
 
+/// The layer of a path's entities, with an optional parameter-text suffix.
+type LayerOf<'a> = &'a dyn Fn(&str, Option<&str>) -> String;
+
 /// What a text's objects become in a drawing: the path layers (line type CONTINUOUS) and
-/// the entities in the order they are written. Texts come after the elements: circles'
-/// first, then arcs', then lines', so that circles win as the assignment rule wants.
-fn plan(objects: &[DrawnObject], suffixes: &[Option<String>]) -> (Vec<String>, Vec<NewEntity>) {
+/// the entities in the order they are written, on the layers `layer` names. Texts come
+/// after the elements: circles' first, then arcs', then lines', so that circles win as the
+/// assignment rule wants.
+fn plan(
+    objects: &[DrawnObject],
+    suffixes: &[Option<String>],
+    layer: LayerOf,
+) -> (Vec<String>, Vec<NewEntity>) {
     let mut paths: Vec<&str> = objects.iter().map(|o| &*o.path).collect();
     paths.sort();
     paths.dedup();
@@ -311,7 +324,7 @@ fn plan(objects: &[DrawnObject], suffixes: &[Option<String>]) -> (Vec<String>, V
             },
         };
         entities.push(NewEntity {
-            layer: layer_name(&o.path, suf.as_deref()),
+            layer: layer(&o.path, suf.as_deref()),
             linetype: Some(o.linetype.to_string()),
             shape,
         });
@@ -330,7 +343,7 @@ fn plan(objects: &[DrawnObject], suffixes: &[Option<String>]) -> (Vec<String>, V
                 continue;
             }
             entities.push(NewEntity {
-                layer: layer_name(&o.path, suf.as_deref()),
+                layer: layer(&o.path, suf.as_deref()),
                 linetype: None,
                 shape: NewShape::Text {
                     at: (at.x, at.y),
@@ -345,7 +358,7 @@ fn plan(objects: &[DrawnObject], suffixes: &[Option<String>]) -> (Vec<String>, V
 
 /// A new drawing of the objects (AutoCAD 2000, [`DxfWriter`]).
 fn write_dxf(objects: &[DrawnObject], suffixes: &[Option<String>]) -> String {
-    let (layers, entities) = plan(objects, suffixes);
+    let (layers, entities) = plan(objects, suffixes, &layer_name);
     let mut w = DxfWriter::new();
     for l in &layers {
         w.layer(l, "CONTINUOUS");
@@ -377,14 +390,18 @@ pub(super) fn texts_match(
 /// Writes objects as a DXF file. Elements whose text would be assigned to another element
 /// are moved to their own parameter-text layer (`PATH~A`, …), checked by reading back.
 pub fn objects_to_dxf(objects: &[DrawnObject], patterns: &Patterns) -> String {
-    settle(objects, patterns, &|suffixes| write_dxf(objects, suffixes))
+    settle(objects, patterns, &|_| true, &|suffixes| {
+        write_dxf(objects, suffixes)
+    })
 }
 
 /// The drawing `render` makes of the objects, with parameter-text layers for the elements
-/// whose text the read-back assigns elsewhere (at most eight rounds).
+/// whose text the read-back assigns elsewhere (at most eight rounds). `ours` chooses, by
+/// path, the read-back objects that are `objects` (a drawing may hold other paths too).
 fn settle<T: AsRef<[u8]>>(
     objects: &[DrawnObject],
     patterns: &Patterns,
+    ours: &dyn Fn(&str) -> bool,
     render: &dyn Fn(&[Option<String>]) -> T,
 ) -> T {
     let mut suffixes: Vec<Option<String>> = vec![None; objects.len()];
@@ -401,6 +418,7 @@ fn settle<T: AsRef<[u8]>>(
         let Ok((back, _)) = dxf_objects(&d, &file, &opts, &mut diags) else {
             return out;
         };
+        let back: Vec<&DrawnObject> = back.iter().filter(|b| ours(&b.path)).collect();
         let mut changed = false;
         for (i, o) in objects.iter().enumerate() {
             let ok = back
