@@ -10,8 +10,8 @@
 //! `text2dxf --into` through `dxf::splice` on the path layers (the pattern's and the text's), and
 //! `overwrite_losses`: what a plain `text2dxf` would destroy in an existing drawing.
 
-use super::keep::{layer_key, layer_of, old_layers, path_key, unchanged_paths};
-use super::{front_options, layer_name, plan, settle, text_objects, texts_match};
+use super::keep::{drawn_objects, layer_key, path_key, unchanged_paths, write_changed};
+use super::{front_options, layer_name, text_objects, texts_match};
 use crate::diag::{FileRef, Lang};
 use crate::front::drawing::DrawnObject;
 use crate::front::dxf::dxf_objects;
@@ -99,7 +99,8 @@ pub fn text_into_dxf(
     let t = scan(target).map_err(|e| vec![load_error(target_file, e)])?;
     let paths: Vec<String> = objects.iter().map(|o| o.path.to_string()).collect();
     let layers = PathLayers::new(patterns, &paths);
-    let unchanged = unchanged_paths(target, &objects, patterns, input);
+    let drawn = drawn_objects(target, patterns, input);
+    let unchanged = unchanged_paths(&drawn, &objects, patterns);
     let remove =
         |r: &Record| layers.replaces(r, input) && !unchanged.contains(&layer_key(&r.layer));
     let missing = missing_paths(&t, &layers, input);
@@ -122,12 +123,8 @@ pub fn text_into_dxf(
     if changed.is_empty() && missing.is_empty() {
         return Ok(IntoOutcome::Unchanged);
     }
-    let old = old_layers(t.entities().iter().filter(|r| remove(r)));
-    let layer = |path: &str, suffix: Option<&str>| layer_of(path, suffix, &old);
     let ours = |path: &str| !unchanged.contains(&path_key(path));
-    let out = settle(&changed, patterns, &ours, &|suffixes| {
-        t.splice(&remove, &plan(&changed, suffixes, &layer).1)
-    });
+    let out = write_changed(&t, &changed, &drawn, &remove, &ours, patterns, input);
     let all_read = paths.iter().all(|p| {
         let layer = path_name_of_layer(&layer_name(p, None));
         front_options(patterns, input)

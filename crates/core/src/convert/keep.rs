@@ -1,22 +1,29 @@
 //! What `text2dxf --into` keeps of the drawing's own paths, so that version control sees
 //! only the paths that changed. A path whose canonical text is the one the drawing's own
 //! `dxf2text` writes for it is unchanged: its entities stay byte for byte (handles, layers
-//! with their `~` suffixes, MTEXT formatting, order). A changed path is written again, on
-//! the layer its entities were on.
+//! with their `~` suffixes, MTEXT formatting, order). In a changed path, an element drawn
+//! as before (same line type and shape) keeps its entity, and its text entity when the text
+//! is the same; the rest is written again, on the layer the path's entities were on. In the
+//! extended mode a changed path is written whole: its line type aliases (`Phantom`) and
+//! polylines become the plain entities the reference reads.
 //!
 //! Paths are matched by the name their layer reads back as, ignoring case (as CAD layer
 //! names do). Texts go only to elements of their own layer (reference-input.md §2.4), so a
 //! path's entities read the same whatever happens to the other paths' entities.
 
-use super::{front_options, layer_name, path_texts, paths_of};
-use crate::diag::{Diags, FileRef};
-use crate::front::drawing::DrawnObject;
+use super::{
+    front_options, layer_name, path_texts, paths_of, plan, settle, texts_match, Placement,
+};
+use crate::diag::{Diags, FileRef, Origin};
+use crate::front::drawing::{DrawnObject, Shape};
 use crate::front::dxf::dxf_objects;
 use crate::front::layer::{effective_layer, path_name_of_layer};
 use crate::front::options::InputMode;
+use crate::geom::Geom;
 use crate::load::names::Patterns;
-use millpath_dxf::splice::Record;
-use std::collections::{BTreeMap, BTreeSet};
+use millpath_dxf::splice::{Record, Target};
+use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet, VecDeque};
+use std::sync::Arc;
 
 /// The key of a path name as a layer reads it back: `_` → `.`, lower case.
 pub(super) fn path_key(path: &str) -> String {
@@ -28,37 +35,132 @@ pub(super) fn layer_key(layer: &str) -> String {
     path_key(effective_layer(layer))
 }
 
-/// The keys of the paths the text leaves as the drawing has them: the canonical text of
-/// each path of that key (usually one) is the same on both sides. Empty when the drawing's
-/// paths cannot be read (then every path is written, as a plain `--into` does).
-pub(super) fn unchanged_paths(
+/// The drawing's path objects as the front-end reads them; empty when it cannot (then
+/// every path is written, as a plain `--into` does).
+pub(super) fn drawn_objects(
     target: &[u8],
-    text: &[DrawnObject],
     patterns: &Patterns,
     input: InputMode,
-) -> BTreeSet<String> {
+) -> Vec<DrawnObject> {
     let Ok(d) = millpath_dxf::read_dxf(target) else {
-        return BTreeSet::new();
+        return Vec::new();
     };
     let file = FileRef::new("into.dxf".into());
     let mut diags = Diags::default();
-    let Ok((drawn, _)) = dxf_objects(&d, &file, &front_options(patterns, input), &mut diags) else {
-        return BTreeSet::new();
-    };
-    let by_key = |objects: &[DrawnObject]| -> BTreeMap<String, String> {
-        let mut keyed: BTreeMap<String, String> = BTreeMap::new();
-        for (path, block) in path_texts(objects, &paths_of(objects, patterns)) {
-            keyed
-                .entry(path_key(&layer_name(path, None)))
-                .or_default()
-                .push_str(&block);
-        }
+    dxf_objects(&d, &file, &front_options(patterns, input), &mut diags)
+        .map(|o| o.0)
+        .unwrap_or_default()
+}
+
+/// The canonical text of the paths of each key (usually one path).
+pub(super) fn texts_by_key(
+    objects: &[DrawnObject],
+    patterns: &Patterns,
+) -> BTreeMap<String, String> {
+    let mut keyed: BTreeMap<String, String> = BTreeMap::new();
+    for (path, block) in path_texts(objects, &paths_of(objects, patterns)) {
         keyed
-    };
-    let (ours, theirs) = (by_key(&drawn), by_key(text));
-    ours.into_iter()
+            .entry(path_key(&layer_name(path, None)))
+            .or_default()
+            .push_str(&block);
+    }
+    keyed
+}
+
+/// The keys of the paths the text leaves as the drawing has them: the canonical text of
+/// each path of that key is the same on both sides.
+pub(super) fn unchanged_paths(
+    drawn: &[DrawnObject],
+    text: &[DrawnObject],
+    patterns: &Patterns,
+) -> BTreeSet<String> {
+    let theirs = texts_by_key(text, patterns);
+    texts_by_key(drawn, patterns)
+        .into_iter()
         .filter(|(key, block)| theirs.get(key) == Some(block))
         .map(|(key, _)| key)
+        .collect()
+}
+
+/// The drawing's own entities an element of a changed path keeps (by the line of their
+/// `0` group).
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct KeptElement {
+    pub geometry: usize,
+    /// Its text entity, when the text is the same.
+    pub text: Option<usize>,
+    /// The layer of the geometry entity, as the file spells it (a new text of the element
+    /// goes there: texts go only to elements of their own layer).
+    pub layer: String,
+}
+
+fn entity_line(o: &Origin) -> Option<usize> {
+    match o {
+        Origin::Entity(e) => Some(e.line),
+        _ => None,
+    }
+}
+
+/// Exact numbers of a shape, for finding the same element.
+fn shape_bits(s: &Shape) -> Vec<u64> {
+    let v = match s {
+        Shape::Circle { c, r } => vec![c.x, c.y, *r],
+        Shape::Path(Geom::Line { a, b }) => vec![a.x, a.y, b.x, b.y],
+        Shape::Path(Geom::Arc {
+            c, r, a0, a1, ccw, ..
+        }) => vec![c.x, c.y, *r, *a0, *a1, f64::from(u8::from(*ccw))],
+    };
+    v.into_iter().map(f64::to_bits).collect()
+}
+
+/// For each object of `text`, the entities of the drawing's element it keeps: an element of
+/// the drawing with the same path, line type and shape whose entity is a LINE, ARC or
+/// CIRCLE of its own (an exploded polyline's parts are not), each used once.
+pub(super) fn kept_elements(
+    drawn: &[DrawnObject],
+    text: &[DrawnObject],
+    records: &[Record],
+) -> Vec<Option<KeptElement>> {
+    let by_line: HashMap<usize, &Record> = records.iter().map(|r| (r.line, r)).collect();
+    let mut per_line: HashMap<usize, usize> = HashMap::new();
+    for o in drawn {
+        if let Some(l) = entity_line(&o.origin) {
+            *per_line.entry(l).or_default() += 1;
+        }
+    }
+    type Key = (String, Arc<str>, Vec<u64>);
+    let key =
+        |o: &DrawnObject| -> Key { (path_key(&o.path), o.linetype.clone(), shape_bits(&o.shape)) };
+    let mut candidates: HashMap<Key, VecDeque<&DrawnObject>> = HashMap::new();
+    for o in drawn {
+        let own = entity_line(&o.origin)
+            .filter(|l| per_line.get(l) == Some(&1))
+            .and_then(|l| by_line.get(&l))
+            .is_some_and(|r| matches!(r.kind.as_str(), "LINE" | "ARC" | "CIRCLE"));
+        if own {
+            candidates.entry(key(o)).or_default().push_back(o);
+        }
+    }
+    text.iter()
+        .map(|o| {
+            let old = candidates.get_mut(&key(o))?.pop_front()?;
+            let geometry = entity_line(&old.origin)?;
+            let text = old
+                .text
+                .as_ref()
+                .filter(|_| texts_match(old.text.as_deref(), o.text.as_deref()))
+                .and_then(|t| entity_line(&t.origin))
+                .filter(|l| {
+                    by_line
+                        .get(l)
+                        .is_some_and(|r| matches!(r.kind.as_str(), "TEXT" | "MTEXT"))
+                });
+            Some(KeptElement {
+                geometry,
+                text,
+                layer: by_line.get(&geometry)?.layer.clone(),
+            })
+        })
         .collect()
 }
 
@@ -112,4 +214,63 @@ pub(super) fn layer_of(path: &str, suffix: Option<&str>, old: &BTreeMap<String, 
         Some(s) => format!("{base}~{s}"),
         None => base,
     }
+}
+
+/// The drawing `t` with the objects of the changed paths written in place of the entities
+/// `remove` chooses, keeping the entities of their unchanged elements ([`kept_elements`]).
+/// `ours` chooses the changed paths by name. Where the kept entities would not read back
+/// as the text says (a new text taken by a kept element, …), the changed paths are written
+/// whole instead.
+pub(super) fn write_changed(
+    t: &Target,
+    changed: &[DrawnObject],
+    drawn: &[DrawnObject],
+    remove: &dyn Fn(&Record) -> bool,
+    ours: &dyn Fn(&str) -> bool,
+    patterns: &Patterns,
+    input: InputMode,
+) -> Vec<u8> {
+    let old = old_layers(t.entities().iter().filter(|r| remove(r)));
+    let write = |keeps: &[Option<KeptElement>]| {
+        settle(changed, patterns, ours, &|suffixes| {
+            // an element given a parameter-text layer is written again
+            let kept = |i: usize| keeps[i].as_ref().filter(|_| suffixes[i].is_none());
+            let lines: HashSet<usize> = (0..changed.len())
+                .filter_map(kept)
+                .flat_map(|k| std::iter::once(k.geometry).chain(k.text))
+                .collect();
+            let remove = |r: &Record| remove(r) && !lines.contains(&r.line);
+            let place = |i: usize, suffix: Option<&str>| match kept(i) {
+                Some(k) => Placement {
+                    layer: k.layer.clone(),
+                    geometry: false,
+                    text: k.text.is_none(),
+                },
+                None => Placement {
+                    layer: layer_of(&changed[i].path, suffix, &old),
+                    geometry: true,
+                    text: true,
+                },
+            };
+            // read back: the kept elements where they stand, then the written ones
+            let mut order: Vec<usize> = (0..changed.len()).filter(|&i| kept(i).is_some()).collect();
+            order.sort_by_key(|&i| kept(i).map(|k| k.geometry));
+            order.extend((0..changed.len()).filter(|&i| kept(i).is_none()));
+            (t.splice(&remove, &plan(changed, suffixes, &place).1), order)
+        })
+    };
+    let keeps = match input {
+        InputMode::Reference => kept_elements(drawn, changed, t.entities()),
+        InputMode::Extended => vec![None; changed.len()],
+    };
+    if keeps.iter().any(Option::is_some) {
+        let out = write(&keeps);
+        let wanted = texts_by_key(changed, patterns);
+        let mut got = texts_by_key(&drawn_objects(&out, patterns, input), patterns);
+        got.retain(|k, _| wanted.contains_key(k));
+        if got == wanted {
+            return out;
+        }
+    }
+    write(&vec![None; changed.len()])
 }

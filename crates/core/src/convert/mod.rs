@@ -289,24 +289,45 @@ fn mtext_escape(s: &str) -> String {
 
 const TEXT_HEIGHT: f64 = 0.35;
 
-/// The layer of a path's entities, with an optional parameter-text suffix.
-type LayerOf<'a> = &'a dyn Fn(&str, Option<&str>) -> String;
+/// Where one object's entities go: their layer, and which of them are written (`--into`
+/// keeps the drawing's own entities of an unchanged element).
+struct Placement {
+    layer: String,
+    geometry: bool,
+    text: bool,
+}
+
+/// The placement of object `i` with its parameter-text suffix.
+type PlaceOf<'a> = &'a dyn Fn(usize, Option<&str>) -> Placement;
+
+/// Every entity of each object written, on the layer `text2dxf` names.
+fn written_whole(objects: &[DrawnObject]) -> impl Fn(usize, Option<&str>) -> Placement + '_ {
+    |i, suffix| Placement {
+        layer: layer_name(&objects[i].path, suffix),
+        geometry: true,
+        text: true,
+    }
+}
 
 /// What a text's objects become in a drawing: the path layers (line type CONTINUOUS) and
-/// the entities in the order they are written, on the layers `layer` names. Texts come
-/// after the elements: circles' first, then arcs', then lines', so that circles win as the
+/// the entities in the order they are written, placed as `place` says. Texts come after
+/// the elements: circles' first, then arcs', then lines', so that circles win as the
 /// assignment rule wants.
 fn plan(
     objects: &[DrawnObject],
     suffixes: &[Option<String>],
-    layer: LayerOf,
+    place: PlaceOf,
 ) -> (Vec<String>, Vec<NewEntity>) {
     let mut paths: Vec<&str> = objects.iter().map(|o| &*o.path).collect();
     paths.sort();
     paths.dedup();
     let layers = paths.iter().map(|p| layer_name(p, None)).collect();
     let mut entities = Vec::new();
-    for (o, suf) in objects.iter().zip(suffixes) {
+    for (i, (o, suf)) in objects.iter().zip(suffixes).enumerate() {
+        let at = place(i, suf.as_deref());
+        if !at.geometry {
+            continue;
+        }
         let shape = match &o.shape {
             Shape::Circle { c, r } => NewShape::Circle {
                 c: (c.x, c.y),
@@ -324,13 +345,13 @@ fn plan(
             },
         };
         entities.push(NewEntity {
-            layer: layer(&o.path, suf.as_deref()),
+            layer: at.layer,
             linetype: Some(o.linetype.to_string()),
             shape,
         });
     }
     for pass in 0..3 {
-        for (o, suf) in objects.iter().zip(suffixes) {
+        for (i, (o, suf)) in objects.iter().zip(suffixes).enumerate() {
             let Some(t) = o.text.as_ref().filter(|t| !t.tokens.is_empty()) else {
                 continue;
             };
@@ -342,8 +363,12 @@ fn plan(
             if rank != pass {
                 continue;
             }
+            let place = place(i, suf.as_deref());
+            if !place.text {
+                continue;
+            }
             entities.push(NewEntity {
-                layer: layer(&o.path, suf.as_deref()),
+                layer: place.layer,
                 linetype: None,
                 shape: NewShape::Text {
                     at: (at.x, at.y),
@@ -358,7 +383,7 @@ fn plan(
 
 /// A new drawing of the objects (AutoCAD 2000, [`DxfWriter`]).
 fn write_dxf(objects: &[DrawnObject], suffixes: &[Option<String>]) -> String {
-    let (layers, entities) = plan(objects, suffixes, &layer_name);
+    let (layers, entities) = plan(objects, suffixes, &written_whole(objects));
     let mut w = DxfWriter::new();
     for l in &layers {
         w.layer(l, "CONTINUOUS");
@@ -390,25 +415,27 @@ pub(super) fn texts_match(
 /// Writes objects as a DXF file. Elements whose text would be assigned to another element
 /// are moved to their own parameter-text layer (`PATH~A`, …), checked by reading back.
 pub fn objects_to_dxf(objects: &[DrawnObject], patterns: &Patterns) -> String {
+    let in_order: Vec<usize> = (0..objects.len()).collect();
     settle(objects, patterns, &|_| true, &|suffixes| {
-        write_dxf(objects, suffixes)
+        (write_dxf(objects, suffixes), in_order.clone())
     })
 }
 
 /// The drawing `render` makes of the objects, with parameter-text layers for the elements
 /// whose text the read-back assigns elsewhere (at most eight rounds). `ours` chooses, by
-/// path, the read-back objects that are `objects` (a drawing may hold other paths too).
+/// path, the read-back objects that are `objects` (a drawing may hold other paths too);
+/// `render` also says in which order they read back (indexes into `objects`).
 fn settle<T: AsRef<[u8]>>(
     objects: &[DrawnObject],
     patterns: &Patterns,
     ours: &dyn Fn(&str) -> bool,
-    render: &dyn Fn(&[Option<String>]) -> T,
+    render: &dyn Fn(&[Option<String>]) -> (T, Vec<usize>),
 ) -> T {
     let mut suffixes: Vec<Option<String>> = vec![None; objects.len()];
     let mut next = 0usize;
     let file = FileRef::new("check.dxf".into());
     for _ in 0..8 {
-        let out = render(&suffixes);
+        let (out, order) = render(&suffixes);
         let Ok(d) = millpath_dxf::read_dxf(out.as_ref()) else {
             return out;
         };
@@ -419,10 +446,17 @@ fn settle<T: AsRef<[u8]>>(
             return out;
         };
         let back: Vec<&DrawnObject> = back.iter().filter(|b| ours(&b.path)).collect();
+        // where each object reads back
+        let mut at = vec![None; objects.len()];
+        for (j, &i) in order.iter().enumerate() {
+            if let Some(a) = at.get_mut(i) {
+                *a = Some(j);
+            }
+        }
         let mut changed = false;
         for (i, o) in objects.iter().enumerate() {
-            let ok = back
-                .get(i)
+            let ok = at[i]
+                .and_then(|j| back.get(j))
                 .is_some_and(|b| texts_match(b.text.as_deref(), o.text.as_deref()));
             if !ok && suffixes[i].is_none() {
                 suffixes[i] = Some(suffix(next));
@@ -434,7 +468,7 @@ fn settle<T: AsRef<[u8]>>(
             return out;
         }
     }
-    render(&suffixes)
+    render(&suffixes).0
 }
 
 /// Path building for conversions (errors are the compiler's business, not the converter's).
