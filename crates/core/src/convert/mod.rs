@@ -421,6 +421,10 @@ pub fn objects_to_dxf(objects: &[DrawnObject], patterns: &Patterns) -> String {
     })
 }
 
+/// A drawing of objects with the given parameter-text suffixes, and the order in which the
+/// objects read back from it (indexes into the objects).
+type Render<'a, T> = &'a dyn Fn(&[Option<String>]) -> (T, Vec<usize>);
+
 /// The drawing `render` makes of the objects, with parameter-text layers for the elements
 /// whose text the read-back assigns elsewhere (at most eight rounds). `ours` chooses, by
 /// path, the read-back objects that are `objects` (a drawing may hold other paths too);
@@ -429,7 +433,7 @@ fn settle<T: AsRef<[u8]>>(
     objects: &[DrawnObject],
     patterns: &Patterns,
     ours: &dyn Fn(&str) -> bool,
-    render: &dyn Fn(&[Option<String>]) -> (T, Vec<usize>),
+    render: Render<T>,
 ) -> T {
     let mut suffixes: Vec<Option<String>> = vec![None; objects.len()];
     let mut next = 0usize;
