@@ -14,7 +14,6 @@ use super::keep::{drawn_objects, layer_key, path_key, unchanged_paths, write_cha
 use super::{front_options, layer_name, text_objects, texts_match};
 use crate::diag::{FileRef, Lang};
 use crate::front::drawing::DrawnObject;
-use crate::front::dxf::dxf_objects;
 use crate::front::layer::{effective_layer, path_name_of_layer};
 use crate::front::options::InputMode;
 use crate::load::names::Patterns;
@@ -100,7 +99,7 @@ pub fn text_into_dxf(
     let paths: Vec<String> = objects.iter().map(|o| o.path.to_string()).collect();
     let layers = PathLayers::new(patterns, &paths);
     let drawn = drawn_objects(target, patterns, input);
-    let unchanged = unchanged_paths(&drawn, &objects, patterns);
+    let unchanged = unchanged_paths(drawn.as_deref().unwrap_or_default(), &objects, patterns);
     let remove =
         |r: &Record| layers.replaces(r, input) && !unchanged.contains(&layer_key(&r.layer));
     let missing = missing_paths(&t, &layers, input);
@@ -124,7 +123,15 @@ pub fn text_into_dxf(
         return Ok(IntoOutcome::Unchanged);
     }
     let ours = |path: &str| !unchanged.contains(&path_key(path));
-    let out = write_changed(&t, &changed, &drawn, &remove, &ours, patterns, input);
+    let out = write_changed(
+        &t,
+        &changed,
+        drawn.as_deref().unwrap_or_default(),
+        &remove,
+        &ours,
+        patterns,
+        input,
+    );
     let all_read = paths.iter().all(|p| {
         let layer = path_name_of_layer(&layer_name(p, None));
         front_options(patterns, input)
@@ -133,7 +140,8 @@ pub fn text_into_dxf(
     });
     // a path the pattern does not read is no object of either file: compared, it would hide
     // the text's changes to it
-    if all_read && same_path_objects(target, &out, patterns, input) {
+    let written = || drawn_objects(&out, patterns, input);
+    if all_read && drawn.is_some_and(|a| written().is_some_and(|b| same_path_objects(&a, &b))) {
         return Ok(IntoOutcome::Unchanged);
     }
     Ok(IntoOutcome::Written(out))
@@ -156,19 +164,9 @@ fn missing_paths(t: &Target, layers: &PathLayers, input: InputMode) -> Vec<Strin
 /// Whether two drawings hold the same path objects, in the same order (the order breaks
 /// ties of the traversal): path, line type, shape and the text each element is given. Their
 /// other entities are no business of the compiler.
-fn same_path_objects(a: &[u8], b: &[u8], patterns: &Patterns, input: InputMode) -> bool {
-    let read = |bytes: &[u8]| -> Option<Vec<DrawnObject>> {
-        let d = millpath_dxf::read_dxf(bytes).ok()?;
-        let file = FileRef::new("into.dxf".into());
-        let mut diags = crate::diag::Diags::default();
-        let opts = front_options(patterns, input);
-        dxf_objects(&d, &file, &opts, &mut diags).ok().map(|o| o.0)
-    };
-    let (Some(a), Some(b)) = (read(a), read(b)) else {
-        return false;
-    };
+fn same_path_objects(a: &[DrawnObject], b: &[DrawnObject]) -> bool {
     a.len() == b.len()
-        && a.iter().zip(&b).all(|(x, y)| {
+        && a.iter().zip(b).all(|(x, y)| {
             x.path == y.path
                 && x.linetype == y.linetype
                 && x.shape == y.shape

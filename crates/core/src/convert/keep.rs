@@ -35,21 +35,19 @@ pub(super) fn layer_key(layer: &str) -> String {
     path_key(effective_layer(layer))
 }
 
-/// The drawing's path objects as the front-end reads them; empty when it cannot (then
-/// every path is written, as a plain `--into` does).
+/// A drawing's path objects as the front-end reads them; `None` when it cannot (then every
+/// path is written, as a plain `--into` does).
 pub(super) fn drawn_objects(
     target: &[u8],
     patterns: &Patterns,
     input: InputMode,
-) -> Vec<DrawnObject> {
-    let Ok(d) = millpath_dxf::read_dxf(target) else {
-        return Vec::new();
-    };
+) -> Option<Vec<DrawnObject>> {
+    let d = millpath_dxf::read_dxf(target).ok()?;
     let file = FileRef::new("into.dxf".into());
     let mut diags = Diags::default();
     dxf_objects(&d, &file, &front_options(patterns, input), &mut diags)
+        .ok()
         .map(|o| o.0)
-        .unwrap_or_default()
 }
 
 /// The canonical text of the paths of each key (usually one path).
@@ -266,11 +264,83 @@ pub(super) fn write_changed(
     if keeps.iter().any(Option::is_some) {
         let out = write(&keeps);
         let wanted = texts_by_key(changed, patterns);
-        let mut got = texts_by_key(&drawn_objects(&out, patterns, input), patterns);
+        let written = drawn_objects(&out, patterns, input).unwrap_or_default();
+        let mut got = texts_by_key(&written, patterns);
         got.retain(|k, _| wanted.contains_key(k));
         if got == wanted {
             return out;
         }
     }
     write(&vec![None; changed.len()])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{text_into_dxf, text_to_dxf, IntoOutcome};
+    use crate::diag::FileRef;
+    use crate::front::options::InputMode;
+    use crate::load::names::{Patterns, DEFAULT_FILE_PATTERN, DEFAULT_PATH_PATTERN};
+    use millpath_dxf::splice::scan;
+
+    const TWO: &str = "path 8998.1P {
+  start (0, 0)  M3 O2 T3 I1,5 B-0,2
+  end (60, 0)
+  mill (0, 0) -> (30, 0)  B-0,3
+  mill (30, 0) -> (60, 0)
+}
+
+path 8998.2P {
+  start (0, 20)  M3 O2 T3 I1,5 B-0,2
+  end (40, 20)
+  mill (0, 20) -> (20, 20)  B-0,3
+  mill (20, 20) -> (40, 20)
+}
+";
+
+    /// `(layer, kind, bytes)` of every entity.
+    fn entities(dxf: &[u8]) -> Vec<(String, String, Vec<u8>)> {
+        let t = scan(dxf).unwrap();
+        t.entities()
+            .iter()
+            .map(|r| (r.layer.clone(), r.kind.clone(), t.bytes_of(r).to_vec()))
+            .collect()
+    }
+
+    #[test]
+    fn only_the_edited_element_is_written_again() {
+        let patterns = Patterns::new(DEFAULT_PATH_PATTERN, DEFAULT_FILE_PATTERN).unwrap();
+        let file = FileRef::new("two.mpath".into());
+        let dxf = text_to_dxf(TWO, &file, &patterns).unwrap().into_bytes();
+        let target = FileRef::new("two.dxf".into());
+        let into = |text: &str| {
+            text_into_dxf(
+                text,
+                &file,
+                &patterns,
+                &dxf,
+                &target,
+                InputMode::Reference,
+                false,
+            )
+            .unwrap()
+        };
+        assert_eq!(into(TWO), IntoOutcome::Unchanged);
+        let edited = TWO.replace("(20, 20)  B-0,3", "(20, 20)  B-0,5");
+        let IntoOutcome::Written(out) = into(&edited) else {
+            panic!("the edit was not written");
+        };
+        let (before, after) = (entities(&dxf), entities(&out));
+        let gone: Vec<_> = before.iter().filter(|e| !after.contains(e)).collect();
+        let new: Vec<_> = after.iter().filter(|e| !before.contains(e)).collect();
+        // the one text entity: its old bytes out, the new in, on the path's layer
+        assert_eq!(gone.len(), 1, "{gone:?}");
+        assert_eq!(new.len(), 1, "{new:?}");
+        assert_eq!((&gone[0].0[..], &gone[0].1[..]), ("8998_2P", "MTEXT"));
+        assert_eq!((&new[0].0[..], &new[0].1[..]), ("8998_2P", "MTEXT"));
+        assert!(String::from_utf8_lossy(&new[0].2).contains("B-0,5"));
+        // and it reads back as the edited text
+        let (text, _) =
+            super::super::dxf_to_text(&out, &target, &patterns, InputMode::Reference).unwrap();
+        assert_eq!(text, edited);
+    }
 }
