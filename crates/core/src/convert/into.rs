@@ -81,7 +81,8 @@ pub enum IntoOutcome {
 
 /// `text2dxf --into`: the drawing `target` with the paths of the text in place of its path
 /// objects. A path the text leaves as the drawing has it keeps its entities byte for byte;
-/// a changed one is written on its old layer (`keep.rs`). A target that is no readable DXF
+/// a changed one keeps those of its unchanged elements, the rest is written on its old
+/// layer (`keep.rs`). A target that is no readable DXF
 /// is a located error; nothing is half-written because the result is returned whole. The
 /// objects of paths the text does not define would be deleted: refused naming them
 /// ([`Msg::IntoWouldDeletePaths`]) unless `delete_missing`.
