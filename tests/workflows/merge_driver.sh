@@ -73,6 +73,14 @@ edit part.dxf '/path 2001.1P/,/}/s/B-0,2/B-0,4/'
 git commit -qam "ours: 2001.1P B-0,4"
 git merge -q --no-edit theirs >../merge.out 2>&1 || { cat ../merge.out; fail "edits in different paths did not merge"; }
 [ ! -e part.merge.mpath ] || fail "a clean merge left part.merge.mpath"
+# the merge wrote their edit into our drawing and left the rest byte for byte: the diff
+# from ours is their one element (its line and text), not a rewrite of both paths
+merged_lines=$(git diff HEAD^1 HEAD -- part.dxf | grep -c '^[-+][^-+]' || true)
+echo "the merge changed $merged_lines lines of our drawing"
+[ "$merged_lines" -le 40 ] || fail "the merge rewrote our drawing: $merged_lines changed lines"
+ents() { "$PY" -c "import ezdxf,sys; [print(e.dxf.layer, e.dxftype(), e.dxf.handle) for e in ezdxf.readfile(sys.argv[1]).modelspace() if not e.dxf.layer.startswith('2002_1P')]" "$1" | LC_ALL=C sort; }
+git show HEAD^1:part.dxf >../ours.dxf
+diff <(ents ../ours.dxf) <(ents part.dxf) || fail "the merge changed entities outside their path"
 # both edits applied by hand to the base drawing
 git show base-version:part.dxf >../byhand.dxf
 edit ../byhand.dxf '/path 2001.1P/,/}/s/B-0,2/B-0,4/; /path 2002.1P/,/}/s/mill (5, 20) -> (25, 20)/mill (5, 20) -> (25, 20)  B-0,3/'

@@ -3,6 +3,7 @@
 #[macro_use]
 mod out;
 mod args;
+mod claims;
 mod clap_de;
 mod commands;
 mod compat;

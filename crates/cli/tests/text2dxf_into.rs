@@ -285,10 +285,11 @@ fn kinds_on(dxf: &str, layer: &str) -> Vec<String> {
 }
 
 /// `--extended`: a CAD drawing with polylines and block references on its path layer, turned
-/// into text by `dxf2text --extended`, goes back with `text2dxf --extended --into`: the
-/// polylines and blocks are replaced by the text's lines and arcs (the same G-code), the
-/// ELLIPSE on a layer of notes stays. Without `--extended` they are kept, and a warning says
-/// that the paths may now be drawn twice.
+/// into text by `dxf2text --extended`, goes back with `text2dxf --extended --into`. Unedited,
+/// the drawing stays byte for byte. Edited, the polylines and blocks are replaced by the
+/// text's lines and arcs (the edited text's G-code), the ELLIPSE on a layer of notes stays.
+/// Without `--extended` they are kept, and a warning says that the paths may now be drawn
+/// twice.
 #[test]
 fn extended_into_replaces_polylines_and_blocks_and_plain_into_warns() {
     let dir = tempfile::tempdir().unwrap();
@@ -299,8 +300,6 @@ fn extended_into_replaces_polylines_and_blocks_and_plain_into_warns() {
     let mut compile = vec!["compile", "--extended"];
     compile.extend(MACHINE);
     compile.push("7001.dxf");
-    ok(&millpath(d, &compile));
-    let expected = std::fs::read(d.join("7001_Milling.gcode")).unwrap();
     ok(&millpath(
         d,
         &["dxf2text", "--extended", "7001.dxf", "-o", "7001.mpath"],
@@ -310,7 +309,27 @@ fn extended_into_replaces_polylines_and_blocks_and_plain_into_warns() {
         assert!(kinds_on(&original, "7001_1P").contains(&k.to_string()));
     }
 
-    // with --extended: replaced, no warning, the same G-code without --extended
+    // unedited: the path is as the drawing has it, nothing is written
+    ok(&millpath(
+        d,
+        &["text2dxf", "--extended", "7001.mpath", "--into", "7001.dxf"],
+    ));
+    assert!(std::fs::read_to_string(d.join("7001.dxf")).unwrap() == original);
+
+    // edited: replaced, no warning, the edited text's G-code without --extended
+    let text = std::fs::read_to_string(d.join("7001.mpath")).unwrap();
+    assert!(text.contains(" I1,5 "), "{text}");
+    std::fs::write(d.join("7001.mpath"), text.replacen(" I1,5 ", " I1 ", 1)).unwrap();
+    let t = d.join("text");
+    std::fs::create_dir(&t).unwrap();
+    std::fs::copy(d.join("7001.mpath"), t.join("7001.mpath")).unwrap();
+    let mut of_text = vec!["compile"];
+    of_text.extend(MACHINE);
+    of_text.push("7001.mpath");
+    ok(&millpath(&t, &of_text));
+    let expected = std::fs::read_to_string(t.join("7001_Milling.gcode"))
+        .unwrap()
+        .replace("7001.mpath", "7001");
     let o = millpath(
         d,
         &["text2dxf", "--extended", "7001.mpath", "--into", "7001.dxf"],
@@ -324,10 +343,10 @@ fn extended_into_replaces_polylines_and_blocks_and_plain_into_warns() {
         assert!(!kinds.contains(&k.to_string()), "{kinds:?}");
     }
     assert_eq!(kinds_on(&back, "Notes"), kinds_on(&original, "Notes"));
-    std::fs::remove_file(d.join("7001_Milling.gcode")).unwrap();
     compile.retain(|a| *a != "--extended");
     ok(&millpath(d, &compile));
-    assert!(std::fs::read(d.join("7001_Milling.gcode")).unwrap() == expected);
+    let of_drawing = std::fs::read_to_string(d.join("7001_Milling.gcode")).unwrap();
+    assert_eq!(of_drawing.replace("7001.dxf", "7001"), expected);
 
     // without --extended: kept, with a warning that names them and the way out
     copy_writable(&cad, &d.join("7001.dxf"));

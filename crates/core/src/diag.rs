@@ -434,6 +434,7 @@ messages! {
     // a post change (issue 32): the program of this drawing for the earlier post
     OtherPostProgramRemoved = "Removed {0}: this drawing's program of an earlier compile for another post; this compile wrote {1}", "{0} entfernt: das Programm dieser Zeichnung aus einer früheren Übersetzung für einen anderen Post; diese Übersetzung hat {1} geschrieben";
     OtherPostProgramKept = "{0} is this drawing's program for another post and holds measured heights (adjust-z): kept, but it is not the program of this compile ({1}); delete it once you no longer need it", "{0} ist das Programm dieser Zeichnung für einen anderen Post und enthält gemessene Höhen (adjust-z): behalten, aber es ist nicht das Programm dieser Übersetzung ({1}); löschen, sobald es nicht mehr gebraucht wird";
+    OutputTakenInRun = "{0} would write {1}, which {2} wrote in this run (an R suffix gives both the same output name): not written, so that no program silently replaces the other's; change the R value or the file name of one of them", "{0} würde {1} schreiben, das {2} in diesem Lauf geschrieben hat (ein R-Suffix gibt beiden denselben Ausgabenamen): nicht geschrieben, damit kein Programm stillschweigend das andere ersetzt; den R-Wert oder den Dateinamen einer der beiden ändern";
 }
 
 impl Msg {

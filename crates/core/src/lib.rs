@@ -75,6 +75,9 @@ pub struct FileOutcome {
     pub stats: Vec<(String, Stats)>,
     /// Material removed by the written program (mm³, the second opinion's stock model).
     pub removed_volume: Option<f64>,
+    /// The start marker of the path whose outputs these are (its text holds the `R` that
+    /// names them): where messages about the output names point.
+    pub start: Option<Origin>,
 }
 
 /// Compiles one command-line file (reference-input.md §7.5). Errors go to `session.diags`.
@@ -217,6 +220,7 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
         session.diags.push(d);
     }
     let prefix = output_prefix(input, &model.params.r);
+    outcome.start = model.raw.start.as_ref().map(|m| m.origin.clone());
     let with = |s: &str| PathBuf::from(format!("{}{s}", prefix.display()));
     // the milling program's extension is its post's (`.gcode`, xcam's `.NCC`)
     let milling = format!(

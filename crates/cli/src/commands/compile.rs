@@ -2,6 +2,7 @@
 //! session of its own): a bad one stops only itself, and a summary names those not written.
 
 use crate::args::{lang_of, settings_for, MachineArgs};
+use crate::claims::Claims;
 use crate::inputs::compile_inputs;
 use crate::output::{flush_info, print_human, print_stats, write_drawing_outputs};
 use crate::report;
@@ -52,6 +53,7 @@ pub fn run(m: &MachineArgs, files: &[String]) -> u8 {
     let lang = each.first().map_or(early, |s| s.lang);
     let mut not_written = Vec::new();
     let mut sweeper = Sweeper::default();
+    let mut claims = Claims::default();
     let colliding = same_outputs(&inputs);
     for (i, (input, settings)) in inputs.iter().zip(&each).enumerate() {
         if let Some(other) = colliding.get(&i) {
@@ -68,7 +70,7 @@ pub fn run(m: &MachineArgs, files: &[String]) -> u8 {
             not_written.push(input.as_path());
             continue;
         }
-        if !compile_one(settings, input, &mut sweeper) {
+        if !compile_one(settings, input, &mut sweeper, &mut claims) {
             not_written.push(input.as_path());
         }
     }
@@ -127,8 +129,14 @@ const OUTPUT_ENDS: [&str; 5] = [
 
 /// Compiles one drawing in a session of its own and writes its outputs; prints its progress,
 /// statistics and diagnostics. Whether its outputs were written. The temporaries that a
-/// killed earlier compile left beside its outputs are swept first (`stale.rs`).
-fn compile_one(settings: &Settings, input: &Path, sweeper: &mut Sweeper) -> bool {
+/// killed earlier compile left beside its outputs are swept first (`stale.rs`). Outputs
+/// another drawing of the run wrote (through an `R` suffix) are refused (`claims.rs`).
+fn compile_one(
+    settings: &Settings,
+    input: &Path,
+    sweeper: &mut Sweeper,
+    claims: &mut Claims,
+) -> bool {
     let lang = settings.lang;
     let fs = OsFileSystem;
     let mut session = match Session::new(settings.clone(), &fs) {
@@ -140,8 +148,12 @@ fn compile_one(settings: &Settings, input: &Path, sweeper: &mut Sweeper) -> bool
     };
     session.one_file = true;
     let prefix = millpath_core::output_prefix(input, "");
-    for end in OUTPUT_ENDS {
-        sweeper.sweep(Path::new(&format!("{}{end}", prefix.display())));
+    let own: Vec<PathBuf> = OUTPUT_ENDS
+        .iter()
+        .map(|end| PathBuf::from(format!("{}{end}", prefix.display())))
+        .collect();
+    for o in &own {
+        sweeper.sweep(o);
     }
     let outcome = compile_file(&mut session, input, &millpath_core::banner());
     // a drawing's R (its outputs under another name)
@@ -150,8 +162,41 @@ fn compile_one(settings: &Settings, input: &Path, sweeper: &mut Sweeper) -> bool
     }
     flush_info(&mut session);
     let mut write_errors = Diags::default();
-    // a failed drawing writes nothing and leaves none of its older outputs looking current
-    let written = write_drawing_outputs(input, &outcome, lang, &mut write_errors);
+    let paths = || outcome.outputs.iter().map(|o| o.path.as_path());
+    let written = if let Some((file, other)) = claims.taken(input, paths()) {
+        let at = outcome.start.clone();
+        let mut d = Diagnostic::error(
+            Msg::OutputTakenInRun,
+            at.unwrap_or_else(|| Origin::File(FileRef::new(input.to_path_buf()))),
+            millpath_core::args![input.display(), file.display(), other.input.display()],
+        );
+        if let Some(theirs) = &other.start {
+            let note = match lang {
+                Lang::En => "start of the other drawing's path",
+                Lang::De => "Start des Pfads der anderen Zeichnung",
+            };
+            d = d.with_related(theirs.clone(), note);
+        }
+        write_errors.push(d);
+        // the other drawing's files stay as it wrote them
+        for tmp in outcome.outputs.iter().filter_map(|o| o.staged.as_ref()) {
+            let _ = std::fs::remove_file(tmp);
+        }
+        false
+    } else if outcome.outputs.is_empty()
+        && claims
+            .taken(input, own.iter().map(PathBuf::as_path))
+            .is_some()
+    {
+        // failed, and its outputs' names are another drawing's of this run: those stay
+        false
+    } else {
+        // a failed drawing writes nothing and leaves none of its older outputs looking current
+        write_drawing_outputs(input, &outcome, lang, &mut write_errors)
+    };
+    if written {
+        claims.claim(input, outcome.start.clone(), paths());
+    }
     if written {
         print_stats(&outcome, lang);
         // the exact estimate (the statistics above keep the reference's whole minutes);

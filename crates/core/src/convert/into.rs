@@ -10,10 +10,10 @@
 //! `text2dxf --into` through `dxf::splice` on the path layers (the pattern's and the text's), and
 //! `overwrite_losses`: what a plain `text2dxf` would destroy in an existing drawing.
 
-use super::{front_options, layer_name, plan, settle, text_objects, texts_match};
+use super::keep::{drawn_objects, layer_key, path_key, unchanged_paths, write_changed};
+use super::{front_options, layer_name, text_objects, texts_match};
 use crate::diag::{FileRef, Lang};
 use crate::front::drawing::DrawnObject;
-use crate::front::dxf::dxf_objects;
 use crate::front::layer::{effective_layer, path_name_of_layer};
 use crate::front::options::InputMode;
 use crate::load::names::Patterns;
@@ -80,10 +80,12 @@ pub enum IntoOutcome {
 }
 
 /// `text2dxf --into`: the drawing `target` with the paths of the text in place of its path
-/// objects. A target that is no readable DXF is a located error; nothing is half-written
-/// because the result is returned whole. The objects of paths the text does not define
-/// would be deleted: refused naming them ([`Msg::IntoWouldDeletePaths`]) unless
-/// `delete_missing`.
+/// objects. A path the text leaves as the drawing has it keeps its entities byte for byte;
+/// a changed one keeps those of its unchanged elements, the rest is written on its old
+/// layer (`keep.rs`). A target that is no readable DXF
+/// is a located error; nothing is half-written because the result is returned whole. The
+/// objects of paths the text does not define would be deleted: refused naming them
+/// ([`Msg::IntoWouldDeletePaths`]) unless `delete_missing`.
 pub fn text_into_dxf(
     src: &str,
     file: &Arc<FileRef>,
@@ -97,7 +99,10 @@ pub fn text_into_dxf(
     let t = scan(target).map_err(|e| vec![load_error(target_file, e)])?;
     let paths: Vec<String> = objects.iter().map(|o| o.path.to_string()).collect();
     let layers = PathLayers::new(patterns, &paths);
-    let remove = |r: &Record| layers.replaces(r, input);
+    let drawn = drawn_objects(target, patterns, input);
+    let unchanged = unchanged_paths(drawn.as_deref().unwrap_or_default(), &objects, patterns);
+    let remove =
+        |r: &Record| layers.replaces(r, input) && !unchanged.contains(&layer_key(&r.layer));
     let missing = missing_paths(&t, &layers, input);
     if !missing.is_empty() && !delete_missing {
         return Err(vec![Diagnostic::error(
@@ -110,9 +115,24 @@ pub fn text_into_dxf(
             ],
         )]);
     }
-    let out = settle(&objects, patterns, &|suffixes| {
-        t.splice(&remove, &plan(&objects, suffixes).1)
-    });
+    let changed: Vec<DrawnObject> = objects
+        .iter()
+        .filter(|o| !unchanged.contains(&path_key(&layer_name(&o.path, None))))
+        .cloned()
+        .collect();
+    if changed.is_empty() && missing.is_empty() {
+        return Ok(IntoOutcome::Unchanged);
+    }
+    let ours = |path: &str| !unchanged.contains(&path_key(path));
+    let out = write_changed(
+        &t,
+        &changed,
+        drawn.as_deref().unwrap_or_default(),
+        &remove,
+        &ours,
+        patterns,
+        input,
+    );
     let all_read = paths.iter().all(|p| {
         let layer = path_name_of_layer(&layer_name(p, None));
         front_options(patterns, input)
@@ -121,7 +141,8 @@ pub fn text_into_dxf(
     });
     // a path the pattern does not read is no object of either file: compared, it would hide
     // the text's changes to it
-    if all_read && same_path_objects(target, &out, patterns, input) {
+    let written = || drawn_objects(&out, patterns, input);
+    if all_read && drawn.is_some_and(|a| written().is_some_and(|b| same_path_objects(&a, &b))) {
         return Ok(IntoOutcome::Unchanged);
     }
     Ok(IntoOutcome::Written(out))
@@ -144,19 +165,9 @@ fn missing_paths(t: &Target, layers: &PathLayers, input: InputMode) -> Vec<Strin
 /// Whether two drawings hold the same path objects, in the same order (the order breaks
 /// ties of the traversal): path, line type, shape and the text each element is given. Their
 /// other entities are no business of the compiler.
-fn same_path_objects(a: &[u8], b: &[u8], patterns: &Patterns, input: InputMode) -> bool {
-    let read = |bytes: &[u8]| -> Option<Vec<DrawnObject>> {
-        let d = millpath_dxf::read_dxf(bytes).ok()?;
-        let file = FileRef::new("into.dxf".into());
-        let mut diags = crate::diag::Diags::default();
-        let opts = front_options(patterns, input);
-        dxf_objects(&d, &file, &opts, &mut diags).ok().map(|o| o.0)
-    };
-    let (Some(a), Some(b)) = (read(a), read(b)) else {
-        return false;
-    };
+fn same_path_objects(a: &[DrawnObject], b: &[DrawnObject]) -> bool {
     a.len() == b.len()
-        && a.iter().zip(&b).all(|(x, y)| {
+        && a.iter().zip(b).all(|(x, y)| {
             x.path == y.path
                 && x.linetype == y.linetype
                 && x.shape == y.shape

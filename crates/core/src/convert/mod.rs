@@ -9,6 +9,7 @@
 //! elsewhere to `PATH~A` layers.
 
 mod into;
+mod keep;
 pub use into::{
     kept_entities, kept_extended_geometry, overwrite_losses, text_into_dxf, IntoOutcome, Losses,
 };
@@ -196,10 +197,6 @@ fn front_options(patterns: &Patterns, input: InputMode) -> FrontOptions<'_> {
 
 /// The canonical text of a drawing: paths sorted by name.
 pub fn objects_to_text(objects: &[DrawnObject], paths: &[RawPath], header: Option<&str>) -> String {
-    let mut by_path: BTreeMap<&str, Vec<usize>> = BTreeMap::new();
-    for (i, o) in objects.iter().enumerate() {
-        by_path.entry(&*o.path).or_default().push(i);
-    }
     let mut out = String::new();
     if let Some(h) = header {
         for line in h.lines() {
@@ -207,21 +204,28 @@ pub fn objects_to_text(objects: &[DrawnObject], paths: &[RawPath], header: Optio
         }
         out.push('\n');
     }
-    let mut first = true;
+    let blocks: Vec<String> = path_texts(objects, paths).into_values().collect();
+    out.push_str(&blocks.join("\n"));
+    out
+}
+
+/// The canonical text of each path (`path NAME { … }`), by path name.
+fn path_texts<'a>(objects: &'a [DrawnObject], paths: &[RawPath]) -> BTreeMap<&'a str, String> {
+    let mut by_path: BTreeMap<&str, Vec<usize>> = BTreeMap::new();
+    for (i, o) in objects.iter().enumerate() {
+        by_path.entry(&*o.path).or_default().push(i);
+    }
+    let mut texts = BTreeMap::new();
     for (name, indices) in by_path {
         let raw = paths.iter().find(|p| p.name == name);
         let path_o = raw
             .and_then(|r| r.start_text.as_ref())
             .and_then(|t| t.raw('O'))
             .and_then(parse_number);
-        if !first {
-            out.push('\n');
-        }
-        first = false;
-        out.push_str(&format!(
+        let mut out = format!(
             "path {} {{\n",
             millpath_syntax::lexer::quote_if_needed(name)
-        ));
+        );
         for i in ordered(&indices, objects, raw, path_o) {
             let o = &objects[i];
             let kind = kind_of(o, path_o);
@@ -248,8 +252,9 @@ pub fn objects_to_text(objects: &[DrawnObject], paths: &[RawPath], header: Optio
             out.push('\n');
         }
         out.push_str("}\n");
+        texts.insert(name, out);
     }
-    out
+    texts
 }
 
 /// Layer name of a path as CAD programs export it (`.` → `_`), with an optional
@@ -284,16 +289,45 @@ fn mtext_escape(s: &str) -> String {
 
 const TEXT_HEIGHT: f64 = 0.35;
 
+/// Where one object's entities go: their layer, and which of them are written (`--into`
+/// keeps the drawing's own entities of an unchanged element).
+struct Placement {
+    layer: String,
+    geometry: bool,
+    text: bool,
+}
+
+/// The placement of object `i` with its parameter-text suffix.
+type PlaceOf<'a> = &'a dyn Fn(usize, Option<&str>) -> Placement;
+
+/// Every entity of each object written, on the layer `text2dxf` names.
+fn written_whole(objects: &[DrawnObject]) -> impl Fn(usize, Option<&str>) -> Placement + '_ {
+    |i, suffix| Placement {
+        layer: layer_name(&objects[i].path, suffix),
+        geometry: true,
+        text: true,
+    }
+}
+
 /// What a text's objects become in a drawing: the path layers (line type CONTINUOUS) and
-/// the entities in the order they are written. Texts come after the elements: circles'
-/// first, then arcs', then lines', so that circles win as the assignment rule wants.
-fn plan(objects: &[DrawnObject], suffixes: &[Option<String>]) -> (Vec<String>, Vec<NewEntity>) {
+/// the entities in the order they are written, placed as `place` says. Texts come after
+/// the elements: circles' first, then arcs', then lines', so that circles win as the
+/// assignment rule wants.
+fn plan(
+    objects: &[DrawnObject],
+    suffixes: &[Option<String>],
+    place: PlaceOf,
+) -> (Vec<String>, Vec<NewEntity>) {
     let mut paths: Vec<&str> = objects.iter().map(|o| &*o.path).collect();
     paths.sort();
     paths.dedup();
     let layers = paths.iter().map(|p| layer_name(p, None)).collect();
     let mut entities = Vec::new();
-    for (o, suf) in objects.iter().zip(suffixes) {
+    for (i, (o, suf)) in objects.iter().zip(suffixes).enumerate() {
+        let at = place(i, suf.as_deref());
+        if !at.geometry {
+            continue;
+        }
         let shape = match &o.shape {
             Shape::Circle { c, r } => NewShape::Circle {
                 c: (c.x, c.y),
@@ -311,13 +345,13 @@ fn plan(objects: &[DrawnObject], suffixes: &[Option<String>]) -> (Vec<String>, V
             },
         };
         entities.push(NewEntity {
-            layer: layer_name(&o.path, suf.as_deref()),
+            layer: at.layer,
             linetype: Some(o.linetype.to_string()),
             shape,
         });
     }
     for pass in 0..3 {
-        for (o, suf) in objects.iter().zip(suffixes) {
+        for (i, (o, suf)) in objects.iter().zip(suffixes).enumerate() {
             let Some(t) = o.text.as_ref().filter(|t| !t.tokens.is_empty()) else {
                 continue;
             };
@@ -329,8 +363,12 @@ fn plan(objects: &[DrawnObject], suffixes: &[Option<String>]) -> (Vec<String>, V
             if rank != pass {
                 continue;
             }
+            let place = place(i, suf.as_deref());
+            if !place.text {
+                continue;
+            }
             entities.push(NewEntity {
-                layer: layer_name(&o.path, suf.as_deref()),
+                layer: place.layer,
                 linetype: None,
                 shape: NewShape::Text {
                     at: (at.x, at.y),
@@ -345,7 +383,7 @@ fn plan(objects: &[DrawnObject], suffixes: &[Option<String>]) -> (Vec<String>, V
 
 /// A new drawing of the objects (AutoCAD 2000, [`DxfWriter`]).
 fn write_dxf(objects: &[DrawnObject], suffixes: &[Option<String>]) -> String {
-    let (layers, entities) = plan(objects, suffixes);
+    let (layers, entities) = plan(objects, suffixes, &written_whole(objects));
     let mut w = DxfWriter::new();
     for l in &layers {
         w.layer(l, "CONTINUOUS");
@@ -377,21 +415,31 @@ pub(super) fn texts_match(
 /// Writes objects as a DXF file. Elements whose text would be assigned to another element
 /// are moved to their own parameter-text layer (`PATH~A`, …), checked by reading back.
 pub fn objects_to_dxf(objects: &[DrawnObject], patterns: &Patterns) -> String {
-    settle(objects, patterns, &|suffixes| write_dxf(objects, suffixes))
+    let in_order: Vec<usize> = (0..objects.len()).collect();
+    settle(objects, patterns, &|_| true, &|suffixes| {
+        (write_dxf(objects, suffixes), in_order.clone())
+    })
 }
 
+/// A drawing of objects with the given parameter-text suffixes, and the order in which the
+/// objects read back from it (indexes into the objects).
+type Render<'a, T> = &'a dyn Fn(&[Option<String>]) -> (T, Vec<usize>);
+
 /// The drawing `render` makes of the objects, with parameter-text layers for the elements
-/// whose text the read-back assigns elsewhere (at most eight rounds).
+/// whose text the read-back assigns elsewhere (at most eight rounds). `ours` chooses, by
+/// path, the read-back objects that are `objects` (a drawing may hold other paths too);
+/// `render` also says in which order they read back (indexes into `objects`).
 fn settle<T: AsRef<[u8]>>(
     objects: &[DrawnObject],
     patterns: &Patterns,
-    render: &dyn Fn(&[Option<String>]) -> T,
+    ours: &dyn Fn(&str) -> bool,
+    render: Render<T>,
 ) -> T {
     let mut suffixes: Vec<Option<String>> = vec![None; objects.len()];
     let mut next = 0usize;
     let file = FileRef::new("check.dxf".into());
     for _ in 0..8 {
-        let out = render(&suffixes);
+        let (out, order) = render(&suffixes);
         let Ok(d) = millpath_dxf::read_dxf(out.as_ref()) else {
             return out;
         };
@@ -401,10 +449,18 @@ fn settle<T: AsRef<[u8]>>(
         let Ok((back, _)) = dxf_objects(&d, &file, &opts, &mut diags) else {
             return out;
         };
+        let back: Vec<&DrawnObject> = back.iter().filter(|b| ours(&b.path)).collect();
+        // where each object reads back
+        let mut at = vec![None; objects.len()];
+        for (j, &i) in order.iter().enumerate() {
+            if let Some(a) = at.get_mut(i) {
+                *a = Some(j);
+            }
+        }
         let mut changed = false;
         for (i, o) in objects.iter().enumerate() {
-            let ok = back
-                .get(i)
+            let ok = at[i]
+                .and_then(|j| back.get(j))
                 .is_some_and(|b| texts_match(b.text.as_deref(), o.text.as_deref()));
             if !ok && suffixes[i].is_none() {
                 suffixes[i] = Some(suffix(next));
@@ -416,7 +472,7 @@ fn settle<T: AsRef<[u8]>>(
             return out;
         }
     }
-    render(&suffixes)
+    render(&suffixes).0
 }
 
 /// Path building for conversions (errors are the compiler's business, not the converter's).
