@@ -45,11 +45,17 @@ impl Emitter<'_> {
         if ch.segs.is_empty() {
             return Ok(());
         }
+        // the quick check visits each segment once a level: its geometries transformed once
+        // (a list as long as the chain, only in the editor; compile transforms on demand)
+        let geoms = self
+            .quick_order
+            .then(|| ch.segs.iter().map(|s| s.geom.transform(&fr.t)).collect());
         let view = ChainView {
             segs: &ch.segs,
             t: fr.t,
             h,
             passes: &passes,
+            geoms,
         };
         let th = h + p.t;
         // every move of a pass belongs to its own segment, not to the chain's first
@@ -279,11 +285,16 @@ struct ChainView<'a> {
     t: Transform,
     h: f64,
     passes: &'a SharedPasses,
+    /// Every segment's geometry transformed already (the editor's quick check), the same bits.
+    geoms: Option<Vec<Geom>>,
 }
 
 impl ChainView<'_> {
     fn geom(&self, si: usize) -> Geom {
-        self.segs[si].geom.transform(&self.t)
+        match &self.geoms {
+            Some(g) => g[si],
+            None => self.segs[si].geom.transform(&self.t),
+        }
     }
 }
 
@@ -542,6 +553,7 @@ mod tests {
             t,
             h,
             passes: &sp,
+            geoms: None,
         };
         let head = ends[0].0.with_z(lists[0][0]);
         let want = fast_order_reference(&ends, &lists, head);

@@ -183,11 +183,12 @@ impl<'a> Emitter<'a> {
         if self.at_capacity() {
             return;
         }
-        let text = if self.dry {
-            String::new()
-        } else {
-            self.ctl.post.comment(indent, &text(), &self.globals)
-        };
+        if self.dry {
+            // a dry record only counts its comment lines
+            self.rec.lines += 1;
+            return;
+        }
+        let text = self.ctl.post.comment(indent, &text(), &self.globals);
         let source = self.source.unwrap_or(NO_SOURCE);
         self.rec.comment(text, source);
     }
@@ -202,6 +203,10 @@ impl<'a> Emitter<'a> {
             return;
         }
         self.pass_before(kind, feed);
+        if self.rec.counts_only() {
+            self.rec.count_move(kind == Kind::HSweep, self.source);
+            return;
+        }
         let text = if self.dry { String::new() } else { text(self) };
         let item = Item {
             kind,
@@ -229,6 +234,11 @@ impl<'a> Emitter<'a> {
         self.stopped
     }
     fn at_capacity(&mut self) -> bool {
+        // a dry record writes a line for every move: below MAX_ITEMS lines neither bound is
+        // near
+        if self.dry && self.rec.lines < MAX_ITEMS {
+            return self.full;
+        }
         if self.rec.move_count() >= MAX_ITEMS || self.rec.lines >= MAX_LINES {
             self.full = true;
         }
@@ -279,17 +289,15 @@ impl<'a> Emitter<'a> {
     /// Sets where the last move goes.
     pub(crate) fn to(&mut self, t: Target) {
         self.pass_moved(t);
-        if let Some(it) = self.rec.items.last_mut() {
-            it.target = t;
-            // each value was in range, but sums of them (T + O, S·(1 + 2e-6), h + depth,
-            // placed subpaths) may not be: no program leaves the sane range
-            let centre = t.arc.map(|(c, _)| c);
-            let bad = [t.x, t.y, t.z, centre.map(|c| c.x), centre.map(|c| c.y)]
-                .into_iter()
-                .flatten()
-                .find(|v| !(v.is_finite() && v.abs() <= MAX_MAGNITUDE));
-            if let (Some(v), None) = (bad, self.out_of_range) {
-                self.out_of_range = Some((v, it.source));
+        let Some(source) = self.rec.last_move(t) else {
+            return;
+        };
+        // each value was in range, but sums of them (T + O, S·(1 + 2e-6), h + depth,
+        // placed subpaths) may not be: no program leaves the sane range (the first such
+        // move is reported)
+        if self.out_of_range.is_none() {
+            if let Some(v) = out_of_range(&t) {
+                self.out_of_range = Some((v, source));
             }
         }
     }
@@ -323,6 +331,25 @@ impl<'a> Emitter<'a> {
             self.contour_end(fr, e);
         }
     }
+}
+
+/// The first value of a target (X, Y, Z, the arc centre's X and Y) outside the sane range.
+fn out_of_range(t: &Target) -> Option<f64> {
+    // `abs() <= MAX_MAGNITUDE` is false for NaN and the infinities: one test a value
+    let sane = |v: Option<f64>| v.is_none_or(|v| v.abs() <= MAX_MAGNITUDE);
+    let centre_sane = t
+        .arc
+        .is_none_or(|(c, _)| sane(Some(c.x)) && sane(Some(c.y)));
+    if sane(t.x) && sane(t.y) && sane(t.z) && centre_sane {
+        return None;
+    }
+    let bad = |v: &f64| !(v.is_finite() && v.abs() <= MAX_MAGNITUDE);
+    let centre = t.arc.map(|(c, _)| c);
+    t.x.filter(bad)
+        .or_else(|| t.y.filter(bad))
+        .or_else(|| t.z.filter(bad))
+        .or_else(|| centre.map(|c| c.x).filter(bad))
+        .or_else(|| centre.map(|c| c.y).filter(bad))
 }
 
 pub(crate) fn element_origin(e: &Element) -> &Origin {
