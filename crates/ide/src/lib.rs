@@ -445,6 +445,9 @@ pub struct Analysis {
     /// The walks of this analysis, for the next one of the document (an edit that changes
     /// no geometry, kind, order or marker walks no path again).
     pub traversals: TraversalMemo,
+    /// The models the check built, held only to be freed with the analysis: the server frees
+    /// a replaced analysis after the next answer (`lsp/src/worker.rs`), not on its way.
+    pub(crate) _models: Vec<Arc<millpath_core::model::Model>>,
 }
 
 /// The workspace file system, recording what an analysis reads (its dependencies).
@@ -558,6 +561,7 @@ pub fn analyze_from(
     let mut declared = Vec::new();
     let mut objects_clean = false;
     let mut paths = Vec::new();
+    let mut models = Vec::new();
     let mut diagnostics;
     match Session::new(check, &fs) {
         Ok(mut session) => {
@@ -613,6 +617,7 @@ pub fn analyze_from(
                 }
             }
             compile_file(&mut session, path, &millpath_core::banner());
+            models = session.take_models();
             diagnostics = session.diags.list;
             diagnostics.retain(|d| in_file(d, path));
         }
@@ -678,6 +683,7 @@ pub fn analyze_from(
         chain_first: Mutex::default(),
         previews: Mutex::default(),
         traversals,
+        _models: models,
     })
 }
 

@@ -46,10 +46,14 @@ impl Emitter<'_> {
             return Ok(());
         }
         // the quick check visits each segment once a level: its geometries transformed once
-        // (a list as long as the chain, only in the editor; compile transforms on demand)
-        let geoms = self
-            .quick_order
-            .then(|| ch.segs.iter().map(|s| s.geom.transform(&fr.t)).collect());
+        // (a list as long as the chain, only in the editor, kept for the next chain; compile
+        // transforms on demand)
+        let geoms = self.quick_order.then(|| {
+            let mut g = std::mem::take(&mut self.chain_geoms);
+            g.clear();
+            g.extend(ch.segs.iter().map(|s| s.geom.transform(&fr.t)));
+            g
+        });
         let view = ChainView {
             segs: &ch.segs,
             t: fr.t,
@@ -60,12 +64,19 @@ impl Emitter<'_> {
         let th = h + p.t;
         // every move of a pass belongs to its own segment, not to the chain's first
         let chain_source = self.source;
-        let seg_sources: Vec<u32> = ch.segs.iter().map(|s| self.add_source(&s.origin)).collect();
+        // (one after the other: segment `si`'s is `first_source + si`)
+        let first_source = self.sources.len() as u32;
+        for s in &ch.segs {
+            self.add_source(&s.origin);
+        }
         let r = if ch.w.is_some() {
-            self.sweepless(fr, &view, th, &seg_sources)
+            self.sweepless(fr, &view, th, first_source)
         } else {
-            self.fast(fr, &view, th, &seg_sources)
+            self.fast(fr, &view, th, first_source)
         };
+        if let Some(g) = view.geoms {
+            self.chain_geoms = g;
+        }
         self.source = chain_source;
         self.shape = Shape::Mill;
         r
@@ -76,27 +87,44 @@ impl Emitter<'_> {
         fr: Frame,
         view: &ChainView,
         th: f64,
-        seg_sources: &[u32],
+        first_source: u32,
     ) -> Result<(), Skip> {
         let p = &fr.model.params;
         let n = view.segments();
         let head = view.geom(0).start().with_z(view.depth(0, 0));
         let s = fr.h + p.s;
-        let order: Box<dyn Iterator<Item = (usize, usize, bool)>> = if self.quick_order {
+        if self.quick_order {
             self.quick_steps += (0..n).map(|si| view.passes(si)).sum::<usize>();
-            Box::new(level_order(view))
+            self.fast_passes(fr, view, th, s, first_source, level_order(view));
         } else {
             // the order first, 4 bytes a pass, and its k-d tree gone before the moves grow
             let total = (0..n).map(|si| view.passes(si)).sum::<usize>();
             let mut steps = Vec::with_capacity(total);
             steps.extend(FastOrder::new(view, head).map(|(si, fwd)| pack(si, fwd)));
             let mut done = vec![0u32; n];
-            Box::new(steps.into_iter().map(move |step| {
+            let order = steps.into_iter().map(move |step| {
                 let (si, forward) = unpack(step);
                 done[si] += 1;
                 (si, done[si] as usize - 1, forward)
-            }))
-        };
+            });
+            self.fast_passes(fr, view, th, s, first_source, order);
+        }
+        let end = view.geom(n - 1).end();
+        self.safe_sweep(self.pos, end.with_z(s), p.t, s, p.f, false);
+        Ok(())
+    }
+
+    /// The passes of a fast-milled chain in `order` (segment, pass, forward), each after a
+    /// safe sweep to its start.
+    fn fast_passes(
+        &mut self,
+        fr: Frame,
+        view: &ChainView,
+        th: f64,
+        s: f64,
+        first_source: u32,
+        order: impl Iterator<Item = (usize, usize, bool)>,
+    ) {
         for (si, k, forward) in order {
             if self.full || self.stop_now() {
                 break;
@@ -105,13 +133,10 @@ impl Emitter<'_> {
             let g = view.geom(si);
             let g = if forward { g } else { g.reversed() };
             let seg = &view.segs[si];
-            self.enter_segment(seg, seg_sources[si]);
+            self.enter_segment(seg, first_source + si as u32);
             self.safe_sweep(self.pos, g.start().with_z(z), th, s, seg.f, false);
             self.segment_pass(fr, seg, &g, forward, z, th);
         }
-        let end = view.geom(n - 1).end();
-        self.safe_sweep(self.pos, end.with_z(s), p.t, s, p.f, false);
-        Ok(())
     }
 
     fn sweepless(
@@ -119,7 +144,7 @@ impl Emitter<'_> {
         fr: Frame,
         view: &ChainView,
         th: f64,
-        seg_sources: &[u32],
+        first_source: u32,
     ) -> Result<(), Skip> {
         // first only the walk's checks: a chain that does not connect emits nothing
         sweepless_walk(view, |_, _, _| true)?;
@@ -128,7 +153,7 @@ impl Emitter<'_> {
                 return false;
             }
             let seg = &view.segs[si];
-            self.enter_segment(seg, seg_sources[si]);
+            self.enter_segment(seg, first_source + si as u32);
             let g = view.geom(si);
             let g = if forward { g } else { g.reversed() };
             self.drill_or_pull(self.pos.xy(), self.pos.z, z, th, seg.f);

@@ -140,6 +140,9 @@ pub(crate) struct Emitter<'a> {
     pub(crate) passes: pass_state::Passes,
     /// The post's events that write text, one bit each ([`Emitter::writes`]).
     pub(crate) written: u32,
+    /// The quick check's transformed geometries of the chain being emitted (`chain.rs`):
+    /// one list for every chain, not one each.
+    pub(crate) chain_geoms: Vec<crate::geom::Geom>,
 }
 
 // one bit per event in [`Emitter::written`]
@@ -175,10 +178,12 @@ pub(crate) type Skip = Diagnostic;
 
 impl<'a> Emitter<'a> {
     /// Does the post write text for `event` (a template that is not empty)?
+    #[inline]
     pub(crate) fn writes(&self, event: Event) -> bool {
         self.written & 1 << event as u32 != 0
     }
     /// Texts are only made when they are written: a check needs the moves, not the words.
+    #[inline]
     pub(crate) fn comment(&mut self, indent: usize, text: impl FnOnce() -> String) {
         if self.at_capacity() {
             return;
@@ -192,6 +197,7 @@ impl<'a> Emitter<'a> {
         let source = self.source.unwrap_or(NO_SOURCE);
         self.rec.comment(text, source);
     }
+    #[inline]
     pub(crate) fn push(
         &mut self,
         kind: Kind,
@@ -220,6 +226,7 @@ impl<'a> Emitter<'a> {
     }
     /// Asks [`Emitter::stop`] now and then; once it says stop, every loop ends (as when
     /// the list is full) and [`emit_until`] returns no result.
+    #[inline]
     pub(crate) fn stop_now(&mut self) -> bool {
         if let Some(stop) = self.stop {
             self.until_stop_check = self.until_stop_check.saturating_sub(1);
@@ -233,6 +240,7 @@ impl<'a> Emitter<'a> {
         }
         self.stopped
     }
+    #[inline]
     fn at_capacity(&mut self) -> bool {
         // a dry record writes a line for every move: below MAX_ITEMS lines neither bound is
         // near
@@ -287,6 +295,7 @@ impl<'a> Emitter<'a> {
         self.sources.len() as u32 - 1
     }
     /// Sets where the last move goes.
+    #[inline]
     pub(crate) fn to(&mut self, t: Target) {
         self.pass_moved(t);
         let Some(source) = self.rec.last_move(t) else {
@@ -581,6 +590,7 @@ fn emit_with<S: AsRef<str>>(
         at: pass_state::start_position(sx),
         passes: pass_state::Passes::default(),
         written: written_events(&ctl.post),
+        chain_geoms: Vec::new(),
     };
     em.comment(2, || format!("Model {}", model.label()));
     em.emit_model(Frame {

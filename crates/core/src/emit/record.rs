@@ -167,12 +167,14 @@ impl Record {
     }
 
     /// Whether moves are only counted ([`Record::count_move`] instead of [`Record::moved`]).
+    #[inline]
     pub(crate) fn counts_only(&self) -> bool {
         self.counted.is_some()
     }
 
     /// A move of a record that only counts them ([`Record::count_moves`]): what
     /// [`Record::moved`] does to the count and the lines of a dry record, without the move.
+    #[inline]
     pub(crate) fn count_move(&mut self, sweep: bool, source: Option<u32>) {
         let Some(c) = &mut self.counted else {
             return;
@@ -189,6 +191,7 @@ impl Record {
 
     /// The last move's source, and its target set to `target` where it is kept; `None`
     /// before the first move.
+    #[inline]
     pub(crate) fn last_move(&mut self, target: crate::emit::Target) -> Option<Option<u32>> {
         if let Some(c) = &self.counted {
             return c.last;
@@ -214,6 +217,7 @@ impl Record {
     }
 
     /// Moves recorded so far (folded ones included).
+    #[inline]
     pub(crate) fn move_count(&self) -> usize {
         if let Some(c) = &self.counted {
             return c.moves + usize::from(c.last.is_some());
