@@ -297,8 +297,8 @@ impl<'a> Emitter<'a> {
     /// Sets where the last move goes.
     #[inline]
     pub(crate) fn to(&mut self, t: Target) {
-        self.pass_moved(t);
-        let Some(source) = self.rec.last_move(t) else {
+        self.pass_moved(&t);
+        let Some(source) = self.rec.last_move(&t) else {
             return;
         };
         // each value was in range, but sums of them (T + O, S·(1 + 2e-6), h + depth,

@@ -63,7 +63,11 @@ impl Emitter<'_> {
 
     /// Where the last move took the tool: the position a pass starts at, its lowest Z.
     #[inline]
-    pub(crate) fn pass_moved(&mut self, t: Target) {
+    pub(crate) fn pass_moved(&mut self, t: &Target) {
+        // only the pass events read where the tool is
+        if !self.writes_passes() {
+            return;
+        }
         self.at = t.end(self.at);
         if let Some(open) = &mut self.passes.open {
             open.lowest = open.lowest.min(self.at.z);

@@ -192,12 +192,12 @@ impl Record {
     /// The last move's source, and its target set to `target` where it is kept; `None`
     /// before the first move.
     #[inline]
-    pub(crate) fn last_move(&mut self, target: crate::emit::Target) -> Option<Option<u32>> {
+    pub(crate) fn last_move(&mut self, target: &crate::emit::Target) -> Option<Option<u32>> {
         if let Some(c) = &self.counted {
             return c.last;
         }
         self.items.last_mut().map(|it| {
-            it.target = target;
+            it.target = *target;
             it.source
         })
     }
@@ -534,7 +534,7 @@ mod fold_tests {
         assert!(counted.items.is_empty(), "no move is kept");
         // the last move's source, for its target's range check
         let last = kept.items.last().map(|it| it.source);
-        assert_eq!(counted.last_move(Target::default()), last);
+        assert_eq!(counted.last_move(&Target::default()), last);
         // a record that writes lines keeps its moves' list (the held sweep needs it)
         let mut written = Record::new(false, &["%"], 16, None, post());
         written.count_moves();
