@@ -12,7 +12,8 @@
 //! to 27 ms at 2,000 elements and 270–310 ms at 20,000, and emitted without the order of fast
 //! milling (`emit::quick_check_until`: passes level by level, the same moves and diagnostics, test
 //! `core/tests/quick_check.rs`; a long chain's order was half of its answer): 1–2 ms at 2,000 and
-//! 17–26 ms at 20,000 on a loaded machine, `bench lsp_latency`; a path's walk is taken from the
+//! 17–26 ms at 20,000 on a loaded machine, `bench lsp_latency`; its record counts the moves
+//! without making them, see the bench's doc for figures; a path's walk is taken from the
 //! previous analysis when the edit cannot change it (`traversals`, `core/build/traverse_memo.rs`),
 //! an edit inside one element line parses that line alone (`reparse`) and takes the other
 //! elements' drawn objects and the line index from the previous analysis, offsets moved
