@@ -12,7 +12,8 @@
 //! to 27 ms at 2,000 elements and 270–310 ms at 20,000, and emitted without the order of fast
 //! milling (`emit::quick_check_until`: passes level by level, the same moves and diagnostics, test
 //! `core/tests/quick_check.rs`; a long chain's order was half of its answer): 1–2 ms at 2,000 and
-//! 17–26 ms at 20,000 on a loaded machine, `bench lsp_latency`; a path's walk is taken from the
+//! 17–26 ms at 20,000 on a loaded machine, `bench lsp_latency`; its record counts the moves
+//! without making them, see the bench's doc for figures; a path's walk is taken from the
 //! previous analysis when the edit cannot change it (`traversals`, `core/build/traverse_memo.rs`),
 //! an edit inside one element line parses that line alone (`reparse`) and takes the other
 //! elements' drawn objects and the line index from the previous analysis, offsets moved
@@ -462,6 +463,9 @@ pub struct Analysis {
     /// The walks of this analysis, for the next one of the document (an edit that changes
     /// no geometry, kind, order or marker walks no path again).
     pub traversals: TraversalMemo,
+    /// The models the check built, held only to be freed with the analysis: the server frees
+    /// a replaced analysis after the next answer (`lsp/src/worker.rs`), not on its way.
+    pub(crate) _models: Vec<Arc<millpath_core::model::Model>>,
 }
 
 /// The workspace file system, recording what an analysis reads (its dependencies).
@@ -594,6 +598,7 @@ fn analyze_source(
     let mut declared = Vec::new();
     let mut objects_clean = false;
     let mut paths = Vec::new();
+    let mut models = Vec::new();
     let mut diagnostics;
     match Session::new(check, &fs) {
         Ok(mut session) => {
@@ -649,6 +654,7 @@ fn analyze_source(
                 }
             }
             compile_file(&mut session, path, &millpath_core::banner());
+            models = session.take_models();
             diagnostics = session.diags.list;
             diagnostics.retain(|d| in_file(d, path));
         }
@@ -714,6 +720,7 @@ fn analyze_source(
         chain_first: Mutex::default(),
         previews: Mutex::default(),
         traversals,
+        _models: models,
     })
 }
 

@@ -227,6 +227,7 @@ pub fn analyze(ws: &Workspace, path: &Path) -> Analysis {
         chain_first: Mutex::default(),
         previews: Mutex::default(),
         traversals: Default::default(),
+        _models: Vec::new(),
     }
 }
 

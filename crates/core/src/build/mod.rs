@@ -123,7 +123,6 @@ impl Session<'_> {
         self.validate(&raw.start_origin(), &params, path_text, &ev, true);
 
         // 3. chains and elements
-        let mut elements = Vec::new();
         let mut chain: Option<Chain> = None;
         let mut subpaths = Vec::new();
         // a step of a chain: a milled line or arc
@@ -136,6 +135,17 @@ impl Session<'_> {
             };
             matches!((kind, &seg.shape), (SegKind::Mill(_), Shape::Path(_)))
         };
+        // the elements counted first (a chain is one): the list is not copied as it grows
+        let mut in_chain = false;
+        let count = trav
+            .iter()
+            .filter(|step| {
+                let starts = !(in_chain && chained(step));
+                in_chain = chained(step);
+                starts
+            })
+            .count();
+        let mut elements = Vec::with_capacity(count);
         for (k, step) in trav.iter().enumerate() {
             let seg = &raw.segments[step.index];
             let geom = match &seg.shape {

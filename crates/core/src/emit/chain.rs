@@ -45,21 +45,38 @@ impl Emitter<'_> {
         if ch.segs.is_empty() {
             return Ok(());
         }
+        // the quick check visits each segment once a level: its geometries transformed once
+        // (a list as long as the chain, only in the editor, kept for the next chain; compile
+        // transforms on demand)
+        let geoms = self.quick_order.then(|| {
+            let mut g = std::mem::take(&mut self.chain_geoms);
+            g.clear();
+            g.extend(ch.segs.iter().map(|s| s.geom.transform(&fr.t)));
+            g
+        });
         let view = ChainView {
             segs: &ch.segs,
             t: fr.t,
             h,
             passes: &passes,
+            geoms,
         };
         let th = h + p.t;
         // every move of a pass belongs to its own segment, not to the chain's first
         let chain_source = self.source;
-        let seg_sources: Vec<u32> = ch.segs.iter().map(|s| self.add_source(&s.origin)).collect();
+        // (one after the other: segment `si`'s is `first_source + si`)
+        let first_source = self.sources.len() as u32;
+        for s in &ch.segs {
+            self.add_source(&s.origin);
+        }
         let r = if ch.w.is_some() {
-            self.sweepless(fr, &view, th, &seg_sources)
+            self.sweepless(fr, &view, th, first_source)
         } else {
-            self.fast(fr, &view, th, &seg_sources)
+            self.fast(fr, &view, th, first_source)
         };
+        if let Some(g) = view.geoms {
+            self.chain_geoms = g;
+        }
         self.source = chain_source;
         self.shape = Shape::Mill;
         r
@@ -70,27 +87,44 @@ impl Emitter<'_> {
         fr: Frame,
         view: &ChainView,
         th: f64,
-        seg_sources: &[u32],
+        first_source: u32,
     ) -> Result<(), Skip> {
         let p = &fr.model.params;
         let n = view.segments();
         let head = view.geom(0).start().with_z(view.depth(0, 0));
         let s = fr.h + p.s;
-        let order: Box<dyn Iterator<Item = (usize, usize, bool)>> = if self.quick_order {
+        if self.quick_order {
             self.quick_steps += (0..n).map(|si| view.passes(si)).sum::<usize>();
-            Box::new(level_order(view))
+            self.fast_passes(fr, view, th, s, first_source, level_order(view));
         } else {
             // the order first, 4 bytes a pass, and its k-d tree gone before the moves grow
             let total = (0..n).map(|si| view.passes(si)).sum::<usize>();
             let mut steps = Vec::with_capacity(total);
             steps.extend(FastOrder::new(view, head).map(|(si, fwd)| pack(si, fwd)));
             let mut done = vec![0u32; n];
-            Box::new(steps.into_iter().map(move |step| {
+            let order = steps.into_iter().map(move |step| {
                 let (si, forward) = unpack(step);
                 done[si] += 1;
                 (si, done[si] as usize - 1, forward)
-            }))
-        };
+            });
+            self.fast_passes(fr, view, th, s, first_source, order);
+        }
+        let end = view.geom(n - 1).end();
+        self.safe_sweep(self.pos, end.with_z(s), p.t, s, p.f, false);
+        Ok(())
+    }
+
+    /// The passes of a fast-milled chain in `order` (segment, pass, forward), each after a
+    /// safe sweep to its start.
+    fn fast_passes(
+        &mut self,
+        fr: Frame,
+        view: &ChainView,
+        th: f64,
+        s: f64,
+        first_source: u32,
+        order: impl Iterator<Item = (usize, usize, bool)>,
+    ) {
         for (si, k, forward) in order {
             if self.full || self.stop_now() {
                 break;
@@ -99,13 +133,10 @@ impl Emitter<'_> {
             let g = view.geom(si);
             let g = if forward { g } else { g.reversed() };
             let seg = &view.segs[si];
-            self.enter_segment(seg, seg_sources[si]);
+            self.enter_segment(seg, first_source + si as u32);
             self.safe_sweep(self.pos, g.start().with_z(z), th, s, seg.f, false);
             self.segment_pass(fr, seg, &g, forward, z, th);
         }
-        let end = view.geom(n - 1).end();
-        self.safe_sweep(self.pos, end.with_z(s), p.t, s, p.f, false);
-        Ok(())
     }
 
     fn sweepless(
@@ -113,7 +144,7 @@ impl Emitter<'_> {
         fr: Frame,
         view: &ChainView,
         th: f64,
-        seg_sources: &[u32],
+        first_source: u32,
     ) -> Result<(), Skip> {
         // first only the walk's checks: a chain that does not connect emits nothing
         sweepless_walk(view, |_, _, _| true)?;
@@ -122,7 +153,7 @@ impl Emitter<'_> {
                 return false;
             }
             let seg = &view.segs[si];
-            self.enter_segment(seg, seg_sources[si]);
+            self.enter_segment(seg, first_source + si as u32);
             let g = view.geom(si);
             let g = if forward { g } else { g.reversed() };
             self.drill_or_pull(self.pos.xy(), self.pos.z, z, th, seg.f);
@@ -279,11 +310,16 @@ struct ChainView<'a> {
     t: Transform,
     h: f64,
     passes: &'a SharedPasses,
+    /// Every segment's geometry transformed already (the editor's quick check), the same bits.
+    geoms: Option<Vec<Geom>>,
 }
 
 impl ChainView<'_> {
     fn geom(&self, si: usize) -> Geom {
-        self.segs[si].geom.transform(&self.t)
+        match &self.geoms {
+            Some(g) => g[si],
+            None => self.segs[si].geom.transform(&self.t),
+        }
     }
 }
 
@@ -307,14 +343,44 @@ impl PassSource for ChainView<'_> {
 
 /// Every pass of every segment once, level by level in list order, each forward (the
 /// editor's quick check: see `emit_quick`), as (segment, pass, forward).
-fn level_order<'a>(c: &'a ChainView) -> impl Iterator<Item = (usize, usize, bool)> + 'a {
+fn level_order<'a>(c: &'a ChainView) -> LevelOrder<'a> {
     let n = c.segments();
-    let levels = (0..n).map(|si| c.passes(si)).max().unwrap_or(0);
-    (0..levels).flat_map(move |k| {
-        (0..n)
-            .filter(move |&si| k < c.passes(si))
-            .map(move |si| (si, k, true))
-    })
+    LevelOrder {
+        c,
+        levels: (0..n).map(|si| c.passes(si)).max().unwrap_or(0),
+        k: 0,
+        si: 0,
+    }
+}
+
+/// [`level_order`]'s walk: level `k`, segment `si` next (a step costs a comparison, where
+/// a chain of iterator adapters was a twentieth of the quick check).
+struct LevelOrder<'a> {
+    c: &'a ChainView<'a>,
+    levels: usize,
+    k: usize,
+    si: usize,
+}
+
+impl Iterator for LevelOrder<'_> {
+    type Item = (usize, usize, bool);
+
+    fn next(&mut self) -> Option<Self::Item> {
+        let n = self.c.segments();
+        while self.k < self.levels {
+            if self.si == n {
+                self.si = 0;
+                self.k += 1;
+                continue;
+            }
+            let si = self.si;
+            self.si += 1;
+            if self.k < self.c.passes(si) {
+                return Some((si, self.k, true));
+            }
+        }
+        None
+    }
 }
 
 /// The runs of a sweepless chain (§7.3): every segment in list order per pass level, each
@@ -542,6 +608,7 @@ mod tests {
             t,
             h,
             passes: &sp,
+            geoms: None,
         };
         let head = ends[0].0.with_z(lists[0][0]);
         let want = fast_order_reference(&ends, &lists, head);
@@ -558,5 +625,27 @@ mod tests {
         }
         assert_eq!(order.next_pass(), None);
         assert_eq!(FastOrder::new(&view, head).collect::<Vec<_>>(), want);
+        // the quick check's order: every pass once, level by level in list order
+        let levels = lists.iter().map(Vec::len).max().unwrap();
+        let by_level: Vec<_> = (0..levels)
+            .flat_map(|k| {
+                let lists = &lists;
+                (0..segs.len())
+                    .filter(move |&si| k < lists[si].len())
+                    .map(move |si| (si, k, true))
+            })
+            .collect();
+        assert_eq!(level_order(&view).collect::<Vec<_>>(), by_level);
+        // and its geometries transformed once: the same bits
+        let cached = ChainView {
+            geoms: Some(segs.iter().map(|s| s.geom.transform(&t)).collect()),
+            ..view
+        };
+        for si in 0..segs.len() {
+            assert_eq!(
+                format!("{:?}", cached.geom(si)),
+                format!("{:?}", view.geom(si))
+            );
+        }
     }
 }

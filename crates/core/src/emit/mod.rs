@@ -143,6 +143,9 @@ pub(crate) struct Emitter<'a> {
     pub(crate) passes: pass_state::Passes,
     /// The post's events that write text, one bit each ([`Emitter::writes`]).
     pub(crate) written: u32,
+    /// The quick check's transformed geometries of the chain being emitted (`chain.rs`):
+    /// one list for every chain, not one each.
+    pub(crate) chain_geoms: Vec<crate::geom::Geom>,
 }
 
 // one bit per event in [`Emitter::written`]
@@ -178,22 +181,30 @@ pub(crate) type Skip = Diagnostic;
 
 impl<'a> Emitter<'a> {
     /// Does the post write text for `event` (a template that is not empty)?
+    #[inline]
     pub(crate) fn writes(&self, event: Event) -> bool {
         self.written & 1 << event as u32 != 0
     }
     /// Texts are only made when they are written: a check needs the moves, not the words.
+    #[inline]
     pub(crate) fn comment(&mut self, indent: usize, text: impl FnOnce() -> String) {
         if self.at_capacity() {
             return;
         }
-        let text = if self.dry || !self.comment_texts {
-            String::new()
-        } else {
+        if self.dry {
+            // a dry record only counts its comment lines
+            self.rec.lines += 1;
+            return;
+        }
+        let text = if self.comment_texts {
             self.ctl.post.comment(indent, &text(), &self.globals)
+        } else {
+            String::new()
         };
         let source = self.source.unwrap_or(NO_SOURCE);
         self.rec.comment(text, source);
     }
+    #[inline]
     pub(crate) fn push(
         &mut self,
         kind: Kind,
@@ -205,6 +216,10 @@ impl<'a> Emitter<'a> {
             return;
         }
         self.pass_before(kind, feed);
+        if self.rec.counts_only() {
+            self.rec.count_move(kind == Kind::HSweep, self.source);
+            return;
+        }
         let text = if self.dry { String::new() } else { text(self) };
         let item = Item {
             kind,
@@ -218,6 +233,7 @@ impl<'a> Emitter<'a> {
     }
     /// Asks [`Emitter::stop`] now and then; once it says stop, every loop ends (as when
     /// the list is full) and [`emit_until`] returns no result.
+    #[inline]
     pub(crate) fn stop_now(&mut self) -> bool {
         if let Some(stop) = self.stop {
             self.until_stop_check = self.until_stop_check.saturating_sub(1);
@@ -231,7 +247,13 @@ impl<'a> Emitter<'a> {
         }
         self.stopped
     }
+    #[inline]
     fn at_capacity(&mut self) -> bool {
+        // a dry record writes a line for every move: below MAX_ITEMS lines neither bound is
+        // near
+        if self.dry && self.rec.lines < MAX_ITEMS {
+            return self.full;
+        }
         if self.rec.move_count() >= MAX_ITEMS || self.rec.lines >= MAX_LINES {
             self.full = true;
         }
@@ -280,19 +302,18 @@ impl<'a> Emitter<'a> {
         self.sources.len() as u32 - 1
     }
     /// Sets where the last move goes.
+    #[inline]
     pub(crate) fn to(&mut self, t: Target) {
-        self.pass_moved(t);
-        if let Some(it) = self.rec.items.last_mut() {
-            it.target = t;
-            // each value was in range, but sums of them (T + O, S·(1 + 2e-6), h + depth,
-            // placed subpaths) may not be: no program leaves the sane range
-            let centre = t.arc.map(|(c, _)| c);
-            let bad = [t.x, t.y, t.z, centre.map(|c| c.x), centre.map(|c| c.y)]
-                .into_iter()
-                .flatten()
-                .find(|v| !(v.is_finite() && v.abs() <= MAX_MAGNITUDE));
-            if let (Some(v), None) = (bad, self.out_of_range) {
-                self.out_of_range = Some((v, it.source));
+        self.pass_moved(&t);
+        let Some(source) = self.rec.last_move(&t) else {
+            return;
+        };
+        // each value was in range, but sums of them (T + O, S·(1 + 2e-6), h + depth,
+        // placed subpaths) may not be: no program leaves the sane range (the first such
+        // move is reported)
+        if self.out_of_range.is_none() {
+            if let Some(v) = out_of_range(&t) {
+                self.out_of_range = Some((v, source));
             }
         }
     }
@@ -326,6 +347,25 @@ impl<'a> Emitter<'a> {
             self.contour_end(fr, e);
         }
     }
+}
+
+/// The first value of a target (X, Y, Z, the arc centre's X and Y) outside the sane range.
+fn out_of_range(t: &Target) -> Option<f64> {
+    // `abs() <= MAX_MAGNITUDE` is false for NaN and the infinities: one test a value
+    let sane = |v: Option<f64>| v.is_none_or(|v| v.abs() <= MAX_MAGNITUDE);
+    let centre_sane = t
+        .arc
+        .is_none_or(|(c, _)| sane(Some(c.x)) && sane(Some(c.y)));
+    if sane(t.x) && sane(t.y) && sane(t.z) && centre_sane {
+        return None;
+    }
+    let bad = |v: &f64| !(v.is_finite() && v.abs() <= MAX_MAGNITUDE);
+    let centre = t.arc.map(|(c, _)| c);
+    t.x.filter(bad)
+        .or_else(|| t.y.filter(bad))
+        .or_else(|| t.z.filter(bad))
+        .or_else(|| centre.map(|c| c.x).filter(bad))
+        .or_else(|| centre.map(|c| c.y).filter(bad))
 }
 
 pub(crate) fn element_origin(e: &Element) -> &Origin {
@@ -562,6 +602,7 @@ fn emit_with<S: AsRef<str>>(
         at: pass_state::start_position(sx),
         passes: pass_state::Passes::default(),
         written: written_events(&ctl.post),
+        chain_geoms: Vec::new(),
     };
     em.comment(2, || format!("Model {}", model.label()));
     em.emit_model(Frame {

@@ -10,12 +10,14 @@ use crate::emit::{Emitter, Kind, Shape, Target};
 use millpath_post::{Event, Value, Var};
 
 impl Emitter<'_> {
+    #[inline]
     fn writes_passes(&self) -> bool {
         self.writes(Event::PassStart) || self.writes(Event::PassEnd)
     }
 
     /// Before a move of `kind` at `feed` is recorded (the tool at `self.at`): opens a pass
     /// at a cutting move, closes one at any other move.
+    #[inline]
     pub(crate) fn pass_before(&mut self, kind: Kind, feed: f64) {
         if !self.writes_passes() {
             return;
@@ -60,7 +62,12 @@ impl Emitter<'_> {
     }
 
     /// Where the last move took the tool: the position a pass starts at, its lowest Z.
-    pub(crate) fn pass_moved(&mut self, t: Target) {
+    #[inline]
+    pub(crate) fn pass_moved(&mut self, t: &Target) {
+        // only the pass events read where the tool is
+        if !self.writes_passes() {
+            return;
+        }
         self.at = t.end(self.at);
         if let Some(open) = &mut self.passes.open {
             open.lowest = open.lowest.min(self.at.z);

@@ -58,6 +58,22 @@ pub(crate) struct Record {
     /// ends) where it changes lines.
     post: Option<Arc<Post>>,
     writer: Option<LineWriter<Arc<Post>>>,
+    /// A dry record's moves only counted ([`Record::count_moves`]): no move is kept at all.
+    counted: Option<Counted>,
+}
+
+/// What a record whose moves are only counted knows of them: as many as a list would hold
+/// (a sweep that the next sweep takes out is not one), and the last move's source, which
+/// [`Record::last_move`] gives for its target. No `Item` is made: the editor's quick check
+/// records a few hundred thousand moves an edit.
+#[derive(Default)]
+struct Counted {
+    /// Final moves (all but the last).
+    moves: usize,
+    /// The last move's source, once there is one.
+    last: Option<Option<u32>>,
+    /// The last move is a horizontal sweep the next one would take out.
+    held_sweep: bool,
 }
 
 struct Fold {
@@ -135,7 +151,60 @@ impl Record {
     /// a height map), the list of a long program is neither written nor its pages touched.
     /// [`Record::stats`] is not asked of such a record.
     pub(crate) fn count_moves(&mut self) {
-        self.fold_into(None, 0.0);
+        if !self.dry {
+            // lines are written: the held sweep and its comments need the list
+            self.fold_into(None, 0.0);
+            return;
+        }
+        let mut counted = Counted {
+            moves: self.items.len(),
+            ..Counted::default()
+        };
+        if let Some(last) = self.items.pop() {
+            counted.moves -= 1;
+            counted.last = Some(last.source);
+            counted.held_sweep = self.held.is_some();
+        }
+        self.held = None;
+        self.items = Vec::new();
+        self.item_lines = Vec::new();
+        self.counted = Some(counted);
+    }
+
+    /// Whether moves are only counted ([`Record::count_move`] instead of [`Record::moved`]).
+    #[inline]
+    pub(crate) fn counts_only(&self) -> bool {
+        self.counted.is_some()
+    }
+
+    /// A move of a record that only counts them ([`Record::count_moves`]): what
+    /// [`Record::moved`] does to the count and the lines of a dry record, without the move.
+    #[inline]
+    pub(crate) fn count_move(&mut self, sweep: bool, source: Option<u32>) {
+        let Some(c) = &mut self.counted else {
+            return;
+        };
+        // a sweep after a held sweep takes it out (§13); else the last is final now
+        if c.last.is_some() && !(c.held_sweep && sweep) {
+            c.moves += 1;
+        }
+        c.last = Some(source);
+        c.held_sweep = sweep;
+        // dry: every move is a line (none is silent)
+        self.lines += 1;
+    }
+
+    /// The last move's source, and its target set to `target` where it is kept; `None`
+    /// before the first move.
+    #[inline]
+    pub(crate) fn last_move(&mut self, target: &crate::emit::Target) -> Option<Option<u32>> {
+        if let Some(c) = &self.counted {
+            return c.last;
+        }
+        self.items.last_mut().map(|it| {
+            it.target = *target;
+            it.source
+        })
     }
 
     fn fold_into(&mut self, sums: Option<Stats>, sweep_speed: f64) {
@@ -153,7 +222,11 @@ impl Record {
     }
 
     /// Moves recorded so far (folded ones included).
+    #[inline]
     pub(crate) fn move_count(&self) -> usize {
+        if let Some(c) = &self.counted {
+            return c.moves + usize::from(c.last.is_some());
+        }
         self.items.len() + self.fold.as_ref().map_or(0, |f| f.moves)
     }
 
@@ -193,6 +266,10 @@ impl Record {
     /// writes nothing for this move).
     pub(crate) fn moved(&mut self, item: Item, text: String, source: u32) {
         let sweep = item.kind == Kind::HSweep;
+        if self.counted.is_some() {
+            self.count_move(sweep, item.source);
+            return;
+        }
         // a post that writes nothing for this move (xcam's rapids): no line
         let silent = !self.dry && text.is_empty();
         // the held sweep stays unless this one follows it (past comments)
@@ -446,5 +523,26 @@ mod fold_tests {
         assert_eq!(kept.move_count(), folded.move_count());
         assert_eq!(kept.text, folded.text, "the program is the same");
         assert!(folded.items.len() <= 1, "only the last move is held");
+    }
+
+    #[test]
+    fn counted_moves_are_as_many_as_a_dry_list_holds() {
+        let mut kept = Record::new(true, &["%"], 16, None, post());
+        program(&mut kept);
+        let mut counted = Record::new(true, &["%"], 16, None, post());
+        counted.count_moves();
+        assert!(counted.counts_only());
+        program(&mut counted);
+        assert!(kept.items.len() > 500, "some sweeps were commented out");
+        assert_eq!(counted.move_count(), kept.items.len());
+        assert_eq!(counted.lines, kept.lines);
+        assert!(counted.items.is_empty(), "no move is kept");
+        // the last move's source, for its target's range check
+        let last = kept.items.last().map(|it| it.source);
+        assert_eq!(counted.last_move(&Target::default()), last);
+        // a record that writes lines keeps its moves' list (the held sweep needs it)
+        let mut written = Record::new(false, &["%"], 16, None, post());
+        written.count_moves();
+        assert!(!written.counts_only());
     }
 }

@@ -185,6 +185,12 @@ impl<'a> Session<'a> {
         self.register(path, paths.into_iter().map(Arc::new).collect())
     }
 
+    /// The models built so far, taken out of the session: the editor keeps them with its
+    /// analysis, so that they are freed with it (after the answer) and not with the session.
+    pub fn take_models(&mut self) -> Vec<Arc<Model>> {
+        self.models.drain().filter_map(|(_, m)| m).collect()
+    }
+
     /// [`Session::add_paths`] of paths the caller keeps too (the editor, without a copy).
     pub fn add_shared_paths(&mut self, path: &Path, paths: Vec<Arc<RawPath>>) -> Vec<String> {
         self.register(path, paths)
