@@ -320,26 +320,14 @@ fn select_post(s: &mut Settings, name: &str, base: &Path, lang: Lang) -> Result<
 /// `--heightmap-step` and `--heightmap-margin` over the `[heightmap]` of the settings file; a
 /// margin alone has no grid to widen.
 fn heightmap_options(m: &MachineArgs, s: &mut Settings, de: bool) -> Result<(), String> {
-    if let Some(step) = m.heightmap_step {
-        let hm = s
-            .heightmap
-            .unwrap_or(millpath_core::probe::heightmap::Heightmap::with_step(step));
-        s.heightmap = Some(millpath_core::probe::heightmap::Heightmap { step, ..hm });
-        s.heightmap_options.0 = true;
+    if s.override_heightmap(m.heightmap_step, m.heightmap_margin) {
+        return Ok(());
     }
-    if let Some(margin) = m.heightmap_margin {
-        let Some(hm) = s.heightmap.as_mut() else {
-            return Err(if de {
-                "--heightmap-margin braucht --heightmap-step oder eine [heightmap] in millpath.toml"
-                    .into()
-            } else {
-                "--heightmap-margin needs --heightmap-step or a [heightmap] in millpath.toml".into()
-            });
-        };
-        hm.margin = margin;
-        s.heightmap_options.1 = true;
-    }
-    Ok(())
+    Err(if de {
+        "--heightmap-margin braucht --heightmap-step oder eine [heightmap] in millpath.toml".into()
+    } else {
+        "--heightmap-margin needs --heightmap-step or a [heightmap] in millpath.toml".into()
+    })
 }
 
 /// The message language, known before the first message: `--lang`, else `lang` of the

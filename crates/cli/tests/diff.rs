@@ -447,3 +447,28 @@ fn a_revision_is_read_with_its_own_settings() {
     assert_eq!(code, 1, "{text}");
     assert!(text.contains("AB.1P: removed"), "{text}");
 }
+
+#[test]
+fn an_option_in_error_stops_a_diff_of_revisions() {
+    let d = tempfile::tempdir().unwrap();
+    write(
+        d.path(),
+        "millpath.toml",
+        "feed = 300\nsweep_speed = 1000\nsweep_height = 10\n",
+    );
+    let text = |depth: &str| {
+        format!("path 3000.1P {{\n  start (0, 0)  M3x40 O2 T3 I1,5 B{depth}\n  end (80, 0)\n  mill (0, 0) -> (80, 0)\n}}\n")
+    };
+    write(d.path(), "3000.mpath", &text("-0,2"));
+    git(d.path(), &["init", "-q"]);
+    git(d.path(), &["add", "."]);
+    git(d.path(), &["commit", "-qm", "one"]);
+    write(d.path(), "3000.mpath", &text("-0,5"));
+    git(d.path(), &["commit", "-qam", "two"]);
+    // a post that does not exist is the options' error (exit 2), not a diff without it
+    let (code, out) = status_and_text(d.path(), &["diff", "HEAD~1..HEAD", "--post", "nosuch"]);
+    assert_eq!(code, 2, "{out}");
+    assert!(out.contains("nosuch"), "{out}");
+    let (code, out) = status_and_text(d.path(), &["diff", "HEAD~1..HEAD", "--post", "grbl"]);
+    assert_eq!(code, 1, "{out}");
+}

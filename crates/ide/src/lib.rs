@@ -97,7 +97,6 @@ use millpath_core::front::text::objects_of;
 use millpath_core::front::text_edit::{objects_after_edit, LineEdit, PrevObjects};
 use millpath_core::load::config::{self, FileConfig, Have};
 use millpath_core::load::fs::{is_text_file, FileSystem};
-use millpath_core::probe::heightmap::Heightmap;
 use millpath_core::{compile_file, Diags, Session, Settings};
 use millpath_syntax::{parse, File};
 use std::collections::{BTreeSet, HashMap};
@@ -318,16 +317,10 @@ impl Workspace {
             dir = d.parent();
         }
         self.client.apply(&mut s, &mut have);
+        // a margin without a grid widens nothing (the command line refused it for the work
+        // tree's settings; a revision's may have no [heightmap])
         let (step, margin) = self.heightmap_options;
-        if let Some(step) = step {
-            let hm = s.heightmap.unwrap_or(Heightmap::with_step(step));
-            s.heightmap = Some(Heightmap { step, ..hm });
-            s.heightmap_options.0 = true;
-        }
-        if let (Some(margin), Some(hm)) = (margin, s.heightmap.as_mut()) {
-            hm.margin = margin;
-            s.heightmap_options.1 = true;
-        }
+        s.override_heightmap(step, margin);
         if self.client.feed.is_some() {
             ds.feed = SettingSource::Editor;
         }

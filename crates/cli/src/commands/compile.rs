@@ -196,8 +196,6 @@ fn compile_one(
     };
     if written {
         claims.claim(input, outcome.start.clone(), paths());
-    }
-    if written {
         print_stats(&outcome, lang);
         // the exact estimate (the statistics above keep the reference's whole minutes);
         // like the volume, not in pathdxf2gcode's output, which stays the reference's

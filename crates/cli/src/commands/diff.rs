@@ -324,6 +324,13 @@ fn version(s: &Source, m: &MachineArgs, lang: Lang) -> Result<Version, String> {
     let (path_pattern, file_pattern, input) = match (&s.tree, &m.config) {
         // a revision's drawing is read with the revision's millpath.toml (and the options)
         (Some(tree), None) => {
+            // the options' own errors (a post that does not exist, a bad --restrict) stop the
+            // diff here as with files; a margin alone may widen the revision's [heightmap]
+            let options_alone = MachineArgs {
+                heightmap_margin: None,
+                ..m.clone()
+            };
+            settings_for(&options_alone, None, false)?;
             let mut settings = millpath_core::Settings::default();
             if let Some(cfg) = crate::config::load_from(&**tree, &s.file, lang) {
                 cfg?.apply(&mut settings, &mut crate::config::Have::default());

@@ -17,7 +17,7 @@ use super::{
 use crate::diag::{Diags, FileRef, Origin};
 use crate::front::drawing::{DrawnObject, Shape};
 use crate::front::dxf::dxf_objects;
-use crate::front::layer::{effective_layer, path_name_of_layer};
+use crate::front::layer::{effective_layer, path_name_of_layer, split_layer_suffix};
 use crate::front::options::InputMode;
 use crate::geom::Geom;
 use crate::load::names::Patterns;
@@ -172,7 +172,7 @@ pub(super) fn old_layers<'r>(
     let mut suffixed: BTreeMap<String, String> = BTreeMap::new();
     for r in records {
         let layer = effective_layer(&r.layer);
-        let (base, is_suffixed) = split_suffix(layer);
+        let (base, is_suffixed) = split_layer_suffix(layer);
         let first = if is_suffixed {
             &mut suffixed
         } else {
@@ -186,18 +186,6 @@ pub(super) fn old_layers<'r>(
         plain.entry(key).or_insert(base);
     }
     plain
-}
-
-/// A layer's base and whether it had a `~letters` suffix (as `path_name_of_layer` reads it).
-fn split_suffix(layer: &str) -> (&str, bool) {
-    match layer.rfind('~') {
-        Some(p)
-            if p + 1 < layer.len() && layer[p + 1..].chars().all(|c| c.is_ascii_alphabetic()) =>
-        {
-            (&layer[..p], true)
-        }
-        _ => (layer, false),
-    }
 }
 
 /// The layer a changed path's entity goes on: the path's old layer where it reads back as

@@ -3,15 +3,19 @@
 
 /// Normalised path name of a layer: drop a trailing `~letters` suffix, `_` → `.`.
 pub fn path_name_of_layer(layer: &str) -> String {
-    let base = match layer.rfind('~') {
+    split_layer_suffix(layer).0.replace('_', ".")
+}
+
+/// A layer's base and whether it had a trailing `~letters` suffix (a parameter-text layer).
+pub(crate) fn split_layer_suffix(layer: &str) -> (&str, bool) {
+    match layer.rfind('~') {
         Some(p)
             if p + 1 < layer.len() && layer[p + 1..].chars().all(|c| c.is_ascii_alphabetic()) =>
         {
-            &layer[..p]
+            (&layer[..p], true)
         }
-        _ => layer,
-    };
-    base.replace('_', ".")
+        _ => (layer, false),
+    }
 }
 
 /// Layer names with characters CAD programs forbid end up on layer `0` (as in netDxf).

@@ -160,6 +160,25 @@ impl Default for Settings {
 }
 
 impl Settings {
+    /// `--heightmap-step` and `--heightmap-margin` over the `[heightmap]` of the settings
+    /// file: the step keeps the table's other keys (or makes a grid of its own), the margin
+    /// widens the grid. `false` when a margin has no grid to widen (it changes nothing then).
+    pub fn override_heightmap(&mut self, step: Option<f64>, margin: Option<f64>) -> bool {
+        if let Some(step) = step {
+            let hm = self.heightmap.unwrap_or(Heightmap::with_step(step));
+            self.heightmap = Some(Heightmap { step, ..hm });
+            self.heightmap_options.0 = true;
+        }
+        if let Some(margin) = margin {
+            let Some(hm) = self.heightmap.as_mut() else {
+                return false;
+            };
+            hm.margin = margin;
+            self.heightmap_options.1 = true;
+        }
+        true
+    }
+
     /// compile's rule for the machine values (the command line's and the Python package's):
     /// feed, sweep speed and sweep height each a number > 0, else the message naming it.
     pub fn machine_values_positive(&self) -> Result<(), String> {
