@@ -472,3 +472,66 @@ fn an_option_in_error_stops_a_diff_of_revisions() {
     let (code, out) = status_and_text(d.path(), &["diff", "HEAD~1..HEAD", "--post", "grbl"]);
     assert_eq!(code, 1, "{out}");
 }
+
+#[test]
+fn an_option_value_in_error_stops_the_diff_with_its_reason() {
+    let d = tempfile::tempdir().unwrap();
+    write(
+        d.path(),
+        "millpath.toml",
+        "feed = 300\nsweep_speed = 1000\nsweep_height = 10\n",
+    );
+    let text = |depth: &str| {
+        format!("path 3000.1P {{\n  start (0, 0)  M3x40 O2 T3 I1,5 B{depth}\n  end (80, 0)\n  mill (0, 0) -> (80, 0)\n}}\n")
+    };
+    write(d.path(), "old.mpath", &text("-0,2"));
+    write(d.path(), "new.mpath", &text("-0,5"));
+    // before: both versions "did not compile", exit 1, and no word of the option
+    for (option, said) in [
+        ("--feed=-5", "feed=-5 must be > 0"),
+        ("--sweep-height=0", "sweep_height=0 must be > 0"),
+        ("--feed=nan", "feed=NaN"),
+        ("--feed=1e300", "feed=1e300"),
+        ("--plunge-feed=0", "plunge_feed=0 must be > 0"),
+        ("--feed-override=5000", "feed_override=5000"),
+    ] {
+        let (code, out) = status_and_text(d.path(), &["diff", option, "old.mpath", "new.mpath"]);
+        assert_eq!(code, 2, "{option}: {out}");
+        assert!(
+            out.contains(said) && out.contains("Options"),
+            "{option}: {out}"
+        );
+    }
+    let (code, out) = status_and_text(
+        d.path(),
+        &[
+            "diff",
+            "--lang",
+            "de",
+            "--feed=-5",
+            "old.mpath",
+            "new.mpath",
+        ],
+    );
+    assert_eq!(code, 2, "{out}");
+    assert!(out.contains("feed=-5 muss > 0 sein"), "{out}");
+    // git difftool's page likewise: no page for options in error
+    let (code, out) = status_and_text(
+        d.path(),
+        &[
+            "difftool",
+            "--feed=-5",
+            "old.mpath",
+            "new.mpath",
+            "--html",
+            "page.html",
+        ],
+    );
+    assert_eq!(code, 2, "{out}");
+    assert!(out.contains("feed=-5 must be > 0"), "{out}");
+    assert!(!d.path().join("page.html").exists());
+    // a sane value is a diff as before
+    let (code, out) = status_and_text(d.path(), &["diff", "--feed=250", "old.mpath", "new.mpath"]);
+    assert_eq!(code, 1, "{out}");
+    assert!(out.contains("G-code changed"), "{out}");
+}

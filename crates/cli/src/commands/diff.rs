@@ -109,6 +109,10 @@ pub fn run(a: &Args) -> u8 {
             return 2;
         }
     };
+    if let Err(e) = option_values(&a.machine) {
+        eprintln!("{e}");
+        return 2;
+    }
     let mut changed = false;
     let mut status = 0;
     let mut texts = Vec::new();
@@ -164,6 +168,45 @@ pub fn run(a: &Args) -> u8 {
         return 2;
     }
     u8::from(changed)
+}
+
+/// The values the options give, checked as compile checks them (`--feed=-5`, `--feed nan`,
+/// `--plunge-feed 0` …): an option in error stops the diff (exit 2) rather than making both
+/// versions "not compile" with no reason given.
+fn option_values(m: &MachineArgs) -> Result<(), String> {
+    // a margin alone may widen a version's [heightmap]: checked per version
+    let alone = MachineArgs {
+        heightmap_margin: None,
+        ..m.clone()
+    };
+    let s = settings_for(&alone, None, false)?;
+    let mut errors: Vec<String> = s
+        .number_errors()
+        .iter()
+        .filter(|d| matches!(d.origin, Origin::Options))
+        .map(|d| report::human(d, s.lang))
+        .collect();
+    // compile's rule for the three machine values, for those the options give
+    let given = [
+        ("feed", m.feed),
+        ("sweep_speed", m.sweep_speed),
+        ("sweep_height", m.sweep_height),
+    ];
+    for (name, v) in given {
+        if let Some(v) = v.filter(|v| v.is_finite() && *v <= 0.0) {
+            let d = Diagnostic::error(
+                Msg::MustBePositive,
+                Origin::Options,
+                millpath_core::args![name, millpath_core::params::fmt_num(v)],
+            );
+            errors.push(report::human(&d, s.lang));
+        }
+    }
+    if errors.is_empty() {
+        Ok(())
+    } else {
+        Err(errors.join("\n"))
+    }
 }
 
 /// Writes the visual diff; 0, or 1 when a file could not be written (said on stderr).
@@ -249,6 +292,10 @@ pub fn difftool(
             return 2;
         }
     };
+    if let Err(e) = option_values(machine) {
+        eprintln!("{e}");
+        return 2;
+    }
     let d = millpath_history::diff(
         Side {
             version: &o,
