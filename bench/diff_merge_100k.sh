@@ -16,6 +16,9 @@
 # Figures at 100,000 (2 shared cores, load 7–10, so CPU seconds above an idle machine's):
 # diff 9.4 s CPU before one analysis per version, 4.7–6.1 s after; diff-many 11.8 → 5.3 s.
 # Instructions (callgrind, 5,000 elements): 2.06 G → 0.87 G.
+# Idle machine (load 0.6): diff 3.0 s wall / 4.8 s CPU before the analysis built models only and
+# diff kept freed memory for a second, 2.0–2.2 s / 3.2–3.6 s after (page faults 342k → 166k);
+# diff-many 3.15 / 5.25 → 2.27 / 3.76; diff-nc 0.54 / 0.89; merge 5.15 / 5.13.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 n=${1:-100000}

@@ -387,6 +387,17 @@ fn keeps_memory_while_typing() {
     }
 }
 
+/// `diff` and `merge` compile two versions, then read both analyses again: memory freed is
+/// kept for a second, so each stage reuses the pages of the one before instead of faulting
+/// in fresh ones (a 100,000-element diff: 342,000 page faults → 166,000, 4.8 → 3.2 s CPU,
+/// 3.0 → 2.0 s on an idle machine).
+fn keeps_memory_between_stages() {
+    // SAFETY: as in `short_lived`
+    unsafe {
+        libmimalloc_sys::mi_option_set(MI_OPTION_PURGE_DELAY, 1000);
+    }
+}
+
 /// `mi_option_purge_delay` of mimalloc v2's `mi_option_e` (mimalloc.h), which the sys
 /// crate does not name.
 const MI_OPTION_PURGE_DELAY: libmimalloc_sys::mi_option_t = 15;
@@ -396,6 +407,12 @@ fn main() -> ExitCode {
         short_lived();
     } else {
         keeps_memory_while_typing();
+    }
+    if std::env::args_os()
+        .nth(1)
+        .is_some_and(|c| c == "diff" || c == "difftool" || c == "merge")
+    {
+        keeps_memory_between_stages();
     }
     let raw: Vec<String> = std::env::args().collect();
     // the commands that write files remove their temporaries when interrupted

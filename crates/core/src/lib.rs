@@ -171,7 +171,7 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
             if !generates {
                 continue;
             }
-            if session.stopped() {
+            if session.stopped() || session.settings.models_only {
                 return outcome;
             }
             if !reference_check {

@@ -125,6 +125,10 @@ pub struct Workspace {
     /// diff`), as `compile` takes them: the step keeps the other keys, a margin alone widens
     /// the file's grid.
     pub heightmap_options: (Option<f64>, Option<f64>),
+    /// Analyses build every path's model but plan no program (`millpath diff`: the
+    /// toolpath of each path plans it once and reports the emitter's errors; the
+    /// analysis's diagnostics then lack them).
+    pub models_only: bool,
 }
 
 /// The file system as the editor sees it: open text buffers over the disk. A DXF drawing is
@@ -587,6 +591,7 @@ fn analyze_source(
     check.check = true;
     // answered while typing: no second opinion (its stock simulation is `millpath check`'s)
     check.quick_check = true;
+    check.models_only = ws.models_only;
     let mut objects = Vec::new();
     let mut declared = Vec::new();
     let mut objects_clean = false;
