@@ -448,22 +448,30 @@ fn a_revision_is_read_with_its_own_settings() {
     assert!(text.contains("AB.1P: removed"), "{text}");
 }
 
-#[test]
-fn an_option_in_error_stops_a_diff_of_revisions() {
+/// A folder with the machine settings in millpath.toml.
+fn machine_folder() -> tempfile::TempDir {
     let d = tempfile::tempdir().unwrap();
     write(
         d.path(),
         "millpath.toml",
         "feed = 300\nsweep_speed = 1000\nsweep_height = 10\n",
     );
-    let text = |depth: &str| {
-        format!("path 3000.1P {{\n  start (0, 0)  M3x40 O2 T3 I1,5 B{depth}\n  end (80, 0)\n  mill (0, 0) -> (80, 0)\n}}\n")
-    };
-    write(d.path(), "3000.mpath", &text("-0,2"));
+    d
+}
+
+/// One slot, milled at `depth`.
+fn slot(depth: &str) -> String {
+    format!("path 3000.1P {{\n  start (0, 0)  M3x40 O2 T3 I1,5 B{depth}\n  end (80, 0)\n  mill (0, 0) -> (80, 0)\n}}\n")
+}
+
+#[test]
+fn an_option_in_error_stops_a_diff_of_revisions() {
+    let d = machine_folder();
+    write(d.path(), "3000.mpath", &slot("-0,2"));
     git(d.path(), &["init", "-q"]);
     git(d.path(), &["add", "."]);
     git(d.path(), &["commit", "-qm", "one"]);
-    write(d.path(), "3000.mpath", &text("-0,5"));
+    write(d.path(), "3000.mpath", &slot("-0,5"));
     git(d.path(), &["commit", "-qam", "two"]);
     // a post that does not exist is the options' error (exit 2), not a diff without it
     let (code, out) = status_and_text(d.path(), &["diff", "HEAD~1..HEAD", "--post", "nosuch"]);
@@ -475,17 +483,9 @@ fn an_option_in_error_stops_a_diff_of_revisions() {
 
 #[test]
 fn an_option_value_in_error_stops_the_diff_with_its_reason() {
-    let d = tempfile::tempdir().unwrap();
-    write(
-        d.path(),
-        "millpath.toml",
-        "feed = 300\nsweep_speed = 1000\nsweep_height = 10\n",
-    );
-    let text = |depth: &str| {
-        format!("path 3000.1P {{\n  start (0, 0)  M3x40 O2 T3 I1,5 B{depth}\n  end (80, 0)\n  mill (0, 0) -> (80, 0)\n}}\n")
-    };
-    write(d.path(), "old.mpath", &text("-0,2"));
-    write(d.path(), "new.mpath", &text("-0,5"));
+    let d = machine_folder();
+    write(d.path(), "old.mpath", &slot("-0,2"));
+    write(d.path(), "new.mpath", &slot("-0,5"));
     // before: both versions "did not compile", exit 1, and no word of the option
     for (option, said) in [
         ("--feed=-5", "feed=-5 must be > 0"),
