@@ -39,6 +39,7 @@ fail() {
 # into the scratch folder, never into ~/.cargo/bin
 export CARGO_TARGET_DIR="$root/target" CARGO_INSTALL_ROOT="$work/root"
 export PATH="$work/root/bin:$PATH"
+[ -x "$root/target/release/millpath" ] || cargo build --release --quiet -p millpath
 
 slot() { # slot NAME Y END: a .mpath with one slot at height Y milled to x=END
   printf 'path %s {\n  start (0, %s)  M10x3 O2 T3 I1,5 B-0,2\n  end (30, %s)\n' "$1" "$2" "$2"

@@ -515,6 +515,18 @@ fn an_option_value_in_error_stops_the_diff_with_its_reason() {
     );
     assert_eq!(code, 2, "{out}");
     assert!(out.contains("feed=-5 muss > 0 sein"), "{out}");
+    // the language of millpath.toml beside the drawings, as the rest of the report
+    let de = machine_folder();
+    write(
+        de.path(),
+        "millpath.toml",
+        "lang = \"de\"\nfeed = 300\nsweep_speed = 1000\nsweep_height = 10\n",
+    );
+    write(de.path(), "old.mpath", &slot("-0,2"));
+    write(de.path(), "new.mpath", &slot("-0,5"));
+    let (code, out) = status_and_text(de.path(), &["diff", "--feed=-5", "old.mpath", "new.mpath"]);
+    assert_eq!(code, 2, "{out}");
+    assert!(out.contains("feed=-5 muss > 0 sein"), "{out}");
     // git difftool's page likewise: no page for options in error
     let (code, out) = status_and_text(
         d.path(),

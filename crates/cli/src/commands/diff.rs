@@ -109,7 +109,7 @@ pub fn run(a: &Args) -> u8 {
             return 2;
         }
     };
-    if let Err(e) = option_values(&a.machine) {
+    if let Err(e) = option_values(&a.machine, lang) {
         eprintln!("{e}");
         return 2;
     }
@@ -173,7 +173,7 @@ pub fn run(a: &Args) -> u8 {
 /// The values the options give, checked as compile checks them (`--feed=-5`, `--feed nan`,
 /// `--plunge-feed 0` …): an option in error stops the diff (exit 2) rather than making both
 /// versions "not compile" with no reason given.
-fn option_values(m: &MachineArgs) -> Result<(), String> {
+fn option_values(m: &MachineArgs, lang: Lang) -> Result<(), String> {
     // a margin alone may widen a version's [heightmap]: checked per version
     let alone = MachineArgs {
         heightmap_margin: None,
@@ -184,7 +184,7 @@ fn option_values(m: &MachineArgs) -> Result<(), String> {
         .number_errors()
         .iter()
         .filter(|d| matches!(d.origin, Origin::Options))
-        .map(|d| report::human(d, s.lang))
+        .map(|d| report::human(d, lang))
         .collect();
     // compile's rule for the three machine values, for those the options give
     let given = [
@@ -199,7 +199,7 @@ fn option_values(m: &MachineArgs) -> Result<(), String> {
                 Origin::Options,
                 millpath_core::args![name, millpath_core::params::fmt_num(v)],
             );
-            errors.push(report::human(&d, s.lang));
+            errors.push(report::human(&d, lang));
         }
     }
     if errors.is_empty() {
@@ -292,7 +292,7 @@ pub fn difftool(
             return 2;
         }
     };
-    if let Err(e) = option_values(machine) {
+    if let Err(e) = option_values(machine, lang) {
         eprintln!("{e}");
         return 2;
     }
