@@ -167,7 +167,7 @@ def run(sim, speedup, settings, program, report=0.001):
         sim_log = os.path.join(tmp, "sim.log")
         sim_err = open(sim_log, "w")
         p = subprocess.Popen(
-            ["stdbuf", "-i0", "-o0", sim, "-t", str(speedup), "-r", str(report), "-s", steps, "-b", blocks],
+            ["stdbuf", "-i0", "-o0", os.path.abspath(sim), "-t", str(speedup), "-r", str(report), "-s", steps, "-b", blocks],
             stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=sim_err,
             cwd=tmp, bufsize=0)
         try:
@@ -271,30 +271,45 @@ def main():
     a = ap.parse_args()
     # clean runs (no stall) and the others; a run with stalls is repeated
     clean, stalled_runs = [], []
-    errors = []
+    # the errors of each run GRBL answered with errors: a program GRBL's parser refuses is
+    # refused again (gvalidate checks every program the same way), while a byte lost on the
+    # simulator's serial line (its clock and main threads share the receive buffer without
+    # the AVR's atomicity; seen once on a loaded CI machine, error:2) is not: run it again
+    error_runs = []
     for attempt in range(a.runs + 3):
         try:
             t, stutter, lost, errors = run(a.sim, a.speedup, a.setting, a.program)
         except Stalled:
             print(f"{a.program}: the simulator stalled; again", file=sys.stderr)
             continue
+        if errors:
+            error_runs.append(errors)
+            if len(error_runs) >= 2:
+                break
+            print(f"{a.program}: GRBL answered {', '.join(errors)} in that run; again", file=sys.stderr)
+            continue
         (clean if stutter == 0 else stalled_runs).append((t, stutter, lost))
         if stutter:
             print(f"{a.program}: {stutter} stalls in that run; again", file=sys.stderr)
-        if errors or len(clean) == a.runs:
+        if len(clean) == a.runs:
             break
+    errors = error_runs[-1] if len(error_runs) >= 2 or (error_runs and not clean and not stalled_runs) else []
+    if errors:
+        for e in errors:
+            print(f"{a.program}: GRBL answered {e}", file=sys.stderr)
+        sys.exit(1)
+    if error_runs:
+        print(f"{a.program}: GRBL answered {', '.join(error_runs[0])} once and not again: "
+              "a byte lost on the simulator's serial line", file=sys.stderr)
     if not clean and not stalled_runs:
         sys.exit(f"{a.program}: the simulator stalled every time")
     if len(clean) > 1:
         spread = (max(clean)[0] - min(clean)[0]) / min(clean)[0]
         print(f"{a.program}: {len(clean)} clean runs, spread {100 * spread:.2f} %", file=sys.stderr)
     t, stutter, lost = min(clean or stalled_runs)
-    for e in errors:
-        print(f"{a.program}: GRBL answered {e}", file=sys.stderr)
     # the time, how often GRBL's thread left the steppers without steps (0: a clean run), and
     # the time those stalls took
     print(f"{t:.4f}\t{stutter}\t{lost:.4f}")
-    sys.exit(1 if errors else 0)
 
 
 if __name__ == "__main__":
