@@ -2,8 +2,8 @@
 //! dependency graph between files, and the publication of diagnostics.
 //!
 //! `Backend` and its state: generations, the shared analysis per version (made on the analysis
-//! thread, `worker.rs`; the one it replaces freed there after it, not on the way to the diagnostics), the dependency graph, debounced
-//! publication, `blocking`/`guarded`.
+//! thread, `worker.rs`; the one it replaces freed on its freeing thread, not on the way to the
+//! diagnostics), the dependency graph, debounced publication, `blocking`/`guarded`.
 
 use crate::conv::*;
 use millpath_core::load::config::FileConfig;
@@ -87,6 +87,14 @@ pub(crate) fn content_modified() -> Error {
         message: "the document changed; ask again".into(),
         data: None,
     }
+}
+
+/// At most this many diagnostics are converted on the publishing task itself.
+const CONVERT_AT_ONCE: usize = 64;
+
+/// The analysis' diagnostics are few and point into its own file only.
+fn converts_at_once(a: &Analysis) -> bool {
+    a.diagnostics.len() <= CONVERT_AT_ONCE && a.diagnostics.iter().all(|d| d.related.is_empty())
 }
 
 /// Runs a heavy handler body on the blocking pool; the handler future only awaits it, so
@@ -287,6 +295,13 @@ impl Backend {
                 return;
             }
             let diags = match this.analysis(&uri).await {
+                // a few diagnostics of this file alone are converted at once (a hop to the
+                // blocking pool costs more than that on a busy computer); many, or ones that
+                // point into other files (their lines read), on the blocking pool
+                Ok((a, ws)) if converts_at_once(&a) => match guarded(|| lsp_diagnostics(&a, &ws)) {
+                    Ok(d) => d,
+                    Err(_) => internal_error_diagnostic(),
+                },
                 Ok((a, ws)) => match blocking(move || lsp_diagnostics(&a, &ws)).await {
                     Ok(d) => d,
                     Err(_) => internal_error_diagnostic(),
