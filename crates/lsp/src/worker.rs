@@ -15,6 +15,7 @@
 //! on another thread to the heap that allocated it, so the analysis thread still reuses its
 //! pages (the server's page faults over the latency bench: 402–417 before, 425–464 after).
 
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::mpsc::{channel, Sender};
 use std::sync::{Mutex, OnceLock};
 
@@ -61,13 +62,25 @@ pub(crate) async fn run<T: Send + 'static>(f: impl FnOnce() -> T + Send + 'stati
     rx.await.ok().flatten()
 }
 
+/// Values waiting on the freeing thread at most: beyond them (the thread starved on a busy
+/// computer while analyses go on), the caller frees its value itself, so replaced analyses
+/// never pile up in memory.
+const MAX_WAITING_TO_FREE: usize = 4;
+
 /// Frees `value` on the freeing thread, after the values sent before it and beside the next
 /// analysis (not in front of it).
 pub(crate) fn drop_later<T: Send + 'static>(value: T) {
     static FREEING: OnceLock<Option<Mutex<Sender<Job>>>> = OnceLock::new();
+    static WAITING: AtomicUsize = AtomicUsize::new(0);
+    if WAITING.load(Ordering::Acquire) >= MAX_WAITING_TO_FREE {
+        drop(value);
+        return;
+    }
+    WAITING.fetch_add(1, Ordering::AcqRel);
     let job: Job = Box::new(move || {
         // a panicking Drop must not end the thread
         let _ = std::panic::catch_unwind(std::panic::AssertUnwindSafe(move || drop(value)));
+        WAITING.fetch_sub(1, Ordering::AcqRel);
     });
     let queue = FREEING.get_or_init(|| start("millpath-free")).as_ref();
     if let Err(job) = send(queue, job) {
@@ -109,13 +122,40 @@ mod tests {
         assert_ne!(freed_on, analysis_thread);
     }
 
+    #[test]
+    fn values_waiting_to_be_freed_are_bounded() {
+        let (freed_tx, freed_rx) = std::sync::mpsc::channel();
+        let mut gates = Vec::new();
+        let me = std::thread::current().id();
+        let mut inline = None;
+        // the freeing thread blocked by the first values: a later one is freed at once, here
+        for k in 0..=MAX_WAITING_TO_FREE + 1 {
+            let (go, wait) = std::sync::mpsc::channel::<()>();
+            gates.push(go);
+            drop_later(SlowDrop(Some(wait), freed_tx.clone()));
+            if freed_rx.try_recv() == Ok(me) {
+                inline = Some(k);
+                break;
+            }
+        }
+        for g in gates {
+            let _ = g.send(());
+        }
+        assert!(
+            inline.is_some_and(|k| k <= MAX_WAITING_TO_FREE),
+            "no value freed by the caller: {inline:?}"
+        );
+    }
+
     struct SlowDrop(
         Option<std::sync::mpsc::Receiver<()>>,
         std::sync::mpsc::Sender<std::thread::ThreadId>,
     );
     impl Drop for SlowDrop {
         fn drop(&mut self) {
-            if let Some(w) = self.0.take() {
+            // only the freeing thread waits for its gate (a value the caller frees does not)
+            let freeing = std::thread::current().name() == Some("millpath-free");
+            if let Some(w) = self.0.take().filter(|_| freeing) {
                 let _ = w.recv_timeout(std::time::Duration::from_secs(20));
             }
             let _ = self.1.send(std::thread::current().id());
