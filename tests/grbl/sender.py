@@ -272,9 +272,10 @@ def main():
     # clean runs (no stall) and the others; a run with stalls is repeated
     clean, stalled_runs = [], []
     # the errors of each run GRBL answered with errors: a program GRBL's parser refuses is
-    # refused again (gvalidate checks every program the same way), while a byte lost on the
-    # simulator's serial line (its clock and main threads share the receive buffer without
-    # the AVR's atomicity; seen once on a loaded CI machine, error:2) is not: run it again
+    # refused again (gvalidate checks every program the same way), while a byte garbled on
+    # the simulator's serial line is not (seen once on a loaded CI machine: error:2 on a
+    # program gvalidate accepted; most likely its clock and main threads racing on the
+    # receive buffer, which an AVR's interrupts never do): run it again
     error_runs = []
     for attempt in range(a.runs + 3):
         try:
@@ -300,7 +301,7 @@ def main():
         sys.exit(1)
     if error_runs:
         print(f"{a.program}: GRBL answered {', '.join(error_runs[0])} once and not again: "
-              "a byte lost on the simulator's serial line", file=sys.stderr)
+              "the simulator's serial line, not the program", file=sys.stderr)
     if not clean and not stalled_runs:
         sys.exit(f"{a.program}: the simulator stalled every time")
     if len(clean) > 1:
