@@ -223,7 +223,7 @@ fn mutate_words(r: &mut Rng, s: &str) -> String {
 #[test]
 fn the_shortcut_for_plain_segments_gives_the_full_grammars_tree_and_errors() {
     let mut r = Rng(0xD1B54A32D192ED03);
-    let mut check = |src: &str| {
+    let check = |src: &str| {
         let fast = parse(src);
         let full = parse_without_shortcut(src);
         assert_eq!(fast, full, "{src:?}");
