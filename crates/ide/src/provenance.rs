@@ -209,10 +209,14 @@ pub(crate) fn chain_first_segment<'p>(
 ) -> Option<&'p RawSegment> {
     let firsts = {
         let mut cache = a.chain_first.lock().ok()?;
-        cache
-            .entry(path.name.clone())
-            .or_insert_with(|| std::sync::Arc::new(chain_firsts(path, &a.traversals)))
-            .clone()
+        // found without a copy of the name (asked once per element)
+        match cache.get(path.name.as_str()) {
+            Some(f) => f.clone(),
+            None => cache
+                .entry(path.name.clone())
+                .or_insert_with(|| std::sync::Arc::new(chain_firsts(path, &a.traversals)))
+                .clone(),
+        }
     };
     firsts.get(&seg.object).map(|&f| &path.segments[f])
 }

@@ -1,5 +1,8 @@
 //! The error-recovering parser (chumsky over logos tokens). Every syntax error becomes a
 //! [`SyntaxError`] with a span; a bad line is skipped and the rest of the file is parsed.
+//! Plain segment lines (`mill (x, y) -> (x, y)  params`) are read by a short-cut without the
+//! combinators (`plain_segment`), which gives the same tree and errors (property test
+//! `tests/properties.rs` against [`parse_without_shortcut`]).
 
 use crate::ast::*;
 use crate::ast::{Span, Spanned};
