@@ -19,6 +19,12 @@
 # Idle machine (load 0.6): diff 3.0 s wall / 4.8 s CPU before the analysis built models only and
 # diff kept freed memory for a second, 2.0–2.2 s / 3.2–3.6 s after (page faults 342k → 166k);
 # diff-many 3.15 / 5.25 → 2.27 / 3.76; diff-nc 0.54 / 0.89; merge 5.15 / 5.13.
+# Load 1.4, main's binary beside this one: diff 2.27 s wall / 3.68 s CPU before the analysis
+# read paths only (one model build per version), provenance used the build's walk and made the
+# start's rows once per path, and the parser read plain segment lines without combinators;
+# 1.64–1.80 s / 2.58–2.65 s after (perf stat: 3.53 → 2.47 s task-clock); diff-nc 0.85 → 0.48 s
+# CPU, diff-many 3.56 → 3.40, merge 5.17 → 3.52–3.93. Instructions (callgrind, 20,000
+# elements): 3.40 G → 2.20 G. `millpath compile` of the 100k drawing: 2.2 s either way.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 n=${1:-100000}

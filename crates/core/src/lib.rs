@@ -171,7 +171,7 @@ pub fn compile_file(session: &mut Session, input: &Path, banner: &str) -> FileOu
             if !generates {
                 continue;
             }
-            if session.stopped() || session.settings.models_only {
+            if session.stopped() {
                 return outcome;
             }
             if !reference_check {

@@ -70,8 +70,8 @@ impl Compiled {
         let at = file.with_extension("mpath");
         let mut ws = Workspace {
             memory: files,
-            // each path's toolpath plans it (the analysis's own plan would be a second)
-            models_only: true,
+            // each path's toolpath builds and plans it (the analysis's own would be a second)
+            paths_only: true,
             ..Workspace::default()
         };
         ws.overlays.insert(at.clone(), version.text.clone());

@@ -2,7 +2,7 @@
 //! (`millpath diff` compares them between two versions): the rows hover shows.
 
 use crate::common::object_index;
-use crate::provenance::provenance;
+use crate::provenance::{provenance_in, Inherited};
 use crate::Analysis;
 use millpath_core::front::drawing::{RawPath, RawSegment};
 use std::collections::HashMap;
@@ -27,7 +27,7 @@ pub fn effective_values(a: &Analysis, offsets: &[usize]) -> Vec<Vec<Effective>> 
         // the first of a name wins, as `raw_path` finds it
         paths.insert(p.name.as_str(), &**p);
     }
-    let mut segments: HashMap<&str, HashMap<usize, &RawSegment>> = HashMap::new();
+    let mut segments: HashMap<&str, (HashMap<usize, &RawSegment>, Inherited)> = HashMap::new();
     for p in a.ast.paths() {
         for el in p.elements() {
             let Some(&i) = wanted.get(&el.span.start) else {
@@ -39,19 +39,16 @@ pub fn effective_values(a: &Analysis, offsets: &[usize]) -> Vec<Vec<Effective>> 
             let Some(path) = paths.get(&*a.objects[object].path).copied() else {
                 continue;
             };
-            let seg = segments
-                .entry(path.name.as_str())
-                .or_insert_with(|| {
-                    let mut by_object = HashMap::new();
-                    for s in path.segments.iter().rev() {
-                        // the first segment of an object wins, as `find` gives it
-                        by_object.insert(s.object, s);
-                    }
-                    by_object
-                })
-                .get(&object)
-                .copied();
-            out[i] = provenance(a, path, el, seg)
+            let (by_object, inherited) = segments.entry(path.name.as_str()).or_insert_with(|| {
+                let mut by_object = HashMap::new();
+                for s in path.segments.iter().rev() {
+                    // the first segment of an object wins, as `find` gives it
+                    by_object.insert(s.object, s);
+                }
+                (by_object, Inherited::default())
+            });
+            let seg = by_object.get(&object).copied();
+            out[i] = provenance_in(a, path, el, seg, inherited)
                 .into_iter()
                 .map(|r| Effective {
                     key: r.key,

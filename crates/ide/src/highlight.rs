@@ -60,7 +60,7 @@ fn chain_elements(a: &Analysis, offset: usize) -> Vec<Highlight> {
     let Some((path, Some(seg))) = segment_of(a, el) else {
         return own;
     };
-    let firsts = chain_firsts(path);
+    let firsts = chain_firsts(path, &a.traversals);
     let Some(first) = firsts.get(&seg.object) else {
         return own;
     };

@@ -125,10 +125,11 @@ pub struct Workspace {
     /// diff`), as `compile` takes them: the step keeps the other keys, a margin alone widens
     /// the file's grid.
     pub heightmap_options: (Option<f64>, Option<f64>),
-    /// Analyses build every path's model but plan no program (`millpath diff`: the
-    /// toolpath of each path plans it once and reports the emitter's errors; the
-    /// analysis's diagnostics then lack them).
-    pub models_only: bool,
+    /// Analyses read the document's paths and build no model (`millpath diff`: the toolpath
+    /// of each path builds and plans it once, walking through the analysis's memo, and
+    /// reports the build's and the emitter's errors; the analysis's diagnostics then lack
+    /// them).
+    pub paths_only: bool,
 }
 
 /// The file system as the editor sees it: open text buffers over the disk. A DXF drawing is
@@ -591,7 +592,6 @@ fn analyze_source(
     check.check = true;
     // answered while typing: no second opinion (its stock simulation is `millpath check`'s)
     check.quick_check = true;
-    check.models_only = ws.models_only;
     let mut objects = Vec::new();
     let mut declared = Vec::new();
     let mut objects_clean = false;
@@ -651,8 +651,10 @@ fn analyze_source(
                     return None;
                 }
             }
-            compile_file(&mut session, path, &millpath_core::banner());
-            models = session.take_models();
+            if !(ws.paths_only && is_text) {
+                compile_file(&mut session, path, &millpath_core::banner());
+                models = session.take_models();
+            }
             diagnostics = session.diags.list;
             diagnostics.retain(|d| in_file(d, path));
         }

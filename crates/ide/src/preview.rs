@@ -60,6 +60,8 @@ pub(crate) fn top_model_from(
     };
     let mut session = Session::new(ds.settings, &fs).map_err(|e| joined(&e))?;
     session.stop = Some(stop);
+    // the analysis's walks: a path walked once serves its build and its hover rows
+    session.traversals = analysed.map(|a| &a.traversals);
     let names = match analysed {
         Some(a) => session.add_shared_paths(path, a.paths.clone()),
         None => session.load_file(path),

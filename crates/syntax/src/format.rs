@@ -3,48 +3,71 @@
 use crate::ast::*;
 use crate::lexer::{quote_if_needed, quote_param};
 
+use std::fmt::Write;
+
 /// A number in its shortest exact decimal form (`-0` keeps its sign: it can show in G-code).
 pub fn num(v: f64) -> String {
     format!("{v}")
 }
 
 pub fn point(p: Point) -> String {
-    format!("({}, {})", num(p.x), num(p.y))
+    let mut s = String::new();
+    write_point(&mut s, p);
+    s
 }
 
 pub fn geometry(g: &Geometry) -> String {
-    match g {
-        Geometry::Point(p) => point(*p),
-        Geometry::Line(a, b) => format!("{} -> {}", point(*a), point(*b)),
-        Geometry::Arc { c, r, a0, a1 } => format!(
-            "arc {} r{} from {} to {}",
-            point(*c),
-            num(*r),
-            num(*a0),
-            num(*a1)
-        ),
-        Geometry::Circle { c, d } => format!("{} d{}", point(*c), num(*d)),
-    }
+    let mut s = String::new();
+    write_geometry(&mut s, g);
+    s
 }
 
 /// One element line without indentation.
 pub fn element(e: &Element) -> String {
-    let mut s = format!("{} {}", e.kind.value.words(), geometry(&e.geometry.value));
-    if !e.params.is_empty() {
-        s.push_str("  ");
-        s.push_str(
-            &e.params
-                .iter()
-                .map(|p| quote_param(&p.value))
-                .collect::<Vec<_>>()
-                .join(" "),
-        );
+    let mut s = String::new();
+    write_element(&mut s, e);
+    s
+}
+
+// The writers below append to one line (a file's formatting makes no string per number).
+// Writing into a `String` cannot fail.
+
+fn write_point(out: &mut String, p: Point) {
+    let _ = write!(out, "({}, {})", p.x, p.y);
+}
+
+fn write_geometry(out: &mut String, g: &Geometry) {
+    match g {
+        Geometry::Point(p) => write_point(out, *p),
+        Geometry::Line(a, b) => {
+            write_point(out, *a);
+            out.push_str(" -> ");
+            write_point(out, *b);
+        }
+        Geometry::Arc { c, r, a0, a1 } => {
+            out.push_str("arc ");
+            write_point(out, *c);
+            let _ = write!(out, " r{r} from {a0} to {a1}");
+        }
+        Geometry::Circle { c, d } => {
+            write_point(out, *c);
+            let _ = write!(out, " d{d}");
+        }
+    }
+}
+
+fn write_element(out: &mut String, e: &Element) {
+    out.push_str(&e.kind.value.words());
+    out.push(' ');
+    write_geometry(out, &e.geometry.value);
+    for (i, p) in e.params.iter().enumerate() {
+        out.push_str(if i == 0 { "  " } else { " " });
+        out.push_str(&quote_param(&p.value));
     }
     if let Some(c) = &e.comment {
-        s.push_str("  ");
-        s.push_str(c.value.trim_end());
+        out.push_str("  ");
+        out.push_str(c.value.trim_end());
     }
-    s
 }
 
 /// Formats a file. Lines that did not parse are kept as they are (taken from `src`).
@@ -76,7 +99,11 @@ pub fn format(file: &File, src: &str) -> String {
                     match pi {
                         PathItem::Blank => push_blank(&mut out),
                         PathItem::Comment(c) => out.push(format!("  {}", c.value.trim_end())),
-                        PathItem::Element(e) => out.push(format!("  {}", element(e))),
+                        PathItem::Element(e) => {
+                            let mut line = String::from("  ");
+                            write_element(&mut line, e);
+                            out.push(line);
+                        }
                         PathItem::Error(span) => {
                             out.push(format!("  {}", src.get(span.clone()).unwrap_or("").trim()))
                         }

@@ -1,5 +1,8 @@
 //! The error-recovering parser (chumsky over logos tokens). Every syntax error becomes a
 //! [`SyntaxError`] with a span; a bad line is skipped and the rest of the file is parsed.
+//! Plain segment lines (`mill (x, y) -> (x, y)  params`) are read by a short-cut without the
+//! combinators (`plain_segment`), which gives the same tree and errors (property test
+//! `tests/properties.rs` against [`parse_without_shortcut`]).
 
 use crate::ast::*;
 use crate::ast::{Span, Spanned};
@@ -7,6 +10,7 @@ pub use crate::error::SyntaxError;
 use crate::error::{decimal_comma, nearest, ErrorKind, Expected, Found, KIND_WORDS};
 use crate::lexer::{split_params, unquote, Token};
 use crate::tokens::{TokenList, Tokens};
+use chumsky::error::{LabelError, RichPattern};
 use chumsky::prelude::*;
 
 /// Custom errors travel through chumsky as text: a tag, then the offending word.
@@ -199,6 +203,100 @@ fn element<'t, 's: 't>() -> impl Parser<'t, In<'t, 's>, RawElement, Extra<'t, 's
         })
 }
 
+/// The common segment line `mill (x, y) -> (x, y)  params  # comment`, read without the
+/// combinators (a drawing of 100,000 segments is mostly these lines): the element the full
+/// grammar gives, with the same spans. Any other line (a marker, a circle, an arc, `ccw
+/// around`, a word that is no number, a line that does not end) fails where it starts with
+/// the error the first alternative after it (a blank line) reports there, so the full
+/// grammar reads it and reports exactly what it reports without this short-cut.
+fn plain_segment<'t, 's: 't>() -> impl Parser<'t, In<'t, 's>, RawElement, Extra<'t, 's>> + Clone {
+    custom(|inp| {
+        let start = inp.save();
+        match plain_segment_at(inp) {
+            Some(e) => Ok(e),
+            None => {
+                inp.rewind(start.clone());
+                let found = inp.next_maybe();
+                let span = inp.span_since(start.cursor());
+                inp.rewind(start);
+                Err(<Rich<'t, Token<'s>, SimpleSpan> as LabelError<
+                    't,
+                    In<'t, 's>,
+                    RichPattern<'t, Token<'s>>,
+                >>::expected_found(
+                    [RichPattern::Token(Token::Newline.into())],
+                    found,
+                    span,
+                ))
+            }
+        }
+    })
+}
+
+fn plain_segment_at<'t, 's: 't>(
+    inp: &mut chumsky::input::InputRef<'t, '_, In<'t, 's>, Extra<'t, 's>>,
+) -> Option<RawElement> {
+    let start = inp.cursor();
+    let kind = match inp.next()? {
+        Token::Word("mill") => Kind::Mill,
+        Token::Word("mark") => Kind::Mark,
+        Token::Word("bars") => Kind::Bars,
+        Token::Word("sub") => Kind::Sub,
+        Token::Word("sweep") => Kind::Sweep,
+        Token::Word("move") => Kind::Move,
+        Token::Word("skip") => Kind::Skip,
+        _ => return None,
+    };
+    let kind = Spanned::new(kind, range(inp.span_since(&start)));
+    let at = inp.cursor();
+    let point = |inp: &mut chumsky::input::InputRef<'t, '_, In<'t, 's>, Extra<'t, 's>>| {
+        let num = |inp: &mut chumsky::input::InputRef<'t, '_, In<'t, 's>, Extra<'t, 's>>| match inp
+            .next()?
+        {
+            Token::Word(w) => parse_num(w),
+            _ => None,
+        };
+        (inp.next()? == Token::LParen).then_some(())?;
+        let x = num(inp)?;
+        (inp.next()? == Token::Comma).then_some(())?;
+        let y = num(inp)?;
+        (inp.next()? == Token::RParen).then_some(Point { x, y })
+    };
+    let a = point(inp)?;
+    (inp.next()? == Token::Arrow).then_some(())?;
+    let b = point(inp)?;
+    let geometry = Spanned::new(Geometry::Line(a, b), range(inp.span_since(&at)));
+    // `ccw around (c)`: the full grammar decides
+    if matches!(inp.peek(), Some(Token::Word("ccw" | "cw"))) {
+        return None;
+    }
+    let at = inp.cursor();
+    while !matches!(inp.peek(), None | Some(Token::Newline | Token::Comment(_))) {
+        inp.skip();
+    }
+    let params = range(inp.span_since(&at));
+    let comment = match inp.peek() {
+        Some(Token::Comment(c)) => {
+            let at = inp.cursor();
+            inp.skip();
+            Some(Spanned::new(c.to_string(), range(inp.span_since(&at))))
+        }
+        _ => None,
+    };
+    match inp.peek() {
+        Some(Token::Newline) => inp.skip(),
+        None => {}
+        Some(_) => return None,
+    }
+    Some(RawElement {
+        kind,
+        geometry,
+        params,
+        comment,
+        span: range(inp.span_since(&start)),
+    })
+}
+
 fn error_line<'t, 's: 't>(
     stop: Token<'s>,
 ) -> impl Parser<'t, In<'t, 's>, Span, Extra<'t, 's>> + Clone {
@@ -239,11 +337,14 @@ impl<T> FromIterator<T> for Pieces<T> {
 
 fn file_parser<'t, 's: 't>(
     src: &'s str,
+    shortcut: bool,
 ) -> impl Parser<'t, In<'t, 's>, Vec<RawItem>, Extra<'t, 's>> {
     let comment = select! { Token::Comment(c) => c.to_string() }
         .map_with(|c, e| Spanned::new(c, range(e.span())));
     let newline = just(Token::Newline);
+    let plain = plain_segment().map(move |e| PathItem::Element(finish_element(e, src)));
     let path_item = choice((
+        plain.filter(move |_| shortcut),
         newline.to(PathItem::Blank),
         comment
             .then_ignore(newline.ignored().or(end()))
@@ -298,6 +399,17 @@ fn file_parser<'t, 's: 't>(
 
 /// Parses a file. The tree is always returned; errors are listed beside it.
 pub fn parse(src: &str) -> (File, Vec<SyntaxError>) {
+    parse_with(src, true)
+}
+
+/// [`parse`] without the short-cut for plain segment lines (`plain_segment`): the tests
+/// hold that both give the same tree and errors.
+#[doc(hidden)]
+pub fn parse_without_shortcut(src: &str) -> (File, Vec<SyntaxError>) {
+    parse_with(src, false)
+}
+
+fn parse_with(src: &str, shortcut: bool) -> (File, Vec<SyntaxError>) {
     let toks = TokenList::lex(src);
     let mut errors: Vec<SyntaxError> = toks
         .iter()
@@ -308,7 +420,7 @@ pub fn parse(src: &str) -> (File, Vec<SyntaxError>) {
         })
         .collect();
     let input = toks.input();
-    let (out, errs) = file_parser(src).parse(input).into_output_errors();
+    let (out, errs) = file_parser(src, shortcut).parse(input).into_output_errors();
     for e in errs {
         let span = range(*e.span());
         let span = span.start.min(src.len())..span.end.min(src.len());

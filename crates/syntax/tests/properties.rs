@@ -1,6 +1,7 @@
 //! Property tests with a small deterministic generator: the parser never panics on random
 //! or mutated input, and formatting is idempotent and preserves the tree.
 
+use millpath_syntax::parser::parse_without_shortcut;
 use millpath_syntax::{format, parse, Item, PathItem};
 
 struct Rng(u64);
@@ -178,4 +179,97 @@ fn random_and_mutated_input_never_panics() {
         let src = String::from_utf8_lossy(&bytes);
         let _ = parse(&src);
     }
+}
+
+/// Inserts whole words where the short-cut for plain segment lines must hand over to the
+/// full grammar (`ccw around`, a second geometry, a missing arrow).
+fn mutate_words(r: &mut Rng, s: &str) -> String {
+    let mut lines: Vec<String> = s.lines().map(str::to_string).collect();
+    for _ in 0..(1 + r.next() % 3) {
+        if lines.is_empty() {
+            break;
+        }
+        let i = (r.next() as usize) % lines.len();
+        let word = r.pick(&[
+            " ccw around (1, 2)",
+            " cw around (3,4)",
+            " cw",
+            " ccw",
+            " (1, 2)",
+            " -> (5, 6)",
+            " mill",
+            " x1",
+            "\r",
+            " # c",
+            " \"q\"",
+            " {",
+            " }",
+        ]);
+        let line = &mut lines[i];
+        let at = line
+            .char_indices()
+            .map(|(k, _)| k)
+            .nth((r.next() as usize) % line.chars().count().max(1))
+            .unwrap_or(line.len());
+        line.insert_str(at, word);
+    }
+    let mut out = lines.join("\n");
+    if r.next().is_multiple_of(2) {
+        out.push('\n');
+    }
+    out
+}
+
+#[test]
+fn the_shortcut_for_plain_segments_gives_the_full_grammars_tree_and_errors() {
+    let mut r = Rng(0xD1B54A32D192ED03);
+    let check = |src: &str| {
+        let fast = parse(src);
+        let full = parse_without_shortcut(src);
+        assert_eq!(fast, full, "{src:?}");
+    };
+    for _ in 0..1500 {
+        let base = random_file(&mut r);
+        check(&base);
+        check(&mutate(&mut r, &base));
+        check(&mutate_words(&mut r, &base));
+    }
+    for src in [
+        "path 1P {\n  mill (0, 0) -> (1, 1)",
+        "path 1P {\n  mill (0, 0) -> (1, 1)  T2 # c",
+        "path 1P {\n  mill (0, 0) -> (1, 1)\r\n}\r\n",
+        "path 1P {\n  mill (0, 0) -> (1, 1) ccw around (0, 1)\n}\n",
+        "path 1P {\n  mill (0, 0) -> (1, 1) cw\n}\n",
+        "path 1P {\n  mill (0, 0) -> (1, 1) (2, 2)\n}\n",
+        "path 1P {\n  mill (0, 0) -> (1, x)\n}\n",
+        "path 1P {\n  mill (0, 0) -> (1, 1e999)\n}\n",
+        "path 1P {\n  mill (0, 0) -> (1, 1) }\n",
+        "path 1P {\n  mill (0,0)->(1,1)T2\n}\n",
+        "path 1P {\n  mill\n}\n",
+        "path 1P {\n  mill (0, 0)\n}\n",
+        "path 1P {\n  mil (0, 0) -> (1, 1)\n}\n",
+    ] {
+        check(src);
+    }
+    // the repository's drawings
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let mut dirs = vec![root.join("examples"), root.join("tests"), root.join("docs")];
+    let mut seen = 0;
+    while let Some(d) = dirs.pop() {
+        let Ok(entries) = std::fs::read_dir(&d) else {
+            continue;
+        };
+        for e in entries.flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                dirs.push(p);
+            } else if p.extension().is_some_and(|x| x == "mpath") {
+                if let Ok(src) = std::fs::read_to_string(&p) {
+                    check(&src);
+                    seen += 1;
+                }
+            }
+        }
+    }
+    assert!(seen > 0, "no .mpath file found under {}", root.display());
 }

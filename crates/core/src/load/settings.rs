@@ -44,10 +44,6 @@ pub struct Settings {
     /// written out and not given to the second opinion, whose stock simulation would take
     /// the answer past a frame on a large drawing. `millpath check` and `compile` review.
     pub quick_check: bool,
-    /// Check mode builds each path's model and stops there: nothing is planned or emitted
-    /// (`millpath diff`'s analysis, whose toolpaths plan every path and report the emitter's
-    /// errors themselves).
-    pub models_only: bool,
     /// `compile`'s command line: the milling (or clean) program is written to a temporary
     /// file beside its output while it is generated ([`crate::OutputFile::staged`]), never
     /// held whole; the caller renames it into place with the set.
@@ -128,7 +124,6 @@ impl Default for Settings {
             check: false,
             reference_check: false,
             quick_check: false,
-            models_only: false,
             stage_outputs: false,
             check_sweep_height: false,
             search_dirs: Vec::new(),
