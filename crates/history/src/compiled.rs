@@ -34,7 +34,7 @@ pub struct Outcome {
     /// element of another file, or none); the pictures draw them.
     pub sequence: Vec<(MoveKey, usize)>,
     /// Moves by the line of their element in the canonical text (1-based).
-    pub by_line: HashMap<usize, Vec<MoveKey>>,
+    pub by_line: HashMap<usize, Vec<MoveKey>, foldhash::fast::RandomState>,
     /// Moves from elements of other files (embedded subpaths), by their element's label
     /// (`2001.mpath:7`); moves without an element under "".
     pub elsewhere: std::collections::BTreeMap<String, Vec<MoveKey>>,
@@ -168,14 +168,16 @@ fn source_of(o: &Origin, own: &Path) -> Result<usize, String> {
 
 /// The figures and moves of a toolpath.
 fn outcome_of(tp: &Toolpath, at: &Path) -> Outcome {
-    use std::hash::{Hash, Hasher};
+    use std::hash::{BuildHasher, Hash, Hasher};
     let mut out = Outcome {
         lowest_z: f64::INFINITY,
         moves: tp.moves.len(),
         seconds: shown(tp.stats.seconds()),
         ..Default::default()
     };
-    let mut hasher = std::collections::hash_map::DefaultHasher::new();
+    // one fixed seed: the digests of both versions compare (a fast hasher: one line a move)
+    let mut hasher = foldhash::fast::FixedState::with_seed(0x6d69_6c6c).build_hasher();
+    out.sequence.reserve_exact(tp.moves.len());
     for m in &tp.moves {
         let (from, to) = (
             [shown(m.from.x), shown(m.from.y), shown(m.from.z)],

@@ -4,8 +4,8 @@
 use crate::common::object_index;
 use crate::provenance::{provenance_in, Inherited};
 use crate::Analysis;
+use crate::FastMap;
 use millpath_core::front::drawing::{RawPath, RawSegment};
-use std::collections::HashMap;
 
 /// One effective parameter: key, value as written, where it comes from.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -20,14 +20,14 @@ pub struct Effective {
 /// One walk over the text, whatever the number of offsets; paths and their segments are
 /// found through maps made once (a path of 100,000 elements stays linear).
 pub fn effective_values(a: &Analysis, offsets: &[usize]) -> Vec<Vec<Effective>> {
-    let wanted: HashMap<usize, usize> = offsets.iter().enumerate().map(|(i, &o)| (o, i)).collect();
+    let wanted: FastMap<usize, usize> = offsets.iter().enumerate().map(|(i, &o)| (o, i)).collect();
     let mut out = vec![Vec::new(); offsets.len()];
-    let mut paths: HashMap<&str, &RawPath> = HashMap::new();
+    let mut paths: FastMap<&str, &RawPath> = FastMap::default();
     for p in a.paths.iter().rev() {
         // the first of a name wins, as `raw_path` finds it
         paths.insert(p.name.as_str(), &**p);
     }
-    let mut segments: HashMap<&str, (HashMap<usize, &RawSegment>, Inherited)> = HashMap::new();
+    let mut segments: FastMap<&str, (FastMap<usize, &RawSegment>, Inherited)> = FastMap::default();
     for p in a.ast.paths() {
         for el in p.elements() {
             let Some(&i) = wanted.get(&el.span.start) else {
@@ -40,7 +40,7 @@ pub fn effective_values(a: &Analysis, offsets: &[usize]) -> Vec<Vec<Effective>> 
                 continue;
             };
             let (by_object, inherited) = segments.entry(path.name.as_str()).or_insert_with(|| {
-                let mut by_object = HashMap::new();
+                let mut by_object = FastMap::default();
                 for s in path.segments.iter().rev() {
                     // the first segment of an object wins, as `find` gives it
                     by_object.insert(s.object, s);

@@ -425,6 +425,10 @@ impl DocSettings {
     }
 }
 
+/// A map keyed by offsets or indices, hashed fast (a drawing of 100,000 elements looks
+/// each element up several times).
+pub(crate) type FastMap<K, V> = HashMap<K, V, foldhash::fast::RandomState>;
+
 /// Everything known about one document (text, or a DXF drawing: diagnostics only).
 #[derive(Debug)]
 pub struct Analysis {
@@ -453,9 +457,9 @@ pub struct Analysis {
     pub syntax_ok: bool,
     /// Drawn object index by the byte offset of its element (made on first use: the
     /// diagnostics do not need it).
-    pub(crate) object_at: OnceLock<HashMap<usize, usize>>,
+    pub(crate) object_at: OnceLock<FastMap<usize, usize>>,
     /// Per path: segment object → index of the first segment of its chain (computed once).
-    pub(crate) chain_first: Mutex<HashMap<String, Arc<HashMap<usize, usize>>>>,
+    pub(crate) chain_first: Mutex<HashMap<String, Arc<FastMap<usize, usize>>>>,
     /// Previews computed for this version (code lenses, the preview request).
     pub(crate) previews: Mutex<HashMap<Option<String>, Result<Preview, String>>>,
     /// The walks of this analysis, for the next one of the document (an edit that changes

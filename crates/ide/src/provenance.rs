@@ -223,11 +223,8 @@ pub(crate) fn chain_first_segment<'p>(
 
 /// Segment object → index of the first segment of its mill chain, for a whole path (its
 /// walk taken from the analysis's memo when a build walked it already).
-pub(crate) fn chain_firsts(
-    path: &RawPath,
-    walks: &TraversalMemo,
-) -> std::collections::HashMap<usize, usize> {
-    let mut out = std::collections::HashMap::new();
+pub(crate) fn chain_firsts(path: &RawPath, walks: &TraversalMemo) -> crate::FastMap<usize, usize> {
+    let mut out = crate::FastMap::default();
     let (Some(start), Some(end)) = (path.start.as_ref(), path.end.as_ref()) else {
         return out;
     };
