@@ -2,7 +2,7 @@
 //! dependency graph between files, and the publication of diagnostics.
 //!
 //! `Backend` and its state: generations, the shared analysis per version (made on the analysis
-//! thread, `worker.rs`; the one it replaces freed on its freeing thread, not on the way to the
+//! thread, `worker.rs`; the one it replaces freed there after it, not on the way to the
 //! diagnostics), the dependency graph, debounced publication, `blocking`/`guarded`.
 
 use crate::conv::*;
